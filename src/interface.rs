@@ -1,0 +1,372 @@
+//! The flexible interface (MODEL.md §2): where the reaction acts.
+//!
+//! A Winkler bed of springs `kn` (Pa/m), no tension, plastic at `fm` (Pa).
+//! For a rotation `phi >= 0` the closure is `delta(x) = phi (a - x)`; the
+//! contact length `a` follows from vertical equilibrium `N(a) = W`, and the
+//! reaction acts at `af = M(a) / W` from the toe. One scheme serves every
+//! shape and regime: the stress profile is a plastic zone `[0, xp]` at `fm`
+//! followed by an elastic zone `[xp, x2]`, `x2 = min(a, D)`, whose force and
+//! moment come from the shape's cumulative moments `S_k` (MODEL.md §2).
+
+use crate::shape::Shape;
+
+/// Interface law (MODEL.md §2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Law {
+    /// Rigid contact: the reaction acts at the toe (`af = 0` for `theta != 0`).
+    Rigid,
+    /// Elastic, no tension: springs of stiffness `kn` (Pa/m).
+    Elastic { kn: f64 },
+    /// Elastic, no tension, perfectly plastic at `fm` (Pa).
+    ElastoPlastic { kn: f64, fm: f64 },
+}
+
+/// Contact regime (the FMU's `regime` output, MODEL.md §5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(i32)]
+pub enum Regime {
+    /// The whole base is closed and elastic.
+    FullContact = 0,
+    /// The heel has opened; the contact is elastic.
+    Partial = 1,
+    /// The heel has opened and the toe has crushed.
+    PartialCrushing = 2,
+    /// The whole base is closed and the toe has crushed.
+    FullCrushing = 3,
+    /// The body has overturned (set by the dynamics, never by the interface).
+    Overturned = 4,
+}
+
+/// The interface's answer at one rotation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact {
+    /// Position of the reaction from the toe, m.
+    pub af: f64,
+    /// `d af / d phi`, m/rad (never positive).
+    pub daf: f64,
+    /// Equilibrium parameter `a` of the closure `phi (a - x)`, m. Above `D`
+    /// the heel is closed too; infinite at `phi = 0`.
+    pub a: f64,
+    /// Length of the closed part of the base, `min(a, D)`, m.
+    pub contact_length: f64,
+    /// Which stress profile holds.
+    pub regime: Regime,
+    /// Newton iterations the equilibrium solve took (0 for closed forms).
+    pub iterations: u32,
+}
+
+/// An interface law applied to a base shape carrying a weight.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Interface {
+    shape: Shape,
+    law: Law,
+    weight: f64,
+    d: f64,
+    area: f64,
+    is: f64,
+    /// `kn`, Pa/m (infinite for the rigid law).
+    kn: f64,
+    /// `fm`, Pa (infinite unless elasto-plastic).
+    fm: f64,
+    /// Full moments `S_k(D)`.
+    s_full: [f64; 3],
+    theta_jo: f64,
+    theta_c: f64,
+}
+
+/// Relative tolerance of the equilibrium residual `|N(a) - W| / W`.
+const EQUILIBRIUM_RTOL: f64 = 2e-15;
+const MAX_ITER: u32 = 200;
+
+impl Interface {
+    /// The interface of `shape` under `weight` (N) with the given `law`.
+    /// The caller has validated the parameters (see [`crate::model::Params`]):
+    /// positive sizes, `kn > 0`, `W < fm A`.
+    pub fn new(shape: Shape, law: Law, weight: f64) -> Interface {
+        let (kn, fm) = match law {
+            Law::Rigid => (f64::INFINITY, f64::INFINITY),
+            Law::Elastic { kn } => (kn, f64::INFINITY),
+            Law::ElastoPlastic { kn, fm } => (kn, fm),
+        };
+        let d = shape.depth();
+        let mut it = Interface {
+            shape,
+            law,
+            weight,
+            d,
+            area: shape.area(),
+            is: shape.second_moment(),
+            kn,
+            fm,
+            s_full: shape.moments(d),
+            theta_jo: 0.0,
+            theta_c: f64::INFINITY,
+        };
+        if law != Law::Rigid {
+            let (jo, c) = it.thresholds();
+            it.theta_jo = jo;
+            it.theta_c = c;
+        }
+        it
+    }
+
+    pub fn shape(&self) -> &Shape {
+        &self.shape
+    }
+    pub fn law(&self) -> Law {
+        self.law
+    }
+    /// Base depth `D`, m.
+    pub fn depth(&self) -> f64 {
+        self.d
+    }
+    /// Rotation at which the heel opens, rad (0 for the rigid law).
+    pub fn theta_jo(&self) -> f64 {
+        self.theta_jo
+    }
+    /// Rotation at which the toe starts to crush, rad (infinite without crushing).
+    pub fn theta_c(&self) -> f64 {
+        self.theta_c
+    }
+    /// Plastic limit of `af` for large rotations, `alim / 2` where the whole
+    /// weight is carried at `fm` over `[0, alim]`: `S0(alim) = W / fm`, m
+    /// (0 without crushing).
+    pub fn af_limit(&self) -> f64 {
+        if !self.fm.is_finite() {
+            return 0.0;
+        }
+        let target = self.weight / self.fm;
+        let alim = solve_increasing(|x| self.shape.moments(x)[0] - target, 0.0, self.d);
+        let [s0, s1, _] = self.shape.moments(alim);
+        s1 / s0
+    }
+
+    /// Thresholds `(thetaJo, thetaC)` (MODEL.md §2, "Regimes and thresholds").
+    fn thresholds(&self) -> (f64, f64) {
+        let (w, kn, fm, a_sec, d) = (self.weight, self.kn, self.fm, self.area, self.d);
+        // Heel opening while the toe is elastic: N(D) = kn theta A D / 2 = W.
+        let jo_elastic = 2.0 * w / (kn * a_sec * d);
+        if !fm.is_finite() {
+            return (jo_elastic, f64::INFINITY);
+        }
+        if fm * a_sec / 2.0 >= w {
+            // Crushing starts in partial contact: solve N(ac) = W with
+            // theta = fm / (kn ac), i.e. fm (S0(ac) - S1(ac)/ac) = W.
+            let ac = solve_increasing(
+                |a| {
+                    let [s0, s1, _] = self.shape.moments(a);
+                    fm * (s0 - s1 / a) - w
+                },
+                0.0,
+                d,
+            );
+            (jo_elastic, fm / (kn * ac))
+        } else {
+            // Crushing starts in full contact: toe stress W/A + kn theta D/2 = fm.
+            let theta_c = 2.0 * (fm - w / a_sec) / (kn * d);
+            // The heel opens later, at N(a = D) = W with a plastic zone
+            // [0, xp], kn theta = fm / (D - xp).
+            let [_, s1d, _] = self.s_full;
+            let xp = solve_increasing(
+                |xp| {
+                    let [s0, s1, _] = self.shape.moments(xp);
+                    fm * s0 + fm / (d - xp) * (d * (a_sec - s0) - (s1d - s1)) - w
+                },
+                0.0,
+                d,
+            );
+            (fm / (kn * (d - xp)), theta_c)
+        }
+    }
+
+    /// The regime at rotation `phi >= 0` for a flexible law.
+    fn regime_at(&self, phi: f64) -> Regime {
+        let closed = phi <= self.theta_jo;
+        let crushed = phi > self.theta_c;
+        match (closed, crushed) {
+            (true, false) => Regime::FullContact,
+            (false, false) => Regime::Partial,
+            (false, true) => Regime::PartialCrushing,
+            (true, true) => Regime::FullCrushing,
+        }
+    }
+
+    /// The contact at rotation `phi = |theta|` (rad).
+    #[inline]
+    pub fn contact(&self, phi: f64) -> Contact {
+        self.contact_near(phi, f64::NAN)
+    }
+
+    /// The contact at `phi`, starting the equilibrium solve from `a_hint`
+    /// (the `a` of a nearby rotation; NaN for none). Same result to the
+    /// solver tolerance, fewer iterations.
+    pub fn contact_near(&self, phi: f64, a_hint: f64) -> Contact {
+        let phi = phi.abs();
+        if phi == 0.0 {
+            return Contact {
+                af: self.d / 2.0,
+                daf: if self.law == Law::Rigid {
+                    0.0
+                } else {
+                    -self.kn * self.is / self.weight
+                },
+                a: f64::INFINITY,
+                contact_length: self.d,
+                regime: Regime::FullContact,
+                iterations: 0,
+            };
+        }
+        if self.law == Law::Rigid {
+            return Contact {
+                af: 0.0,
+                daf: 0.0,
+                a: 0.0,
+                contact_length: 0.0,
+                regime: Regime::Partial,
+                iterations: 0,
+            };
+        }
+        let regime = self.regime_at(phi);
+        let (w, d) = (self.weight, self.d);
+        let k = self.kn * phi; // stress per unit length of closure, Pa/m
+        if regime == Regime::FullContact {
+            // Closed form (MODEL.md §2): N = k (a A - A D/2) = W.
+            let a = w / (k * self.area) + d / 2.0;
+            return Contact {
+                af: d / 2.0 - k * self.is / w,
+                daf: -self.kn * self.is / w,
+                a,
+                contact_length: d,
+                regime,
+                iterations: 0,
+            };
+        }
+        // Elastic length a1: the closure at which the stress reaches fm.
+        let a1 = self.fm / k;
+        let (mut lo, mut hi) = match regime {
+            Regime::Partial => (0.0, d.min(a1)),
+            Regime::PartialCrushing => (a1, d.min(a1 + d)),
+            _ => (d, a1 + d), // FullCrushing
+        };
+        let mut a = if a_hint > lo && a_hint < hi {
+            a_hint
+        } else {
+            self.first_guess(k, a1, lo, hi)
+        };
+        let mut iterations = 0;
+        let mut r = self.resultants(k, a1, a);
+        loop {
+            let f = r.n - w;
+            if f.abs() <= EQUILIBRIUM_RTOL * w || iterations >= MAX_ITER {
+                break;
+            }
+            if f > 0.0 {
+                hi = a;
+            } else {
+                lo = a;
+            }
+            let mut next = a - f / r.dn_da;
+            if !(next > lo && next < hi) {
+                next = 0.5 * (lo + hi);
+            }
+            if next == a || hi - lo <= 4.0 * f64::EPSILON * hi {
+                break;
+            }
+            a = next;
+            iterations += 1;
+            r = self.resultants(k, a1, a);
+        }
+        // MODEL.md §2: af = M/W; d af/d phi = -(kn/W) x (second moment of the
+        // elastic zone about its own centroid), the plastic-boundary terms
+        // cancelling as in dN/da.
+        let [e0, e1, e2] = r.elastic;
+        let central = if e0 > 0.0 {
+            (e2 - e1 * e1 / e0).max(0.0)
+        } else {
+            0.0
+        };
+        Contact {
+            af: r.m / w,
+            daf: -self.kn * central / w,
+            a,
+            contact_length: a.min(d),
+            regime,
+            iterations,
+        }
+    }
+
+    /// A starting point for the equilibrium solve: the solid-rectangle
+    /// formulas of MODEL.md §2 with the section's mean width `A/D`.
+    fn first_guess(&self, k: f64, a1: f64, lo: f64, hi: f64) -> f64 {
+        let wbar = self.area / self.d;
+        let guess = if a1.is_finite() && lo >= a1 {
+            // crushing: a = a1 + a2, a2 = alim - a1/2, alim = W/(fm wbar)
+            self.weight / (self.fm * wbar) + a1 / 2.0
+        } else {
+            (2.0 * self.weight / (k * wbar)).sqrt()
+        };
+        if guess > lo && guess < hi {
+            guess
+        } else {
+            0.5 * (lo + hi)
+        }
+    }
+
+    /// Force and moment of the stress profile with closure `k (a - x)`,
+    /// capped at `fm` (plastic zone `[0, xp]`, `xp = a - a1`).
+    #[inline]
+    fn resultants(&self, k: f64, a1: f64, a: f64) -> Resultants {
+        let x2 = a.min(self.d);
+        let xp = (a - a1).clamp(0.0, x2);
+        let s2 = if a >= self.d {
+            self.s_full
+        } else {
+            self.shape.moments(x2)
+        };
+        let sp = if xp > 0.0 {
+            self.shape.moments(xp)
+        } else {
+            [0.0; 3]
+        };
+        let e = [s2[0] - sp[0], s2[1] - sp[1], s2[2] - sp[2]];
+        let (np, mp) = if xp > 0.0 {
+            (self.fm * sp[0], self.fm * sp[1])
+        } else {
+            (0.0, 0.0)
+        };
+        Resultants {
+            n: np + k * (a * e[0] - e[1]),
+            m: mp + k * (a * e[1] - e[2]),
+            dn_da: k * e[0],
+            elastic: e,
+        }
+    }
+}
+
+struct Resultants {
+    /// Normal force `N`, N.
+    n: f64,
+    /// Moment about the toe, N m.
+    m: f64,
+    /// `dN/da` at fixed rotation, N/m.
+    dn_da: f64,
+    /// Moments of the elastic zone `[xp, x2]`.
+    elastic: [f64; 3],
+}
+
+/// Root of an increasing function on `[lo, hi]` by bisection to the last
+/// bit (used only at initialization).
+pub(crate) fn solve_increasing(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
+    for _ in 0..2000 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if f(mid) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}

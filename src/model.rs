@@ -1,0 +1,422 @@
+//! The parameter set, its validation (MODEL.md §5) and the assembled model:
+//! body, interface, levers of the equations of motion (MODEL.md §3).
+
+use std::fmt;
+
+use crate::body::{Body, MassModel};
+use crate::interface::{solve_increasing, Contact, Interface, Law};
+use crate::shape::Shape;
+
+/// Which equation of motion (MODEL.md §3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Formulation {
+    /// The paper's Eq. 1 (Costa 2012): no `dI/dphi` term.
+    Costa,
+    /// The paper's Eq. 9 (Lagrangian, energy-consistent). Default.
+    ShiftingPivot,
+}
+
+/// How the coefficient of restitution is chosen (MODEL.md §3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Restitution {
+    /// `eta = 1 - 2 m b² / IO`.
+    Housner,
+    /// The parameter `eta`.
+    Given,
+}
+
+/// Base shape selector (the FMU's `shape` enumeration).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShapeKind {
+    SolidRectangle,
+    HollowRectangle,
+    SolidCircle,
+    HollowCircle,
+}
+
+/// Mass model selector (the FMU's `massModel` enumeration).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MassKind {
+    Prism,
+    Lumped,
+}
+
+/// Interface law selector (the FMU's `interface` enumeration).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LawKind {
+    Rigid,
+    Elastic,
+    ElastoPlastic,
+}
+
+/// Every parameter of MODEL.md §5, by its public name. Fields that the
+/// selected shape, mass model or law does not use are ignored.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params {
+    pub shape: ShapeKind,
+    /// Rectangle depth along the rocking direction, m.
+    pub b: f64,
+    /// Rectangle width, m.
+    pub l: f64,
+    /// Hollow rectangle wall thickness, m.
+    pub t: f64,
+    /// Circle outer radius, m.
+    pub ro: f64,
+    /// Hollow circle inner radius, m.
+    pub ri: f64,
+    pub mass_model: MassKind,
+    /// Prism height, m.
+    pub h: f64,
+    /// Prism density, kg/m³.
+    pub rho: f64,
+    /// Lumped weight, N.
+    pub w: f64,
+    /// Lumped height of the centre of mass, m.
+    pub hg: f64,
+    /// Lumped inertia about the centre of mass, kg m².
+    pub ic: f64,
+    pub interface: LawKind,
+    /// Normal stiffness, Pa/m.
+    pub kn: f64,
+    /// Compressive strength, Pa.
+    pub fm: f64,
+    pub formulation: Formulation,
+    pub restitution: Restitution,
+    /// Coefficient of restitution when `restitution = Given`.
+    pub eta: f64,
+    /// Gravity, m/s².
+    pub g: f64,
+    /// Initial rotation, rad.
+    pub theta0: f64,
+    /// Initial angular velocity, rad/s.
+    pub omega0: f64,
+}
+
+impl Default for Params {
+    /// A 0.5 m x 1 m x 2.5 m masonry block (1800 kg/m³) on a mortar joint of
+    /// kn = 5 GPa/m crushing at fm = 5 MPa, at rest.
+    fn default() -> Params {
+        Params {
+            shape: ShapeKind::SolidRectangle,
+            b: 0.5,
+            l: 1.0,
+            t: 0.1,
+            ro: 0.5,
+            ri: 0.3,
+            mass_model: MassKind::Prism,
+            h: 2.5,
+            rho: 1800.0,
+            w: 1.0e5,
+            hg: 1.25,
+            ic: 1.0e4,
+            interface: LawKind::ElastoPlastic,
+            kn: 5.0e9,
+            fm: 5.0e6,
+            formulation: Formulation::ShiftingPivot,
+            restitution: Restitution::Housner,
+            eta: 0.9,
+            g: 9.81,
+            theta0: 0.0,
+            omega0: 0.0,
+        }
+    }
+}
+
+/// A parameter that violates a condition of MODEL.md §5.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamError {
+    /// The public name of the offending variable.
+    pub variable: &'static str,
+    /// Its value.
+    pub value: f64,
+    /// The violated condition, in words and numbers.
+    pub condition: String,
+}
+
+impl fmt::Display for ParamError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} = {}: {}", self.variable, self.value, self.condition)
+    }
+}
+
+impl std::error::Error for ParamError {}
+
+fn check(
+    ok: bool,
+    variable: &'static str,
+    value: f64,
+    condition: impl Into<String>,
+) -> Result<(), ParamError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(ParamError {
+            variable,
+            value,
+            condition: condition.into(),
+        })
+    }
+}
+
+fn positive(variable: &'static str, value: f64) -> Result<(), ParamError> {
+    check(
+        value.is_finite() && value > 0.0,
+        variable,
+        value,
+        "must be finite and > 0",
+    )
+}
+
+impl Params {
+    /// Validate (MODEL.md §5) and assemble the model.
+    pub fn build(&self) -> Result<Model, ParamError> {
+        positive("g", self.g)?;
+        let shape = match self.shape {
+            ShapeKind::SolidRectangle => {
+                positive("B", self.b)?;
+                positive("L", self.l)?;
+                Shape::SolidRectangle {
+                    b: self.b,
+                    l: self.l,
+                }
+            }
+            ShapeKind::HollowRectangle => {
+                positive("B", self.b)?;
+                positive("L", self.l)?;
+                positive("t", self.t)?;
+                let m = self.b.min(self.l);
+                check(
+                    2.0 * self.t < m,
+                    "t",
+                    self.t,
+                    format!("must satisfy 2*t < min(B, L) = {m}"),
+                )?;
+                Shape::HollowRectangle {
+                    b: self.b,
+                    l: self.l,
+                    t: self.t,
+                }
+            }
+            ShapeKind::SolidCircle => {
+                positive("Ro", self.ro)?;
+                Shape::SolidCircle { ro: self.ro }
+            }
+            ShapeKind::HollowCircle => {
+                positive("Ro", self.ro)?;
+                positive("Ri", self.ri)?;
+                check(
+                    self.ri < self.ro,
+                    "Ri",
+                    self.ri,
+                    format!("must satisfy Ri < Ro = {}", self.ro),
+                )?;
+                Shape::HollowCircle {
+                    ro: self.ro,
+                    ri: self.ri,
+                }
+            }
+        };
+        let mass_model = match self.mass_model {
+            MassKind::Prism => {
+                positive("H", self.h)?;
+                positive("rho", self.rho)?;
+                MassModel::Prism {
+                    h: self.h,
+                    rho: self.rho,
+                }
+            }
+            MassKind::Lumped => {
+                positive("W", self.w)?;
+                positive("hG", self.hg)?;
+                check(
+                    self.ic.is_finite() && self.ic >= 0.0,
+                    "Ic",
+                    self.ic,
+                    "must be finite and >= 0",
+                )?;
+                MassModel::Lumped {
+                    w: self.w,
+                    hg: self.hg,
+                    ic: self.ic,
+                }
+            }
+        };
+        let body = Body::new(&shape, mass_model, self.g);
+        // A prism's weight is derived: name what the user set.
+        let weight_name = if self.mass_model == MassKind::Prism {
+            "rho"
+        } else {
+            "W"
+        };
+        positive(weight_name, body.weight)?;
+        let law = match self.interface {
+            LawKind::Rigid => Law::Rigid,
+            LawKind::Elastic => {
+                positive("kn", self.kn)?;
+                Law::Elastic { kn: self.kn }
+            }
+            LawKind::ElastoPlastic => {
+                positive("kn", self.kn)?;
+                check(
+                    self.fm > 0.0 && !self.fm.is_nan(),
+                    "fm",
+                    self.fm,
+                    "must be > 0 (inf for no crushing)",
+                )?;
+                let fa = self.fm * shape.area();
+                check(
+                    body.weight < fa,
+                    "fm",
+                    self.fm,
+                    format!("the section crushes at rest: must satisfy W < fm*A, W = {} N, fm*A = {fa} N", body.weight),
+                )?;
+                if self.fm.is_infinite() {
+                    Law::Elastic { kn: self.kn }
+                } else {
+                    Law::ElastoPlastic {
+                        kn: self.kn,
+                        fm: self.fm,
+                    }
+                }
+            }
+        };
+        if law != Law::Rigid {
+            let kis = self.kn * shape.second_moment();
+            let whg = body.weight * body.hg;
+            check(
+                kis > whg,
+                "kn",
+                self.kn,
+                format!("the rest position is unstable: must satisfy kn*Is > W*hG, kn*Is = {kis} N m, W*hG = {whg} N m"),
+            )?;
+        }
+        let eta = match self.restitution {
+            Restitution::Housner => body.eta_housner(),
+            Restitution::Given => {
+                check(
+                    (0.0..=1.0).contains(&self.eta),
+                    "eta",
+                    self.eta,
+                    "must be in [0, 1]",
+                )?;
+                self.eta
+            }
+        };
+        check(
+            self.theta0.is_finite(),
+            "theta",
+            self.theta0,
+            "must be finite",
+        )?;
+        check(
+            self.omega0.is_finite(),
+            "omega",
+            self.omega0,
+            "must be finite",
+        )?;
+        let interface = Interface::new(shape, law, body.weight);
+        let mut model = Model {
+            body,
+            interface,
+            formulation: self.formulation,
+            eta,
+            theta_ov: body.alpha,
+        };
+        model.theta_ov = model.find_theta_ov();
+        check(
+            self.theta0.abs() < model.theta_ov,
+            "theta",
+            self.theta0,
+            format!(
+                "the initial rotation must satisfy |theta| < thetaOv = {}",
+                model.theta_ov
+            ),
+        )?;
+        Ok(model)
+    }
+}
+
+/// Levers and inertia of the equation of motion at one rotation (MODEL.md §3).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Levers {
+    /// Lever of the weight about the shifted pivot, `hW`, m.
+    pub hw: f64,
+    /// Lever of the ground inertia, `hg`, m.
+    pub hg: f64,
+    /// Inertia about the shifted pivot `I(phi)`, kg m².
+    pub inertia: f64,
+    /// `dI/dphi`, kg m²/rad.
+    pub dinertia: f64,
+}
+
+/// A validated model: body, interface and the constants of the motion.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Model {
+    pub body: Body,
+    pub interface: Interface,
+    pub formulation: Formulation,
+    /// Coefficient of restitution applied at every impact.
+    pub eta: f64,
+    /// Overturning rotation, rad.
+    pub theta_ov: f64,
+}
+
+impl Model {
+    /// `hW, hg, I, dI/dphi` at `phi = |theta|` for the contact `c` there (MODEL.md §3).
+    #[inline]
+    pub fn levers(&self, phi: f64, c: &Contact) -> Levers {
+        let b = &self.body;
+        let (s, co) = phi.sin_cos();
+        // sin(alpha - phi), cos(alpha - phi)
+        let sap = b.sin_alpha * co - b.cos_alpha * s;
+        let cap = b.cos_alpha * co + b.sin_alpha * s;
+        let af = c.af;
+        let r2 = b.r0 * b.r0 + af * af - 2.0 * b.r0 * af * b.sin_alpha;
+        Levers {
+            hw: b.r0 * sap - af * co,
+            hg: b.r0 * cap - af * s,
+            inertia: b.ic + b.mass * r2,
+            dinertia: -2.0 * b.mass * (b.r0 * b.sin_alpha - af) * c.daf,
+        }
+    }
+
+    /// Restoring moment `MR = W hW(phi)` and its derivative `dMR/dphi`, N m
+    /// and N m/rad (MODEL.md §3).
+    pub fn restoring_moment(&self, phi: f64) -> (f64, f64) {
+        let c = self.interface.contact(phi);
+        let b = &self.body;
+        let l = self.levers(phi, &c);
+        let (s, co) = phi.sin_cos();
+        let cap = b.cos_alpha * co + b.sin_alpha * s;
+        let dhw = -b.r0 * cap - c.daf * co + c.af * s;
+        (b.weight * l.hw, b.weight * dhw)
+    }
+
+    /// The first root of `hW(phi) = 0` for `phi > 0` (MODEL.md §3): alpha for
+    /// the rigid law; otherwise a geometric scan from far below the first
+    /// threshold up to alpha, where `hW = -af cos(alpha) < 0`, refined by bisection.
+    fn find_theta_ov(&self) -> f64 {
+        let alpha = self.body.alpha;
+        if self.interface.law() == Law::Rigid {
+            return alpha;
+        }
+        let hw = |phi: f64| self.levers(phi, &self.interface.contact(phi)).hw;
+        let first = self
+            .interface
+            .theta_jo()
+            .min(self.interface.theta_c())
+            .min(alpha);
+        let start = first * 1e-6;
+        let n = 400;
+        let ratio = (alpha / start).powf(1.0 / n as f64);
+        let mut prev = start;
+        for i in 1..=n {
+            let phi = if i == n { alpha } else { start * ratio.powi(i) };
+            if hw(phi) <= 0.0 {
+                return solve_increasing(|p| -hw(p), prev, phi);
+            }
+            prev = phi;
+        }
+        alpha
+    }
+}

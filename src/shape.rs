@@ -1,0 +1,273 @@
+//! Base sections (MODEL.md §1) and the cumulative moments of their width
+//! function (MODEL.md §2).
+//!
+//! `x` is measured along the rocking direction from the toe (`x = 0`) to the
+//! heel (`x = D`). Every interface computation goes through
+//! [`Shape::moments`], `S_k(x) = ∫_0^x s^k w(s) ds` for `k = 0, 1, 2`, which
+//! is closed form for every shape, so one contact solve serves all of them.
+
+/// A base section, symmetric about its centroid. All lengths in metres.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// Depth `b` (along the rocking direction, `B` in MODEL.md) and width `l` (`L`).
+    SolidRectangle { b: f64, l: f64 },
+    /// Box section: outer depth `b`, outer width `l`, wall thickness `t`.
+    HollowRectangle { b: f64, l: f64, t: f64 },
+    /// Disc of radius `ro`.
+    SolidCircle { ro: f64 },
+    /// Annulus of outer radius `ro` and inner radius `ri` (concentric).
+    HollowCircle { ro: f64, ri: f64 },
+}
+
+impl Shape {
+    /// Base depth `D` along the rocking direction, m.
+    pub fn depth(&self) -> f64 {
+        match *self {
+            Shape::SolidRectangle { b, .. } | Shape::HollowRectangle { b, .. } => b,
+            Shape::SolidCircle { ro } | Shape::HollowCircle { ro, .. } => 2.0 * ro,
+        }
+    }
+
+    /// Section area `A`, m² (MODEL.md §1).
+    pub fn area(&self) -> f64 {
+        match *self {
+            Shape::SolidRectangle { b, l } => b * l,
+            Shape::HollowRectangle { b, l, t } => b * l - (b - 2.0 * t) * (l - 2.0 * t),
+            Shape::SolidCircle { ro } => std::f64::consts::PI * ro * ro,
+            Shape::HollowCircle { ro, ri } => std::f64::consts::PI * (ro * ro - ri * ri),
+        }
+    }
+
+    /// Second moment `Is = ∫ (x - D/2)² w dx` about the centroidal axis
+    /// parallel to the rocking axis, m⁴ (MODEL.md §1).
+    pub fn second_moment(&self) -> f64 {
+        match *self {
+            Shape::SolidRectangle { b, l } => l * b.powi(3) / 12.0,
+            Shape::HollowRectangle { b, l, t } => {
+                (l * b.powi(3) - (l - 2.0 * t) * (b - 2.0 * t).powi(3)) / 12.0
+            }
+            Shape::SolidCircle { ro } => std::f64::consts::PI * ro.powi(4) / 4.0,
+            Shape::HollowCircle { ro, ri } => {
+                std::f64::consts::PI * (ro.powi(4) - ri.powi(4)) / 4.0
+            }
+        }
+    }
+
+    /// Width `w(x)` perpendicular to the rocking plane at `x` (MODEL.md §1), m.
+    /// Zero outside `[0, D]`.
+    pub fn width(&self, x: f64) -> f64 {
+        let d = self.depth();
+        if !(0.0..=d).contains(&x) {
+            return 0.0;
+        }
+        match *self {
+            Shape::SolidRectangle { l, .. } => l,
+            Shape::HollowRectangle { b, l, t } => {
+                if x <= t || x >= b - t {
+                    l
+                } else {
+                    2.0 * t
+                }
+            }
+            Shape::SolidCircle { ro } => chord(ro, x - ro),
+            Shape::HollowCircle { ro, ri } => chord(ro, x - ro) - chord(ri, x - ro),
+        }
+    }
+
+    /// Cumulative moments `[S0, S1, S2](x) = ∫_0^x s^k w(s) ds` about the toe
+    /// (MODEL.md §2), with `x` clipped to `[0, D]`. Units m², m³, m⁴.
+    #[inline]
+    pub fn moments(&self, x: f64) -> [f64; 3] {
+        let d = self.depth();
+        let x = x.clamp(0.0, d);
+        match *self {
+            Shape::SolidRectangle { l, .. } => band(l, 0.0, x),
+            Shape::HollowRectangle { b, l, t } => {
+                // Webs of width 2t over the whole depth, plus the flanges' extra
+                // (l - 2t) over [0, t] and [b - t, b].
+                let web = band(2.0 * t, 0.0, x);
+                let toe = band(l - 2.0 * t, 0.0, x.min(t));
+                let heel = if x > b - t {
+                    band(l - 2.0 * t, b - t, x)
+                } else {
+                    [0.0; 3]
+                };
+                [0, 1, 2].map(|k| web[k] + toe[k] + heel[k])
+            }
+            Shape::SolidCircle { ro } => disc_moments(ro, 0.0, x),
+            Shape::HollowCircle { ro, ri } => {
+                let outer = disc_moments(ro, 0.0, x);
+                let inner = disc_moments(ri, ro - ri, x);
+                [0, 1, 2].map(|k| outer[k] - inner[k])
+            }
+        }
+    }
+}
+
+/// Chord `2 sqrt(r² - u²)` of a circle of radius `r` at offset `u` from its centre.
+fn chord(r: f64, u: f64) -> f64 {
+    if u.abs() >= r {
+        0.0
+    } else {
+        2.0 * ((r - u) * (r + u)).sqrt()
+    }
+}
+
+/// Moments `∫_p^q s^k c ds` of a band of constant width `c`.
+#[inline]
+fn band(c: f64, p: f64, q: f64) -> [f64; 3] {
+    [
+        c * (q - p),
+        c * (q * q - p * p) / 2.0,
+        c * (q * q * q - p * p * p) / 3.0,
+    ]
+}
+
+/// Toe moments `∫_0^x s^k w(s) ds` of a disc of radius `r` whose leftmost
+/// point is at `s = e` (so its centre is at `e + r`).
+///
+/// With `y = s - e = r (1 - cos φ)` the width is `2 r sin φ` and
+/// `∫ y^k w ds = 2 r^(k+2) G_k(β)`, `G_k(β) = ∫_0^β (1 - cos φ)^k sin²φ dφ`,
+/// where `β = 2 asin(sqrt(y/2r))`. This is MODEL.md §2's circle formula in
+/// the variable `φ`, which keeps full relative precision for thin segments
+/// (large rotations): the `u Q + R² asin(u/R) + π R²/2` form loses digits to
+/// cancellation there. Moments about `s = 0` follow by the binomial shift
+/// `s = e + y`, a sum of non-negative terms.
+#[inline]
+fn disc_moments(r: f64, e: f64, x: f64) -> [f64; 3] {
+    let y = (x - e).clamp(0.0, 2.0 * r);
+    if y <= 0.0 {
+        return [0.0; 3];
+    }
+    let q = y / (2.0 * r);
+    let g = segment_integrals(q);
+    let r2 = r * r;
+    let t0 = 2.0 * r2 * g[0];
+    let t1 = 2.0 * r2 * r * g[1];
+    let t2 = 2.0 * r2 * r2 * g[2];
+    [t0, e * t0 + t1, e * e * t0 + 2.0 * e * t1 + t2]
+}
+
+/// Trigonometric-polynomial coefficients `c_j` of the integrands
+/// `(1 - cos φ)^k sin²φ = Σ_j c_j cos(jφ)`, k = 0, 1, 2.
+const TRIG: [[f64; 5]; 3] = [
+    [0.5, 0.0, -0.5, 0.0, 0.0],
+    [0.5, -0.25, -0.5, 0.25, 0.0],
+    [0.625, -0.5, -0.5, 0.5, -0.125],
+];
+
+/// Number of Taylor terms used below `β < SERIES_BETA`.
+const SERIES_TERMS: usize = 18;
+/// Below this half-angle the integrals are summed as Taylor series in β
+/// (all low orders cancel exactly in the closed form); above it the closed
+/// form loses at most a factor ~30 to cancellation.
+const SERIES_BETA: f64 = 1.0;
+
+/// Taylor coefficients of `G_k(β) = Σ_n T[k][n] β^(2(n+k+1)+1)`:
+/// `T = (-1)^m Σ_j c_j j^(2m) / (2m+1)!` with `m = n + k + 1` (lower orders
+/// vanish since the integrand is `O(φ^(2k+2))`).
+const SERIES: [[f64; SERIES_TERMS]; 3] = series_coefficients();
+
+const fn series_coefficients() -> [[f64; SERIES_TERMS]; 3] {
+    let mut out = [[0.0; SERIES_TERMS]; 3];
+    let mut k = 0;
+    while k < 3 {
+        let mut n = 0;
+        while n < SERIES_TERMS {
+            let m = n + k + 1;
+            // (2m+1)!
+            let mut fact = 1.0;
+            let mut i = 2;
+            while i <= 2 * m + 1 {
+                fact *= i as f64;
+                i += 1;
+            }
+            let mut sum = 0.0;
+            let mut j = 1;
+            while j < 5 {
+                let mut p = 1.0;
+                let mut e = 0;
+                while e < 2 * m {
+                    p *= j as f64;
+                    e += 1;
+                }
+                sum += TRIG[k][j] * p;
+                j += 1;
+            }
+            out[k][n] = if m % 2 == 0 { sum / fact } else { -sum / fact };
+            n += 1;
+        }
+        k += 1;
+    }
+    out
+}
+
+/// `[G_0, G_1, G_2](β)` for the segment of relative height `q = y/(2r)`,
+/// `β = 2 asin(sqrt q)`.
+#[inline]
+fn segment_integrals(q: f64) -> [f64; 3] {
+    let q = q.clamp(0.0, 1.0);
+    let sh = q.sqrt(); // sin(β/2)
+    let beta = 2.0 * sh.asin();
+    if beta < SERIES_BETA {
+        let b2 = beta * beta;
+        let mut out = [0.0; 3];
+        for (k, coeffs) in SERIES.iter().enumerate() {
+            let mut acc = 0.0;
+            for c in coeffs.iter().rev() {
+                acc = acc * b2 + c;
+            }
+            // leading power β^(2k+3)
+            let lead = beta * b2.powi(k as i32 + 1);
+            out[k] = acc * lead;
+        }
+        out
+    } else {
+        let s1 = 2.0 * (q * (1.0 - q)).sqrt(); // sin β
+        let c1 = 1.0 - 2.0 * q; // cos β
+        let s2 = 2.0 * s1 * c1;
+        let c2 = c1 * c1 - s1 * s1;
+        let s3 = s2 * c1 + c2 * s1;
+        let c3 = c2 * c1 - s2 * s1;
+        let s4 = s3 * c1 + c3 * s1;
+        let sj = [beta, s1, s2 / 2.0, s3 / 3.0, s4 / 4.0];
+        let mut out = [0.0; 3];
+        for (k, c) in TRIG.iter().enumerate() {
+            out[k] = c.iter().zip(sj.iter()).map(|(c, s)| c * s).sum();
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn full_moments_match_area_and_second_moment() {
+        let shapes = [
+            Shape::SolidRectangle { b: 0.7, l: 1.3 },
+            Shape::HollowRectangle {
+                b: 2.0,
+                l: 1.5,
+                t: 0.2,
+            },
+            Shape::SolidCircle { ro: 1.1 },
+            Shape::HollowCircle { ro: 3.99, ri: 2.12 },
+        ];
+        for s in shapes {
+            let d = s.depth();
+            let [s0, s1, s2] = s.moments(d);
+            let a = s.area();
+            // centroid at D/2, and Is = S2 - 2 c S1 + c^2 S0 with c = D/2
+            let c = d / 2.0;
+            let is = s2 - 2.0 * c * s1 + c * c * s0;
+            assert!((s0 / a - 1.0).abs() < 1e-14, "{s:?} area {s0} vs {a}");
+            assert!((s1 / (a * c) - 1.0).abs() < 1e-14, "{s:?} first moment");
+            assert!(
+                (is / s.second_moment() - 1.0).abs() < 1e-12,
+                "{s:?} Is {is}"
+            );
+        }
+    }
+}
