@@ -313,32 +313,35 @@ impl Interface {
     }
 
     /// Force and moment of the stress profile with closure `k (a - x)`,
-    /// capped at `fm` (plastic zone `[0, xp]`, `xp = a - a1`).
+    /// capped at `fm`: plastic zone `[0, xp]`, `xp = a - a1`, elastic zone
+    /// `[xp, x2]` (MODEL.md §2). The elastic zone's integrals are taken
+    /// about its start `xp` so that no digits cancel when it is narrow.
     #[inline]
     fn resultants(&self, k: f64, a1: f64, a: f64) -> Resultants {
         let x2 = a.min(self.d);
         let xp = (a - a1).clamp(0.0, x2);
-        let s2 = if a >= self.d {
+        let l = if xp == 0.0 && a >= self.d {
+            // whole base elastic: the moments about the toe are known
             self.s_full
         } else {
-            self.shape.moments(x2)
+            self.shape.zone_moments(xp, x2)
         };
-        let sp = if xp > 0.0 {
-            self.shape.moments(xp)
-        } else {
-            [0.0; 3]
-        };
-        let e = [s2[0] - sp[0], s2[1] - sp[1], s2[2] - sp[2]];
         let (np, mp) = if xp > 0.0 {
+            let sp = self.shape.moments(xp);
             (self.fm * sp[0], self.fm * sp[1])
         } else {
             (0.0, 0.0)
         };
+        // closure at xp is e = a - xp: ∫ (a - x) w = e L0 - L1 and
+        // ∫ (a - x) x w = xp (e L0 - L1) + e L1 - L2 over the elastic zone
+        let e = a - xp;
+        let f = e * l[0] - l[1];
+        let mz = xp * f + e * l[1] - l[2];
         Resultants {
-            n: np + k * (a * e[0] - e[1]),
-            m: mp + k * (a * e[1] - e[2]),
-            dn_da: k * e[0],
-            elastic: e,
+            n: np + k * f,
+            m: mp + k * mz,
+            dn_da: k * l[0],
+            elastic: l,
         }
     }
 }
@@ -350,7 +353,7 @@ struct Resultants {
     m: f64,
     /// `dN/da` at fixed rotation, N/m.
     dn_da: f64,
-    /// Moments of the elastic zone `[xp, x2]`.
+    /// Moments of the elastic zone `[xp, x2]` about `xp`.
     elastic: [f64; 3],
 }
 

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# The main job: build RockingBlock.fmu and run the Dharahara case study
+# through it, leaving plots and tables in out/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tools/venv.sh
+cargo xtask fmu
+.venv/bin/python examples/dharahara.py "$@"
