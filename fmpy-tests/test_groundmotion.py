@@ -1,0 +1,434 @@
+"""Tests of the `groundmotion` readers.
+
+Each check compares against something the reader code does not produce: the
+README table of the shared ground motions, the files' own header statements
+(parsed here with simple regular expressions), or files these tests write with
+known values.
+"""
+
+import re
+import sys
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO))
+
+import groundmotion as gm  # noqa: E402
+from groundmotion import GroundMotionFormatError  # noqa: E402
+
+DATA = Path(__file__).resolve().parents[1].parent / "shared" / "ground-motions"
+G = 9.80665  # m/s² per g, written out here rather than taken from the package
+
+V2 = "csmip-coalinga-1983/ce36456p_CE36456.V2"
+V2A = "geonet-kaikoura-2016/20161113_110259_WTMC_20.V2A"
+SMC = "usgs-lomaprieta-1989/0111{}.smc"
+DARFIELD = "geonet-darfield-2010/3366146_DFHS_HN_20.{}"
+KATNP = "katnp-standin/KATNP_NS_standin.csv"
+
+
+@lru_cache(maxsize=None)
+def records(rel):
+    return tuple(gm.read_all(DATA / rel))
+
+
+def text_of(rel):
+    return (DATA / rel).read_text(encoding="latin-1")
+
+
+# --------------------------------------------------------------------------
+# The README table (copied from shared/ground-motions/README.md):
+# file, component index, dt (s), points, PGA (g), PGV (cm/s).
+README_TABLE = [
+    (KATNP, 0, 0.01, 8001, 0.174, 105.2),
+    (V2A, 0, 0.02, 8192, 0.992, 101.7),
+    (V2A, 1, 0.02, 8192, 0.812, 68.6),
+    (V2A, 2, 0.02, 8192, 1.838, 39.5),
+    (DARFIELD.format("000"), 0, 0.005, 19707, 0.445, 34.2),
+    (DARFIELD.format("090"), 0, 0.005, 19707, 0.473, 43.4),
+    (DARFIELD.format("ver"), 0, 0.005, 19707, 0.366, 21.5),
+    (V2, 0, 0.02, 3251, 0.272, 62.9),
+    (V2, 1, 0.02, 3250, 0.097, 21.7),
+    (V2, 2, 0.02, 3250, 0.262, 38.0),
+    (SMC.format("a"), 0, 0.005, 6001, 0.107, 11.7),
+    (SMC.format("b"), 0, 0.005, 6002, 0.050, 10.4),
+    (SMC.format("c"), 0, 0.005, 6004, 0.072, 18.4),
+]
+
+# README entries that disagree with the files themselves. Each is an expected
+# failure (strict: it reports if the README is corrected) with the evidence.
+README_DISAGREES = {
+    (V2, 0, "pga"): "README 0.272 g; the header's PEAK ACCELERATION -267.957 cm/s2 is 0.2732 g, as the data",
+    (V2, 2, "pga"): "README 0.262 g; the header's PEAK ACCELERATION -256.231 cm/s2 is 0.2613 g, as the data",
+    (V2, 0, "pgv"): "README 62.9 cm/s; the header states PEAK VELOCITY -28.253 cm/s, integration gives 28.2",
+    (V2, 1, "pgv"): "README 21.7 cm/s; the header states PEAK VELOCITY -11.377 cm/s, integration gives 11.5",
+    (V2, 2, "pgv"): "README 38.0 cm/s; the header states PEAK VELOCITY 34.298 cm/s, integration gives 33.9",
+    (V2A, 2, "pgv"): "README 39.5 cm/s is the header's velocity peak (-394.93 mm/s); integrating the "
+                     "50 Hz acceleration gives 37.5 cm/s (-5 %)",
+    (SMC.format("a"), 0, "pga"): "README 0.107 g; the header's pk = 104.4 cm/s2 (0.1065 g) and the data agree",
+    (SMC.format("b"), 0, "pga"): "README 0.050 g; the header's pk = 48.3 cm/s2 (0.0493 g) and the data agree",
+    (SMC.format("a"), 0, "pgv"): "README 11.7 cm/s; integrating the acceleration gives 8.09 cm/s",
+    (SMC.format("b"), 0, "pgv"): "README 10.4 cm/s; integrating the acceleration gives 6.90 cm/s",
+    (SMC.format("c"), 0, "pgv"): "README 18.4 cm/s; integrating the acceleration gives 11.30 cm/s",
+}
+
+
+def readme_params(quantity):
+    params = []
+    for row in README_TABLE:
+        reason = README_DISAGREES.get((row[0], row[1], quantity))
+        marks = [pytest.mark.xfail(strict=True, reason=reason)] if reason else []
+        params.append(pytest.param(*row, marks=marks, id=f"{Path(row[0]).name}[{row[1]}]"))
+    return params
+
+
+ROW_NAMES = "rel, index, dt, npts, pga_g, pgv_cms"
+
+
+@pytest.mark.parametrize(ROW_NAMES, readme_params("length"))
+def test_dt_and_npts_match_readme(rel, index, dt, npts, pga_g, pgv_cms):
+    rec = records(rel)[index]
+    assert rec.dt == pytest.approx(dt, rel=1e-12)
+    assert rec.npts == npts
+    assert rec.time[0] == 0.0 and rec.time[-1] == pytest.approx((npts - 1) * dt)
+
+
+@pytest.mark.parametrize(ROW_NAMES, readme_params("pga"))
+def test_pga_matches_readme(rel, index, dt, npts, pga_g, pgv_cms):
+    # The README prints three decimals (3 significant digits at 0.1 g and above).
+    assert round(records(rel)[index].pga_g, 3) == pga_g
+
+
+@pytest.mark.parametrize(ROW_NAMES, readme_params("pgv"))
+def test_pgv_matches_readme(rel, index, dt, npts, pga_g, pgv_cms):
+    assert records(rel)[index].pgv * 100 == pytest.approx(pgv_cms, rel=0.01)
+
+
+def test_readme_components():
+    assert [r.component for r in records(V2)] == ["90", "UP", "0"]
+    assert [r.component for r in records(V2A)] == ["N28W", "S62W", "Up"]
+    assert [records(SMC.format(c))[0].component for c in "abc"] == ["360", "up", "270"]
+    assert [records(DARFIELD.format(c))[0].component for c in ("000", "090", "ver")] == ["000", "090", "ver"]
+
+
+# --------------------------------------------------------------------------
+# The files' own header statements.
+
+def test_v2_matches_its_header():
+    text = text_of(V2)
+    blocks = re.findall(r"^\s*(\d+) POINTS OF ACCEL DATA EQUALLY SPACED AT\s+([\d.]+) SEC\.\s+"
+                        r"\(UNITS: CM/SEC/SEC\)", text, re.M)
+    peaks = re.findall(r"^PEAK ACCELERATION =\s*(\S+)\s+CM/SEC/SEC", text, re.M)
+    velocities = re.findall(r"^PEAK   VELOCITY   =\s*(\S+)\s+CM/SEC", text, re.M)
+    recs = records(V2)
+    assert len(blocks) == len(peaks) == len(velocities) == len(recs) == 3
+    for rec, (npts, dt), peak, vel in zip(recs, blocks, peaks, velocities):
+        assert rec.npts == int(npts)
+        assert rec.dt == float(dt)
+        assert rec.units_in_file == "cm/s2"
+        assert rec.pga * 100 == pytest.approx(abs(float(peak)), abs=5e-4)
+        # The agency's velocity (initial velocity not zero) vs. our trapezoid from rest.
+        assert rec.pgv * 100 == pytest.approx(abs(float(vel)), rel=0.015)
+
+
+def test_v2a_matches_its_header():
+    text = text_of(V2A)
+    npts = re.findall(r"^Number of points\s+(\d+)", text, re.M)
+    dts = re.findall(r"data at ([\d.]+) sec intervals", text)
+    peaks = re.findall(r"^Acceleration:\s+peak\s+(\S+) mm/s/s", text, re.M)
+    recs = records(V2A)
+    assert len(npts) == len(dts) == len(peaks) == len(recs) == 3
+    for rec, n, dt, peak in zip(recs, npts, dts, peaks):
+        assert rec.npts == int(n)
+        assert rec.dt == float(dt)
+        assert rec.pga * 1000 == pytest.approx(abs(float(peak)), abs=0.05)
+
+
+@pytest.mark.parametrize("letter", "abc")
+def test_smc_matches_its_header(letter):
+    lines = text_of(SMC.format(letter)).splitlines()
+    integers = [int(w) for line in lines[11:17] for w in line.split()]
+    samples_per_s = float(lines[17].split()[1])
+    pk = float(re.search(r"pk\s*=\s*(\S+)", lines[6]).group(1))
+    rec = records(SMC.format(letter))[0]
+    assert rec.npts == integers[16]
+    assert rec.dt == pytest.approx(1 / samples_per_s)
+    assert rec.pga * 100 == pytest.approx(pk, abs=0.05)
+
+
+@pytest.mark.parametrize("ext", ["000", "090", "ver"])
+def test_npts_dt_matches_line_2(ext):
+    npts, dt = text_of(DARFIELD.format(ext)).splitlines()[1].split()[:2]
+    rec = records(DARFIELD.format(ext))[0]
+    assert (rec.npts, rec.dt, rec.units_in_file) == (int(npts), float(dt), "g")
+
+
+def test_katnp_csv_matches_its_comments():
+    text = text_of(KATNP)
+    dt, npts = re.search(r"dt = ([\d.]+) s, npts = (\d+)", text).groups()
+    pga, pgv = re.search(r"PGA ([\d.]+) g, PGV ([\d.]+) cm/s", text).groups()
+    rec = records(KATNP)[0]
+    assert (rec.npts, rec.dt) == (int(npts), float(dt))
+    assert round(rec.pga_g, 3) == float(pga)
+    assert rec.pgv * 100 == pytest.approx(float(pgv), rel=0.005)
+
+
+@pytest.mark.parametrize("rel, fmt", [(V2, "csmip_v2"), (V2A, "geonet_v2a"), (SMC.format("a"), "smc"),
+                                      (DARFIELD.format("090"), "npts_dt"), (KATNP, "csv")])
+def test_detect_format(rel, fmt):
+    assert gm.detect_format(DATA / rel) == fmt
+
+
+def test_read_picks_component_by_label_or_index():
+    assert gm.read(DATA / V2).component == "90"
+    assert gm.read(DATA / V2, component="up").component == "UP"
+    assert gm.read(DATA / V2A, component=2).component == "Up"
+    with pytest.raises(ValueError, match="N28W"):
+        gm.read(DATA / V2A, component="EW")
+
+
+# --------------------------------------------------------------------------
+# Files written here with known values.
+
+AT2_VALUES = [0.0, 1.2345e-3, -2.3456e-3, 0.1, -0.25, 0.333, 1.5e-5, -7.25e-3, 0.0425, -0.1, 0.0625, -0.5]
+
+
+def write_at2(path, values=AT2_VALUES, npts_line=None, units_line="ACCELERATION TIME SERIES IN UNITS OF G"):
+    npts_line = npts_line or f"NPTS=  {len(values)}, DT=   .0050 SEC"
+    rows = [values[i:i + 5] for i in range(0, len(values), 5)]
+    body = "\n".join("".join(f"{v:15.7E}" for v in row) for row in rows)
+    path.write_text(f"PEER NGA STRONG MOTION DATABASE RECORD\nTEST QUAKE 1/2/03, TEST STATION, 230\n"
+                    f"{units_line}\n{npts_line}\n{body}\n")
+    return path
+
+
+def test_at2_round_trip(tmp_path):
+    rec = gm.read(write_at2(tmp_path / "TEST230.AT2"))
+    printed = np.array([float(f"{v:.7E}") for v in AT2_VALUES])
+    np.testing.assert_array_equal(rec.acc, printed * G)
+    assert (rec.npts, rec.dt, rec.units_in_file, rec.component) == (12, 0.005, "g", "230")
+    assert rec.name == "TEST QUAKE 1/2/03, TEST STATION, 230"
+    np.testing.assert_allclose(rec.time, 0.005 * np.arange(12), rtol=0, atol=1e-15)
+
+
+def test_at2_old_npts_line_and_units_override(tmp_path):
+    path = write_at2(tmp_path / "old.at2", npts_line="   12    0.0050    NPTS, DT")
+    rec = gm.read(path, units="cm/s2")
+    printed = np.array([float(f"{v:.7E}") for v in AT2_VALUES])
+    np.testing.assert_array_equal(rec.acc, printed * 0.01)
+    assert (rec.dt, rec.units_in_file) == (0.005, "cm/s2")
+
+
+CSV_VALUES = [0.0, 0.125, -0.25, 0.0625, 1.5, -3.0, 0.001, 0.0]
+
+
+def write_csv(path, acc_name, values=CSV_VALUES, dt=0.02, t0=0.0, comments=("# a test record",)):
+    rows = [f"{t0 + i * dt:.3f},{v:.6e}" for i, v in enumerate(values)]
+    path.write_text("\n".join([*comments, f"time_s,{acc_name}", *rows]) + "\n")
+    return path
+
+
+@pytest.mark.parametrize("acc_name, unit, factor", [
+    ("acc[g]", "g", G), ("acc_m/s2", "m/s2", 1.0), ("acc_m_s2", "m/s2", 1.0),
+    ("acc (cm/s^2)", "cm/s2", 0.01), ("acc_mm/s/s", "mm/s2", 0.001), ("acceleration [gal]", "cm/s2", 0.01)])
+def test_csv_units_from_header(tmp_path, acc_name, unit, factor):
+    rec = gm.read(write_csv(tmp_path / "r.csv", acc_name))
+    np.testing.assert_array_equal(rec.acc, np.array(CSV_VALUES) * factor)
+    assert (rec.units_in_file, rec.dt, rec.npts) == (unit, 0.02, len(CSV_VALUES))
+    assert rec.notes == "a test record"
+
+
+def test_csv_explicit_units_override_header_and_time_starts_at_zero(tmp_path):
+    rec = gm.read(write_csv(tmp_path / "r.csv", "acc[g]", t0=12.5), units="mm/s2")
+    np.testing.assert_array_equal(rec.acc, np.array(CSV_VALUES) * 0.001)
+    assert rec.units_in_file == "mm/s2"
+    assert rec.time[0] == 0.0 and rec.duration == pytest.approx(0.02 * (len(CSV_VALUES) - 1))
+
+
+def test_units_override_on_a_real_file():
+    as_cm = records(V2)[0]
+    as_g = gm.read(DATA / V2, units="g")
+    np.testing.assert_allclose(as_g.acc, as_cm.acc / 0.01 * G, rtol=1e-14)
+
+
+@pytest.mark.parametrize("spelling, unit", [
+    ("g", "g"), ("G", "g"), ("cm/sec/sec", "cm/s2"), ("CM/SEC/SEC", "cm/s2"), ("cm/s/s", "cm/s2"),
+    ("cm/s^2", "cm/s2"), ("cm/s²", "cm/s2"), ("gal", "cm/s2"), ("mm/s/s", "mm/s2"), ("mm/s2", "mm/s2"),
+    ("m/s**2", "m/s2"), ("m s-2", "m/s2"), ("[m/s2]", "m/s2")])
+def test_unit_spellings(spelling, unit):
+    assert gm.canonical_unit(spelling) == unit
+
+
+def test_unit_conversions():
+    np.testing.assert_array_equal(gm.to_m_s2([1.0, -2.0], "g"), [G, -2 * G])
+    np.testing.assert_array_equal(gm.to_m_s2([100.0], "cm/sec/sec"), [1.0])
+    np.testing.assert_array_equal(gm.to_m_s2([1000.0], "mm/s2"), [1.0])
+    with pytest.raises(ValueError, match="furlongs"):
+        gm.canonical_unit("furlongs/fortnight")
+
+
+# --------------------------------------------------------------------------
+# Malformed files: a GroundMotionFormatError naming the file and the line.
+
+def modified_copy(tmp_path, rel, edit):
+    lines = text_of(rel).splitlines()
+    edit(lines)
+    path = tmp_path / Path(rel).name
+    path.write_text("\n".join(lines) + "\n", encoding="latin-1")
+    return path
+
+
+def expect_error(path, line, *fragments, **kwargs):
+    with pytest.raises(GroundMotionFormatError) as info:
+        gm.read_all(path, **kwargs)
+    message = str(info.value)
+    assert message.startswith(f"{path}: line {line}: "), message
+    assert info.value.line == line
+    for fragment in fragments:
+        assert fragment in message, message
+    return message
+
+
+def test_truncated_v2_names_both_counts(tmp_path):
+    # Drop 5 full lines (40 points) of channel 2's acceleration block.
+    def edit(lines):
+        start = next(i for i, s in enumerate(lines) if s.startswith(" 3250 POINTS OF ACCEL"))
+        del lines[start + 10:start + 15]
+    path = modified_copy(tmp_path, V2, edit)
+    # The block's last line (2 points) now stands where a full line was expected.
+    last_data = next(i for i, s in enumerate(path.read_text().splitlines()) if "3250 POINTS OF VELOC" in s)
+    expect_error(path, last_data, "the header states 3250 points", "ends after 3210")
+
+
+def test_truncated_smc_names_both_counts(tmp_path):
+    path = modified_copy(tmp_path, SMC.format("a"), lambda lines: lines.__delitem__(slice(-10, None)))
+    nlines = len(path.read_text().splitlines())
+    # 6001 points = 750 lines of 8 + 1: dropping 10 lines leaves 6001 - 1 - 9 * 8 = 5928.
+    expect_error(path, nlines + 1, "end of the file", "6001 points", "ends after 5928")
+
+
+def test_truncated_npts_dt_names_both_counts(tmp_path):
+    path = tmp_path / "STA.000"
+    path.write_text("STA 000\n10  1.00000e-02 0 0\n 0.1 0.2 0.3\n 0.4 0.5 0.6\n 0.7\n")
+    expect_error(path, 6, "10 points", "ends after 7")
+
+
+def test_non_number_in_fixed_width_data(tmp_path):
+    def edit(lines):
+        lines[49] = lines[49][:20] + "       abc" + lines[49][30:]
+    path = modified_copy(tmp_path, V2, edit)
+    expect_error(path, 50, "expected 8 numbers of width 10", "'abc'", "columns 21-30")
+
+
+def test_non_number_in_blank_separated_data(tmp_path):
+    path = write_at2(tmp_path / "bad.AT2")
+    lines = path.read_text().splitlines()
+    lines[5] = lines[5][:15] + f"{'abc':>15}" + lines[5][30:]
+    path.write_text("\n".join(lines) + "\n")
+    expect_error(path, 6, "'abc'")
+
+
+def test_non_number_in_csv(tmp_path):
+    path = write_csv(tmp_path / "bad.csv", "acc[g]")
+    lines = path.read_text().splitlines()
+    lines[4] = "0.060,abc"
+    path.write_text("\n".join(lines) + "\n")
+    expect_error(path, 5, "expected 2 numbers separated by commas", "'0.060,abc'")
+
+
+def test_missing_npts_dt_line(tmp_path):
+    path = modified_copy(tmp_path, DARFIELD.format("000"), lambda lines: lines.pop(1))
+    expect_error(path, 2, "expected 'npts dt'", fmt="npts_dt")
+
+
+def test_missing_at2_npts_line(tmp_path):
+    path = write_at2(tmp_path / "nonpts.AT2")
+    lines = path.read_text().splitlines()
+    path.write_text("\n".join(lines[:3] + lines[4:]) + "\n")
+    expect_error(path, 4, "expected 'NPTS=")
+
+
+def test_unknown_units_in_v2_header(tmp_path):
+    def edit(lines):
+        lines[45] = lines[45].replace("CM/SEC/SEC", "FURLONGS")
+    path = modified_copy(tmp_path, V2, edit)
+    expect_error(path, 46, "unknown acceleration units 'FURLONGS'")
+
+
+def test_unknown_units_in_csv_header(tmp_path):
+    path = write_csv(tmp_path / "r.csv", "acc_furlongs")
+    expect_error(path, 2, "unknown acceleration units 'furlongs'")
+
+
+def test_csv_without_units(tmp_path):
+    expect_error(write_csv(tmp_path / "r.csv", "acc"), 2, "pass units=")
+
+
+def test_unknown_units_argument_is_a_value_error():
+    with pytest.raises(ValueError, match="furlongs") as info:
+        gm.read(DATA / KATNP, units="furlongs")
+    assert not isinstance(info.value, GroundMotionFormatError)
+
+
+def test_header_peak_disagreeing_with_data(tmp_path):
+    path = modified_copy(tmp_path, V2, lambda lines: lines.__setitem__(
+        17, lines[17].replace("-267.957", "-300.000")))
+    expect_error(path, 18, "peak acceleration -300.000", "267.957")
+
+
+# --------------------------------------------------------------------------
+# The KATNP stand-in, and what a Record does.
+
+def test_katnp_standin_says_it_is_a_stand_in():
+    rec = gm.katnp_standin()
+    assert "stand-in" in rec.notes and "NOT the real record" in rec.notes
+    assert "Gorkha" in rec.notes and "KATNP" in rec.notes
+    assert rec.component == "NS" and rec.npts == 8001
+    assert "stand-in" in gm.katnp().notes
+
+
+def test_katnp_with_a_path_reads_that_file():
+    rec = gm.katnp(DATA / V2)  # a CESMD V2 file: the north-south channel ("0") is taken
+    assert rec.component == "0" and "stand-in" not in rec.notes
+    assert gm.katnp(DATA / V2, component="UP").component == "UP"
+
+
+def test_scaled():
+    rec = records(DARFIELD.format("090"))[0]
+    assert rec.scaled(2.5).pga == pytest.approx(2.5 * rec.pga, rel=1e-14)
+    assert rec.scaled(-1.0).pga == rec.pga
+    assert rec.scaled(0.5).pgv == pytest.approx(0.5 * rec.pgv, rel=1e-12)
+    assert rec.scaled(2.5).dt == rec.dt and "scaled by 2.5" in rec.scaled(2.5).notes
+
+
+def test_resampled():
+    rec = records(V2)[1]
+    same = rec.resampled(rec.dt)
+    np.testing.assert_array_equal(same.acc, rec.acc)
+    np.testing.assert_array_equal(same.time, rec.time)
+    half = rec.resampled(rec.dt / 2)
+    assert half.npts == 2 * rec.npts - 1
+    np.testing.assert_allclose(half.acc[::2], rec.acc, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(half.acc[1::2], 0.5 * (rec.acc[1:] + rec.acc[:-1]), rtol=0, atol=1e-12)
+    double = rec.resampled(2 * rec.dt)
+    np.testing.assert_allclose(double.acc, rec.acc[::2], rtol=0, atol=1e-12)
+
+
+def test_peak_values_of_a_known_signal():
+    rec = gm.Record.from_samples(np.full(101, -G), 0.01)  # -1 g for 1 s
+    assert rec.pga_g == pytest.approx(1.0, rel=1e-15)
+    assert rec.pgv == pytest.approx(G * 1.0, rel=1e-12)
+    assert rec.duration == pytest.approx(1.0)
+
+
+def test_to_csv_round_trip(tmp_path):
+    rec = records(V2A)[2]
+    rec.to_csv(tmp_path / "up.csv")
+    back = gm.read(tmp_path / "up.csv")
+    np.testing.assert_allclose(back.acc, rec.acc, rtol=1e-10, atol=0)
+    assert back.dt == pytest.approx(rec.dt, rel=1e-12)
+    assert (back.name, back.component, back.units_in_file) == (rec.name, "Up", "m/s2")
+    assert back.notes == rec.notes

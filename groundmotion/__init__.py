@@ -1,0 +1,31 @@
+"""Readers for strong-motion accelerogram files.
+
+    import groundmotion as gm
+    rec = gm.read("…/ce36456p_CE36456.V2", component="UP")   # one Record, acc in m/s²
+    recs = gm.read_all("…/20161113_110259_WTMC_20.V2A")       # every component, file order
+    kat = gm.katnp()          # the KATNP stand-in (synthetic!) or gm.katnp("real file")
+
+Formats (one module each): CSMIP/CESMD V2 (`csmip`), GeoNet V2A (`geonet`),
+USGS SMC (`smc`), plain "npts dt" ASCII (`nptsdt`), PEER NGA AT2 (`peer`),
+`time,acc` CSV (`csvfile`). Accelerations are converted to m/s² with
+g = 9.80665 m/s². Malformed files raise `GroundMotionFormatError` (a
+ValueError) naming the file, the line and what was expected there.
+"""
+
+from .csmip import read_csmip_v2
+from .csvfile import read_csv
+from .detect import READERS, detect_format, read, read_all
+from .geonet import read_geonet_v2a
+from .katnp import DATA_DIR, STANDIN_PATH, katnp, katnp_standin
+from .nptsdt import read_npts_dt
+from .peer import read_peer_at2
+from .record import GroundMotionFormatError, Record
+from .smc import read_smc
+from .units import G, canonical_unit, to_m_s2
+
+__all__ = [
+    "G", "DATA_DIR", "GroundMotionFormatError", "READERS", "Record", "STANDIN_PATH",
+    "canonical_unit", "detect_format", "katnp", "katnp_standin", "read", "read_all",
+    "read_csmip_v2", "read_csv", "read_geonet_v2a", "read_npts_dt", "read_peer_at2",
+    "read_smc", "to_m_s2",
+]
