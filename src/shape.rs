@@ -214,11 +214,11 @@ const TRIG: [[f64; 5]; 3] = [
 ];
 
 /// Number of Taylor terms used below `β < SERIES_BETA`.
-const SERIES_TERMS: usize = 22;
+const SERIES_TERMS: usize = 16;
 /// Below this half-angle the integrals are summed as Taylor series in β
 /// (all low orders cancel exactly in the closed form); above it the closed
 /// form's terms are no larger than the result, so no digits are lost.
-const SERIES_BETA: f64 = 1.6;
+const SERIES_BETA: f64 = 1.3;
 
 /// Taylor coefficients of `G_k(β) = Σ_n T[k][n] β^(2(n+k+1)+1)`:
 /// `T = (-1)^m Σ_j c_j j^(2m) / (2m+1)!` with `m = n + k + 1` (lower orders
@@ -268,17 +268,23 @@ fn segment_integrals(q: f64) -> [f64; 3] {
     let beta = 2.0 * sh.asin();
     if beta < SERIES_BETA {
         let b2 = beta * beta;
-        let mut out = [0.0; 3];
-        for (k, coeffs) in SERIES.iter().enumerate() {
-            let mut acc = 0.0;
-            for c in coeffs.iter().rev() {
-                acc = acc * b2 + c;
-            }
-            // leading power β^(2k+3)
-            let lead = beta * b2.powi(k as i32 + 1);
-            out[k] = acc * lead;
-        }
-        out
+        let b4 = b2 * b2;
+        let b8 = b4 * b4;
+        let b16 = b8 * b8;
+        // Estrin's scheme: short dependency chains for the three series
+        let estrin = |c: &[f64; SERIES_TERMS]| {
+            let p: [f64; 8] = std::array::from_fn(|i| c[2 * i] + c[2 * i + 1] * b2);
+            let q: [f64; 4] = std::array::from_fn(|i| p[2 * i] + p[2 * i + 1] * b4);
+            let r = [q[0] + q[1] * b8, q[2] + q[3] * b8];
+            r[0] + r[1] * b16
+        };
+        // leading powers β^3, β^5, β^7
+        let l0 = beta * b2;
+        [
+            estrin(&SERIES[0]) * l0,
+            estrin(&SERIES[1]) * l0 * b2,
+            estrin(&SERIES[2]) * l0 * b4,
+        ]
     } else {
         let s1 = 2.0 * (q * (1.0 - q)).sqrt(); // sin β
         let c1 = 1.0 - 2.0 * q; // cos β
