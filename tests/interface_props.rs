@@ -1,0 +1,66 @@
+//! Property tests over random valid geometries and materials (MODEL.md §2):
+//! no NaN, no panic, af within [0, D/2], af non-increasing, af' <= 0,
+//! af' consistent with af, and equilibrium by an independent midpoint sum.
+
+use proptest::prelude::*;
+use rocking::{Interface, Law, Shape};
+
+fn shape_strategy() -> impl Strategy<Value = Shape> {
+    prop_oneof![
+        (0.1f64..100.0, 0.1f64..100.0).prop_map(|(b, l)| Shape::SolidRectangle { b, l }),
+        (0.1f64..100.0, 0.1f64..100.0, 0.01f64..0.49).prop_map(|(b, l, f)| Shape::HollowRectangle { b, l, t: f * b.min(l) }),
+        (0.05f64..50.0).prop_map(|ro| Shape::SolidCircle { ro }),
+        (0.05f64..50.0, 0.01f64..0.99).prop_map(|(ro, f)| Shape::HollowCircle { ro, ri: f * ro }),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+    #[test]
+    fn invariants_hold(
+        shape in shape_strategy(),
+        stress in 1e3f64..1e7,       // W/A, Pa
+        kn_exp in 6.0f64..15.0,      // kn = 10^kn_exp Pa/m
+        fm_ratio in prop_oneof![Just(f64::INFINITY), 1.01f64..50.0], // fm / (W/A)
+        theta_exp in -9.0f64..0.0,
+    ) {
+        let w = stress * shape.area();
+        let kn = 10f64.powf(kn_exp);
+        let fm = fm_ratio * stress;
+        let law = if fm.is_finite() { Law::ElastoPlastic { kn, fm } } else { Law::Elastic { kn } };
+        let it = Interface::new(shape, law, w);
+        let d = shape.depth();
+        prop_assert!(it.theta_jo() > 0.0 && it.theta_jo().is_finite());
+        prop_assert!(it.theta_c() > 0.0);
+        let th = 10f64.powf(theta_exp);
+        let c = it.contact(th);
+        let c2 = it.contact(th * 1.01);
+        for v in [c.af, c.daf, c.a, c.contact_length, c2.af] {
+            prop_assert!(!v.is_nan());
+        }
+        prop_assert!(c.af >= 0.0 && c.af <= d / 2.0 * (1.0 + 1e-15), "af {} D {}", c.af, d);
+        prop_assert!(c.daf <= 0.0);
+        prop_assert!(c2.af <= c.af * (1.0 + 1e-13), "af grows: {} -> {}", c.af, c2.af);
+        // af' against the secant over [th, 1.01 th]: af is C1 and its
+        // derivative is monotone within a regime, so the secant lies between
+        // the end derivatives (with rounding slack).
+        let sec = (c2.af - c.af) / (0.01 * th);
+        let lo = c.daf.min(c2.daf);
+        let hi = c.daf.max(c2.daf);
+        let slack = 1e-9 * lo.abs() + 1e-12 * c.af / (0.01 * th);
+        if c.regime == c2.regime {
+            prop_assert!(sec >= lo - slack && sec <= hi + slack, "secant {sec} not in [{lo}, {hi}]");
+        }
+        // equilibrium by a fine midpoint sum of sigma(x) w(x) (its own error ~1e-6)
+        let top = c.a.min(d);
+        let n = 200_000;
+        let h = top / n as f64;
+        let mut sum = 0.0;
+        for i in 0..n {
+            let x = (i as f64 + 0.5) * h;
+            sum += (kn * th * (c.a - x)).clamp(0.0, fm) * shape.width(x) * h;
+        }
+        prop_assert!((sum - w).abs() < 1e-4 * w, "N = {sum} vs W = {w}");
+    }
+}
