@@ -8,7 +8,13 @@ use rocking::{Interface, Law, Shape};
 fn shape_strategy() -> impl Strategy<Value = Shape> {
     prop_oneof![
         (0.1f64..100.0, 0.1f64..100.0).prop_map(|(b, l)| Shape::SolidRectangle { b, l }),
-        (0.1f64..100.0, 0.1f64..100.0, 0.01f64..0.49).prop_map(|(b, l, f)| Shape::HollowRectangle { b, l, t: f * b.min(l) }),
+        (0.1f64..100.0, 0.1f64..100.0, 0.01f64..0.49).prop_map(|(b, l, f)| {
+            Shape::HollowRectangle {
+                b,
+                l,
+                t: f * b.min(l),
+            }
+        }),
         (0.05f64..50.0).prop_map(|ro| Shape::SolidCircle { ro }),
         (0.05f64..50.0, 0.01f64..0.99).prop_map(|(ro, f)| Shape::HollowCircle { ro, ri: f * ro }),
     ]

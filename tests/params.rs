@@ -15,35 +15,140 @@ fn each_invalid_parameter_is_named() {
     let cases: Vec<(&str, Params)> = vec![
         ("B", Params { b: 0.0, ..base }),
         ("L", Params { l: -1.0, ..base }),
-        ("B", Params { b: f64::NAN, ..base }),
-        ("t", Params { shape: ShapeKind::HollowRectangle, t: 0.25, ..base }),
-        ("t", Params { shape: ShapeKind::HollowRectangle, t: 0.0, ..base }),
-        ("Ro", Params { shape: ShapeKind::SolidCircle, ro: 0.0, ..base }),
-        ("Ri", Params { shape: ShapeKind::HollowCircle, ro: 0.5, ri: 0.5, ..base }),
-        ("Ri", Params { shape: ShapeKind::HollowCircle, ri: -0.1, ..base }),
+        (
+            "B",
+            Params {
+                b: f64::NAN,
+                ..base
+            },
+        ),
+        (
+            "t",
+            Params {
+                shape: ShapeKind::HollowRectangle,
+                t: 0.25,
+                ..base
+            },
+        ),
+        (
+            "t",
+            Params {
+                shape: ShapeKind::HollowRectangle,
+                t: 0.0,
+                ..base
+            },
+        ),
+        (
+            "Ro",
+            Params {
+                shape: ShapeKind::SolidCircle,
+                ro: 0.0,
+                ..base
+            },
+        ),
+        (
+            "Ri",
+            Params {
+                shape: ShapeKind::HollowCircle,
+                ro: 0.5,
+                ri: 0.5,
+                ..base
+            },
+        ),
+        (
+            "Ri",
+            Params {
+                shape: ShapeKind::HollowCircle,
+                ri: -0.1,
+                ..base
+            },
+        ),
         ("H", Params { h: 0.0, ..base }),
-        ("rho", Params { rho: f64::INFINITY, ..base }),
-        ("W", Params { mass_model: MassKind::Lumped, w: 0.0, ..base }),
-        ("hG", Params { mass_model: MassKind::Lumped, hg: -2.0, ..base }),
-        ("Ic", Params { mass_model: MassKind::Lumped, ic: -1.0, ..base }),
+        (
+            "rho",
+            Params {
+                rho: f64::INFINITY,
+                ..base
+            },
+        ),
+        (
+            "W",
+            Params {
+                mass_model: MassKind::Lumped,
+                w: 0.0,
+                ..base
+            },
+        ),
+        (
+            "hG",
+            Params {
+                mass_model: MassKind::Lumped,
+                hg: -2.0,
+                ..base
+            },
+        ),
+        (
+            "Ic",
+            Params {
+                mass_model: MassKind::Lumped,
+                ic: -1.0,
+                ..base
+            },
+        ),
         ("kn", Params { kn: 0.0, ..base }),
-        ("kn", Params { interface: LawKind::Elastic, kn: -5.0, ..base }),
+        (
+            "kn",
+            Params {
+                interface: LawKind::Elastic,
+                kn: -5.0,
+                ..base
+            },
+        ),
         ("fm", Params { fm: 0.0, ..base }),
         // W = 22 kN on A = 0.5 m²: fm*A <= W crushes at rest
         ("fm", Params { fm: 4.0e4, ..base }),
         // kn Is = kn/96 must exceed W hG = 27.6 kN m
         ("kn", Params { kn: 2.0e6, ..base }),
-        ("eta", Params { restitution: Restitution::Given, eta: 1.5, ..base }),
-        ("eta", Params { restitution: Restitution::Given, eta: -0.1, ..base }),
+        (
+            "eta",
+            Params {
+                restitution: Restitution::Given,
+                eta: 1.5,
+                ..base
+            },
+        ),
+        (
+            "eta",
+            Params {
+                restitution: Restitution::Given,
+                eta: -0.1,
+                ..base
+            },
+        ),
         ("g", Params { g: 0.0, ..base }),
-        ("theta", Params { theta0: 0.5, ..base }),
-        ("omega", Params { omega0: f64::NAN, ..base }),
+        (
+            "theta",
+            Params {
+                theta0: 0.5,
+                ..base
+            },
+        ),
+        (
+            "omega",
+            Params {
+                omega0: f64::NAN,
+                ..base
+            },
+        ),
     ];
     for (name, p) in cases {
         let (var, msg) = err_of(p);
         assert_eq!(var, name, "{msg}");
         assert!(msg.starts_with(&format!("{name} = ")), "{msg}");
-        assert!(msg.contains("must"), "the message states the condition: {msg}");
+        assert!(
+            msg.contains("must"),
+            "the message states the condition: {msg}"
+        );
     }
 }
 
@@ -53,21 +158,53 @@ fn conditions_are_sharp() {
     let area = 0.5;
     let w = 1800.0 * 9.81 * area * 2.5;
     // just above and below W = fm A
-    assert!(Params { fm: w / area * 1.000001, ..base }.build().is_ok());
-    assert!(Params { fm: w / area * 0.999999, ..base }.build().is_err());
+    assert!(Params {
+        fm: w / area * 1.000001,
+        ..base
+    }
+    .build()
+    .is_ok());
+    assert!(Params {
+        fm: w / area * 0.999999,
+        ..base
+    }
+    .build()
+    .is_err());
     // kn Is = W hG
     let is = 1.0 * 0.5f64.powi(3) / 12.0;
     let kn0 = w * 1.25 / is;
-    assert!(Params { kn: kn0 * 1.000001, fm: f64::INFINITY, ..base }.build().is_ok());
-    assert!(Params { kn: kn0 * 0.999999, fm: f64::INFINITY, ..base }.build().is_err());
+    assert!(Params {
+        kn: kn0 * 1.000001,
+        fm: f64::INFINITY,
+        ..base
+    }
+    .build()
+    .is_ok());
+    assert!(Params {
+        kn: kn0 * 0.999999,
+        fm: f64::INFINITY,
+        ..base
+    }
+    .build()
+    .is_err());
     // the rigid law ignores kn and fm
-    assert!(Params { interface: LawKind::Rigid, kn: -1.0, fm: 0.0, ..base }.build().is_ok());
+    assert!(Params {
+        interface: LawKind::Rigid,
+        kn: -1.0,
+        fm: 0.0,
+        ..base
+    }
+    .build()
+    .is_ok());
 }
 
 #[test]
 fn derived_body_values_match_closed_forms() {
     // prism: solid block B x L x H
-    let p = Params { interface: LawKind::Rigid, ..Params::default() };
+    let p = Params {
+        interface: LawKind::Rigid,
+        ..Params::default()
+    };
     let m = p.build().unwrap();
     let (b, l, h, rho, g) = (p.b, p.l, p.h, p.rho, p.g);
     let mass = rho * b * l * h;
@@ -87,18 +224,35 @@ fn derived_body_values_match_closed_forms() {
 
 #[test]
 fn overturning_rotation_is_the_first_root_of_hw() {
-    for (law, fm) in [(LawKind::Elastic, f64::INFINITY), (LawKind::ElastoPlastic, 5e5)] {
-        let p = Params { interface: law, fm, ..Params::default() };
+    for (law, fm) in [
+        (LawKind::Elastic, f64::INFINITY),
+        (LawKind::ElastoPlastic, 5e5),
+    ] {
+        let p = Params {
+            interface: law,
+            fm,
+            ..Params::default()
+        };
         let m = p.build().unwrap();
         let ov = m.theta_ov;
-        assert!(ov > 0.0 && ov < m.body.alpha, "thetaOv {ov} alpha {}", m.body.alpha);
+        assert!(
+            ov > 0.0 && ov < m.body.alpha,
+            "thetaOv {ov} alpha {}",
+            m.body.alpha
+        );
         // MR > 0 on a fine grid below thetaOv, < 0 just above, zero at it
         for i in 1..2000 {
             let phi = ov * i as f64 / 2000.0;
-            assert!(m.restoring_moment(phi).0 > 0.0, "MR <= 0 at {phi} < thetaOv {ov}");
+            assert!(
+                m.restoring_moment(phi).0 > 0.0,
+                "MR <= 0 at {phi} < thetaOv {ov}"
+            );
         }
         let (mr, _) = m.restoring_moment(ov);
-        assert!(mr.abs() < 1e-9 * m.body.weight * m.body.b, "MR(thetaOv) = {mr}");
+        assert!(
+            mr.abs() < 1e-9 * m.body.weight * m.body.b,
+            "MR(thetaOv) = {mr}"
+        );
         assert!(m.restoring_moment(ov * 1.001).0 < 0.0);
     }
 }
@@ -111,6 +265,9 @@ fn restoring_moment_derivative_matches_differences() {
         let h = 1e-6 * phi;
         let fd = (m.restoring_moment(phi + h).0 - m.restoring_moment(phi - h).0) / (2.0 * h);
         let (_, d) = m.restoring_moment(phi);
-        assert!((fd - d).abs() < 1e-5 * d.abs() + 1e-6 * m.body.weight * m.body.b / phi * 1e-6, "{phi}: {d} vs {fd}");
+        assert!(
+            (fd - d).abs() < 1e-5 * d.abs() + 1e-6 * m.body.weight * m.body.b / phi * 1e-6,
+            "{phi}: {d} vs {fd}"
+        );
     }
 }
