@@ -1,10 +1,48 @@
-//! Equations of motion, impacts, rest and overturning (MODEL.md §3).
+//! Equations of motion, impacts, rest and overturning (MODEL.md §3), and the
+//! integrator that the FMU calls once per communication step.
 //!
-//! API sketch, to be implemented (issue 3). The FMU calls `advance` once per
-//! communication step and `outputs` for its output variables.
+//! - Equation of motion (MODEL.md §3), `phi = |theta|`, `s = sgn theta`:
+//!   `I(phi) theta'' + (1/2) s I'(phi) omega² = -s W hW(phi) - m ag hg(phi)`
+//!   (`shiftingPivot`; `costa` without the `omega²` term; rigid law: `af = 0`,
+//!   `I = IO`). See [`eom`].
+//! - Sign of the ground input: `ag` is the ground acceleration along `+x`, the
+//!   direction of the `theta > 0` toe. A positive `ag` pushes the body back,
+//!   onto its `-x` toe: from rest, `ag < -g tan(alpha)` lifts it toward
+//!   `theta > 0` and `ag > g tan(alpha)` toward `theta < 0`.
+//! - Integrator: adaptive embedded Runge-Kutta ([`Method`]): Dormand-Prince
+//!   8(5,3) by default, 5(4) available; every call ends exactly at `t_end`;
+//!   the ground input is linear inside the call, so its kinks at call
+//!   boundaries are never stepped over.
+//! - Events: zero crossings of `theta` (impacts, `omega <- eta omega`, for every
+//!   law: MODEL.md applies the rule at each crossing) and `|theta| = thetaOv`
+//!   (overturning, the run ends) are located on the step's dense output (a
+//!   quintic Hermite interpolant), the step is redone to end exactly at the
+//!   event and polished by Newton on the step itself.
+//! - Rest (rigid law): an impact after which the chattering that remains is
+//!   below the tolerance ends the motion ([`Simulator::rest_bound`]); a body at
+//!   rest costs O(1) per call until `|ag| > g tan(alpha)` (uplift, found in
+//!   closed form on the linear input).
+//!
+//! See `docs/dynamics.md` for the measurements behind these choices.
 
-use crate::interface::Regime;
+mod dense;
+mod eom;
+mod erk;
+
+use crate::interface::{Law, Regime};
 use crate::model::Model;
+
+use dense::{first_event, Hermite, Hit};
+use eom::{side_of, Eom};
+use erk::{Dop853, Dp5, Pair, StepOut, Tol};
+
+/// Relative tolerance used when the caller gives none (or a non-positive
+/// one): `1e-9` (global errors of impact times and amplitudes
+/// measured at about half of it, docs/dynamics.md).
+pub const DEFAULT_RTOL: f64 = 1e-9;
+/// Tolerances are clamped to `[MIN_RTOL, MAX_RTOL]`.
+pub const MIN_RTOL: f64 = 1e-13;
+pub const MAX_RTOL: f64 = 1e-2;
 
 /// Everything that determines the future of a run. `Copy`, plain data, so
 /// the FMU can save, restore and serialize it bit for bit.
@@ -24,14 +62,30 @@ pub struct State {
     pub overturned: bool,
     /// The integrator's suggested next step, s (0: choose afresh).
     pub h: f64,
+    /// Contact length parameter `a` of the last contact solve, m: the warm
+    /// start of the next one (0: none). Part of the state so that a restored
+    /// run repeats the same iterations.
+    pub a: f64,
 }
 
 /// Ground acceleration over one communication step: `ag(t) = ag + dag * (t - t0)`,
-/// m/s² and m/s³, with `t0` the step's start.
+/// m/s² and m/s³, with `t0` the step's start (`state.t` when `advance` is called).
+/// Positive along `+x`, the direction of the `theta > 0` toe.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct GroundInput {
     pub ag: f64,
     pub dag: f64,
+}
+
+/// Work done by one call.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct Stats {
+    /// Accepted steps (including the steps redone to end at an event).
+    pub steps: u32,
+    /// Rejected steps.
+    pub rejected: u32,
+    /// Right-hand-side evaluations.
+    pub evals: u32,
 }
 
 /// What happened during one `advance`.
@@ -42,6 +96,8 @@ pub struct Events {
     pub came_to_rest: bool,
     /// Time of overturning, s, if it happened in this step.
     pub overturned_at: Option<f64>,
+    /// Integrator work.
+    pub stats: Stats,
 }
 
 /// Output quantities at a state (MODEL.md §5).
@@ -59,37 +115,504 @@ pub struct Outputs {
     pub fz: f64,
 }
 
+/// The Runge-Kutta pair.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Method {
+    /// Dormand-Prince 5(4), 6 evaluations per step.
+    Dp5,
+    /// Dormand-Prince 8(5,3), 12 evaluations per step. Default.
+    #[default]
+    Dop853,
+}
+
 /// The integrator for one model at a relative tolerance.
 #[derive(Clone, Debug)]
 pub struct Simulator {
     pub model: Model,
+    /// Relative tolerance (clamped to `[MIN_RTOL, MAX_RTOL]`, `DEFAULT_RTOL`
+    /// if not positive and finite).
     pub rtol: f64,
+    /// Runge-Kutta pair.
+    pub method: Method,
+}
+
+/// Why a step loop stopped.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Stop {
+    /// Reached `t_end`.
+    End,
+    /// An event, and the caller wants to see it.
+    Event,
 }
 
 impl Simulator {
     pub fn new(model: Model, rtol: f64) -> Simulator {
-        Simulator { model, rtol }
+        Simulator {
+            model,
+            rtol,
+            method: Method::default(),
+        }
+    }
+
+    /// The same with an explicit Runge-Kutta pair.
+    pub fn with_method(model: Model, rtol: f64, method: Method) -> Simulator {
+        Simulator {
+            model,
+            rtol,
+            method,
+        }
     }
 
     pub fn initial_state(&self, theta0: f64, omega0: f64) -> State {
+        let rigid = self.model.interface.law() == Law::Rigid;
         State {
             t: 0.0,
             theta: theta0,
             omega: omega0,
             impacts: 0,
-            at_rest: false,
+            at_rest: rigid && theta0 == 0.0 && omega0 == 0.0,
             overturned: false,
             h: 0.0,
+            a: 0.0,
+        }
+    }
+
+    /// The tolerance in use.
+    pub fn effective_rtol(&self) -> f64 {
+        if self.rtol.is_finite() && self.rtol > 0.0 {
+            self.rtol.clamp(MIN_RTOL, MAX_RTOL)
+        } else {
+            DEFAULT_RTOL
+        }
+    }
+
+    /// Scales of the motion: `(theta_ref, omega_ref)` = `(thetaOv, p thetaOv)`
+    /// with `p = sqrt(W R0 / IO)` the rocking frequency parameter. The error
+    /// of a step is measured relative to `|y| + y_ref`.
+    pub fn scales(&self) -> (f64, f64) {
+        let b = &self.model.body;
+        let p = (b.weight * b.r0 / b.io).sqrt();
+        (self.model.theta_ov, p * self.model.theta_ov)
+    }
+
+    /// Ground acceleration that uplifts a rigid body at rest, `g tan(alpha)`, m/s².
+    pub fn uplift_acceleration(&self) -> f64 {
+        let b = &self.model.body;
+        b.g * b.b / b.hg
+    }
+
+    /// The error weights (see `erk::Tol`): relative to the size of the
+    /// motion, down to the floor `atol_theta = rtol theta_floor`,
+    /// `atol_omega = rtol p theta_floor`: `theta_floor = rtol thetaOv` for the
+    /// rigid law (below that the rest criterion takes over), `theta_floor =
+    /// min(thetaOv, thetaJo)` for the flexible laws (the scale on which the
+    /// contact changes).
+    fn tol(&self) -> Tol {
+        let rtol = self.effective_rtol();
+        let (th, om) = self.scales();
+        let b = &self.model.body;
+        let floor = if self.model.interface.law() == Law::Rigid {
+            rtol
+        } else {
+            (self.model.interface.theta_jo() / th).min(1.0)
+        };
+        Tol {
+            rtol,
+            atol_theta: rtol * th * floor,
+            atol_omega: rtol * om * floor,
+            two_g: 2.0 * b.weight * b.b / b.io,
+        }
+    }
+
+    /// The rest criterion (rigid law). After an impact at ground acceleration
+    /// `ag` with post-impact velocity `omega`, the exact motion is a sequence
+    /// of ever smaller excursions (each one a parabola to first order: the
+    /// body leaves with `|omega|` against the deceleration
+    /// `a_± = (W b ∓ m ag hG) / IO` of its side at `theta = 0`) converging to
+    /// rest. Snapping to rest at once changes the solution by at most
+    /// `(|omega|, omega² / (2 a_min))` in `(omega, theta)`. Returns those two
+    /// bounds, or `None` if rest is impossible (`|ag| >= g tan(alpha)`).
+    pub fn rest_bound(&self, omega: f64, ag: f64) -> Option<(f64, f64)> {
+        let b = &self.model.body;
+        let a_min = (b.weight * b.b - b.mass * ag.abs() * b.hg) / b.io;
+        if a_min > 0.0 {
+            Some((omega.abs(), omega * omega / (2.0 * a_min)))
+        } else {
+            None
         }
     }
 
     /// Integrate from `state.t` to `t_end` (or to overturning) under `input`.
-    pub fn advance(&self, _state: &mut State, _t_end: f64, _input: GroundInput) -> Events {
-        unimplemented!("issue 3")
+    pub fn advance(&self, state: &mut State, t_end: f64, input: GroundInput) -> Events {
+        self.run(state, t_end, input, false)
+    }
+
+    /// Like [`advance`](Self::advance) but return at the first event (impact,
+    /// uplift, rest, overturning) with `state.t` the event's time, or at
+    /// `t_end`. The input is `ag + dag (t - t0)` with `t0` the `state.t` of
+    /// this call.
+    pub fn advance_to_event(&self, state: &mut State, t_end: f64, input: GroundInput) -> Events {
+        self.run(state, t_end, input, true)
+    }
+
+    fn run(&self, st: &mut State, t_end: f64, input: GroundInput, stop_at_event: bool) -> Events {
+        let mut ev = Events::default();
+        if st.overturned || t_end.is_nan() || t_end <= st.t {
+            return ev;
+        }
+        let eom = Eom::new(&self.model, st.t, input);
+        let tol = self.tol();
+        if eom.rigid && st.theta == 0.0 && st.omega == 0.0 {
+            st.at_rest = true;
+        }
+        loop {
+            if st.at_rest {
+                match self.uplift_time(&eom, st.t, t_end) {
+                    None => {
+                        st.t = t_end;
+                        return ev;
+                    }
+                    Some(tu) => {
+                        st.t = tu;
+                        st.at_rest = false;
+                        st.theta = 0.0;
+                        st.omega = 0.0;
+                        st.h = 0.0;
+                        ev.uplift = true;
+                        if stop_at_event {
+                            return ev;
+                        }
+                    }
+                }
+            }
+            let stop = match self.method {
+                Method::Dp5 => self.steps::<Dp5>(&eom, &tol, st, t_end, stop_at_event, &mut ev),
+                Method::Dop853 => {
+                    self.steps::<Dop853>(&eom, &tol, st, t_end, stop_at_event, &mut ev)
+                }
+            };
+            if stop == Stop::Event || st.overturned || !st.at_rest || st.t >= t_end {
+                return ev;
+            }
+        }
+    }
+
+    /// When a rigid body at rest at `t` lifts off before `t_end`: the first
+    /// time `|ag| > g tan(alpha)` (the input is linear), or `None`.
+    fn uplift_time(&self, eom: &Eom, t: f64, t_end: f64) -> Option<f64> {
+        let thr = self.uplift_acceleration();
+        let ag = eom.ag(t);
+        if ag.abs() > thr {
+            return Some(t);
+        }
+        let dag = eom.dag();
+        if dag == 0.0 {
+            return None;
+        }
+        let target = if dag > 0.0 { thr } else { -thr };
+        let tu = t + (target - ag) / dag;
+        // strictly beyond the threshold: the first representable time after
+        let tu = if eom.ag(tu).abs() > thr {
+            tu
+        } else {
+            next_up(tu)
+        };
+        (tu < t_end).then_some(tu)
+    }
+
+    /// Hairer's starting step (Solving ODEs I, §II.4).
+    #[allow(clippy::too_many_arguments)]
+    fn initial_step(
+        &self,
+        eom: &Eom,
+        tol: &Tol,
+        t: f64,
+        y: [f64; 2],
+        a0: f64,
+        side: f64,
+        hint: &mut f64,
+        order: u32,
+    ) -> f64 {
+        let sc = tol.scales(y, y);
+        let norm =
+            |u: f64, v: f64| ((u / sc[0]).powi(2) + (v / sc[1]).powi(2)).sqrt() / 2f64.sqrt();
+        let d0 = norm(y[0], y[1]);
+        let d1 = norm(y[1], a0);
+        let h0 = if d0 < 1e-5 || d1 < 1e-5 {
+            1e-6
+        } else {
+            0.01 * d0 / d1
+        };
+        let y1 = [y[0] + h0 * y[1], y[1] + h0 * a0];
+        let a1 = eom.accel(t + h0, y1[0], y1[1], side, hint);
+        let d2 = norm(y1[1] - y[1], a1 - a0) / h0;
+        let dm = d1.max(d2);
+        let h1 = if dm <= 1e-15 {
+            (h0 * 1e-3).max(1e-6)
+        } else {
+            (0.01 / dm).powf(1.0 / (order as f64 + 1.0))
+        };
+        (100.0 * h0).min(h1)
+    }
+
+    /// The step loop from `st` to `t_end`, an event the caller wants, rest
+    /// or overturning.
+    fn steps<P: Pair>(
+        &self,
+        eom: &Eom,
+        tol: &Tol,
+        st: &mut State,
+        t_end: f64,
+        stop_at_event: bool,
+        ev: &mut Events,
+    ) -> Stop {
+        let theta_ov = self.model.theta_ov;
+        let mut side = side_of(st.theta, st.omega, eom.ag(st.t));
+        let mut hint = st.a;
+        let mut a0 = eom.accel(st.t, st.theta, st.omega, side, &mut hint);
+        ev.stats.evals += 1;
+        let mut h = st.h;
+        if h.is_nan() || h <= 0.0 {
+            h = self.initial_step(
+                eom,
+                tol,
+                st.t,
+                [st.theta, st.omega],
+                a0,
+                side,
+                &mut hint,
+                P::ORDER,
+            );
+            ev.stats.evals += 1;
+        }
+        let mut rejected = false;
+        while st.t < t_end {
+            let t = st.t;
+            let y0 = [st.theta, st.omega];
+            let last = t + 1.01 * h >= t_end;
+            let t_new = if last { t_end } else { t + h };
+            let hh = t_new - t;
+            let mut step_hint = hint;
+            let out = P::step(eom, t, hh, y0, a0, side, &mut step_hint, tol);
+            ev.stats.evals += P::EVALS;
+            let min_step = 16.0 * f64::EPSILON * t.abs().max(hh);
+            let acceptable = out.err <= 1.0; // false for NaN
+            if !acceptable && hh > min_step {
+                ev.stats.rejected += 1;
+                let f = if out.err.is_finite() {
+                    (0.9 * out.err.powf(P::ERR_EXP)).clamp(0.2, 1.0)
+                } else {
+                    0.2
+                };
+                h = (hh * f).max(min_step);
+                rejected = true;
+                continue;
+            }
+            ev.stats.steps += 1;
+            // next step size
+            let mut fac = if out.err == 0.0 {
+                10.0
+            } else {
+                (0.9 * out.err.powf(P::ERR_EXP)).clamp(0.2, 10.0)
+            };
+            if rejected {
+                fac = fac.min(1.0);
+            }
+            rejected = false;
+            let h_next = if last { (hh * fac).max(h) } else { hh * fac };
+            let herm = Hermite::new(hh, [y0[0], y0[1], a0], [out.y[0], out.y[1], out.accel]);
+            match first_event(&herm, side, theta_ov) {
+                None => {
+                    st.t = t_new;
+                    st.theta = out.y[0];
+                    st.omega = out.y[1];
+                    a0 = out.accel;
+                    hint = step_hint;
+                    st.a = hint;
+                    h = h_next;
+                    if !eom.rigid {
+                        side = side_of(st.theta, st.omega, eom.ag(st.t));
+                    }
+                }
+                Some((hit, tau)) => {
+                    let (t_ev, y_ev) =
+                        self.step_to_event::<P>(eom, tol, t, y0, a0, side, hint, hit, tau * hh, ev);
+                    st.t = t_ev;
+                    h = h_next;
+                    match hit {
+                        Hit::Overturn => {
+                            st.theta = side * theta_ov;
+                            st.omega = y_ev.y[1];
+                            st.overturned = true;
+                            st.h = h;
+                            ev.overturned_at = Some(t_ev);
+                            return Stop::Event;
+                        }
+                        Hit::Impact => {
+                            st.theta = 0.0;
+                            st.omega = self.model.eta * y_ev.y[1];
+                            st.impacts += 1;
+                            ev.impacts += 1;
+                            let ag = eom.ag(t_ev);
+                            if eom.rigid && self.comes_to_rest(st.omega, ag) {
+                                st.omega = 0.0;
+                                st.at_rest = true;
+                                ev.came_to_rest = true;
+                                st.h = 0.0;
+                                return if stop_at_event {
+                                    Stop::Event
+                                } else {
+                                    Stop::End
+                                };
+                            }
+                            side = side_of(0.0, st.omega, ag);
+                            hint = st.a;
+                            a0 = eom.accel(st.t, 0.0, st.omega, side, &mut hint);
+                            ev.stats.evals += 1;
+                            if stop_at_event {
+                                st.h = h;
+                                return Stop::Event;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        st.h = h;
+        Stop::End
+    }
+
+    /// Whether a rigid body leaving an impact with `omega` under `ag` is at
+    /// rest to the tolerance ([`rest_bound`](Self::rest_bound) below the
+    /// step's absolute tolerances).
+    fn comes_to_rest(&self, omega: f64, ag: f64) -> bool {
+        let rtol = self.effective_rtol();
+        let (th, om) = self.scales();
+        match self.rest_bound(omega, ag) {
+            Some((dw, dth)) => dw <= rtol * om && dth <= rtol * th,
+            None => false,
+        }
+    }
+
+    /// Redo the step from `(t, y0)` so that it ends at the event `t + dt`,
+    /// then polish `dt` by Newton on the step itself until the event
+    /// function (`theta` or `|theta| - thetaOv`) is below a thousandth of
+    /// the absolute tolerance. Returns the event time and the step.
+    #[allow(clippy::too_many_arguments)]
+    fn step_to_event<P: Pair>(
+        &self,
+        eom: &Eom,
+        tol: &Tol,
+        t: f64,
+        y0: [f64; 2],
+        a0: f64,
+        side: f64,
+        hint: f64,
+        hit: Hit,
+        mut dt: f64,
+        ev: &mut Events,
+    ) -> (f64, StepOut) {
+        let target = match hit {
+            Hit::Impact => 0.0,
+            Hit::Overturn => side * self.model.theta_ov,
+        };
+        let mut out = StepOut {
+            y: y0,
+            accel: a0,
+            err: 0.0,
+        };
+        for iter in 0..4 {
+            if dt > 0.0 {
+                let mut hh = hint;
+                out = P::step(eom, t, dt, y0, a0, side, &mut hh, tol);
+                ev.stats.evals += P::EVALS;
+                ev.stats.steps += 1;
+            }
+            let r = out.y[0] - target;
+            let sc = tol.scales(out.y, out.y)[0];
+            if r.abs() <= 1e-3 * sc || out.y[1] == 0.0 || iter == 3 {
+                break;
+            }
+            let next = dt - r / out.y[1];
+            if next.is_nan() || next < 0.0 || next == dt {
+                break;
+            }
+            dt = next;
+        }
+        (t + dt, out)
     }
 
     /// Outputs at `state` under ground acceleration `ag` (m/s²).
-    pub fn outputs(&self, _state: &State, _ag: f64) -> Outputs {
-        unimplemented!("issue 3")
+    pub fn outputs(&self, state: &State, ag: f64) -> Outputs {
+        let m = &self.model;
+        let b = &m.body;
+        if state.at_rest {
+            let c = m.interface.contact(0.0);
+            return Outputs {
+                theta_dd: 0.0,
+                af: c.af,
+                contact_length: c.contact_length,
+                mr: 0.0,
+                regime: c.regime,
+                fx: b.mass * ag,
+                fz: b.weight,
+            };
+        }
+        let side = side_of(state.theta, state.omega, ag);
+        let eom = Eom::new(
+            m,
+            state.t,
+            GroundInput {
+                ag,
+                ..Default::default()
+            },
+        );
+        let mut hint = state.a;
+        let theta_dd = eom.accel(state.t, state.theta, state.omega, side, &mut hint);
+        let phi = state.theta.abs();
+        // rigid law in motion: the reaction is at the toe even at theta = 0
+        let c = if eom.rigid {
+            m.interface.contact(phi.max(f64::MIN_POSITIVE))
+        } else {
+            m.interface.contact_near(phi, state.a)
+        };
+        let l = m.levers(phi, &c);
+        // G as a rigid rotation about the active toe:
+        // xG = s (b - R0 sin(alpha - phi)), zG = R0 cos(alpha - phi)
+        let (sp, cp) = phi.sin_cos();
+        let sin_u = b.sin_alpha * cp - b.cos_alpha * sp;
+        let cos_u = b.cos_alpha * cp + b.sin_alpha * sp;
+        let w2 = state.omega * state.omega;
+        let xg_dd = b.r0 * (cos_u * theta_dd + side * sin_u * w2);
+        let zg_dd = b.r0 * (side * sin_u * theta_dd - cos_u * w2);
+        Outputs {
+            theta_dd,
+            af: c.af,
+            contact_length: c.contact_length,
+            mr: b.weight * l.hw,
+            regime: if state.overturned {
+                Regime::Overturned
+            } else {
+                c.regime
+            },
+            fx: b.mass * (ag + xg_dd),
+            fz: b.mass * (b.g + zg_dd),
+        }
+    }
+}
+
+/// The next representable number above `x`.
+fn next_up(x: f64) -> f64 {
+    if x.is_nan() || x == f64::INFINITY {
+        return x;
+    }
+    if x == 0.0 {
+        return f64::from_bits(1);
+    }
+    let bits = x.to_bits();
+    if x > 0.0 {
+        f64::from_bits(bits + 1)
+    } else {
+        f64::from_bits(bits - 1)
     }
 }

@@ -1,0 +1,163 @@
+//! Dense output of one step and the location of events on it.
+//!
+//! For the second-order system the step's end values `theta, omega, theta''`
+//! at both ends determine the quintic Hermite interpolant of `theta`
+//! (local error `O(h^6)`, no extra right-hand-side evaluation); `omega` is
+//! its derivative divided by `h`. Events are the first `tau` in `(0, 1]` where `s theta`
+//! falls to 0 (an impact) or rises to `thetaOv` (overturning). The step is
+//! cut into monotone pieces of `theta` at the roots of `omega`, so a root is
+//! bracketed even when `theta` turns around inside the step (a small
+//! excursion after an impact), and refined by safeguarded Newton.
+
+/// `theta(t0 + tau h) = sum_k c[k] tau^k`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Hermite {
+    c: [f64; 6],
+}
+
+impl Hermite {
+    /// From `(theta, omega, theta'')` at the start and at the end of a step of length `h`.
+    pub fn new(h: f64, start: [f64; 3], end: [f64; 3]) -> Hermite {
+        let (p0, v0, a0) = (start[0], h * start[1], h * h * start[2]);
+        let (p1, v1, a1) = (end[0], h * end[1], h * h * end[2]);
+        let d = p1 - p0 - v0 - 0.5 * a0;
+        let v = v1 - v0 - a0;
+        let a = a1 - a0;
+        Hermite {
+            c: [
+                p0,
+                v0,
+                0.5 * a0,
+                10.0 * d - 4.0 * v + 0.5 * a,
+                -15.0 * d + 7.0 * v - a,
+                6.0 * d - 3.0 * v + 0.5 * a,
+            ],
+        }
+    }
+
+    /// `theta` at `tau`.
+    #[inline]
+    pub fn theta(&self, tau: f64) -> f64 {
+        let c = &self.c;
+        c[0] + tau * (c[1] + tau * (c[2] + tau * (c[3] + tau * (c[4] + tau * c[5]))))
+    }
+
+    /// `d theta / d tau` (= `h omega`).
+    #[inline]
+    fn dtheta(&self, tau: f64) -> f64 {
+        let c = &self.c;
+        c[1] + tau * (2.0 * c[2] + tau * (3.0 * c[3] + tau * (4.0 * c[4] + tau * 5.0 * c[5])))
+    }
+
+    /// `d² theta / d tau²`.
+    #[inline]
+    fn d2theta(&self, tau: f64) -> f64 {
+        let c = &self.c;
+        2.0 * c[2] + tau * (6.0 * c[3] + tau * (12.0 * c[4] + tau * 20.0 * c[5]))
+    }
+}
+
+/// What the step ran into.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Hit {
+    /// `theta` reaches 0: an impact.
+    Impact,
+    /// `|theta|` reaches `thetaOv`.
+    Overturn,
+}
+
+/// Pieces the step is sampled in to find the turning points of `theta`.
+const PIECES: usize = 8;
+
+/// The first event in `(0, 1]` of the step interpolated by `p`, for a body
+/// on side `s` (`s theta >= 0` at the start): `(hit, tau)`.
+pub(crate) fn first_event(p: &Hermite, s: f64, theta_ov: f64) -> Option<(Hit, f64)> {
+    // g(tau) = s theta(tau); g(0) >= 0. Walk the monotone pieces of g.
+    let g = |tau: f64| s * p.theta(tau);
+    let dg = |tau: f64| s * p.dtheta(tau);
+    // The sign of g' just after 0: from theta'' if omega vanishes there.
+    let mut lo = 0.0;
+    let mut g_lo = g(0.0);
+    for k in 1..=PIECES {
+        let hi = k as f64 / PIECES as f64;
+        let d_lo = slope_sign(p, s, lo);
+        let d_hi = dg(hi);
+        // split at a turning point of theta inside (lo, hi)
+        let mut cuts = [hi; 2];
+        let mut n = 1;
+        if d_lo * d_hi < 0.0 {
+            let tp = refine(&dg, &|t| s * p.d2theta(t), lo, hi, d_lo > 0.0, 0.0);
+            if tp > lo && tp < hi {
+                cuts = [tp, hi];
+                n = 2;
+            }
+        }
+        for &b in &cuts[..n] {
+            let g_b = g(b);
+            // impact: g from > 0 to <= 0
+            if g_lo > 0.0 && g_b <= 0.0 {
+                return Some((Hit::Impact, refine(&g, &dg, lo, b, true, 0.0)));
+            }
+            // overturning: g from < thetaOv to >= thetaOv
+            if g_lo < theta_ov && g_b >= theta_ov {
+                return Some((Hit::Overturn, refine(&g, &dg, lo, b, false, theta_ov)));
+            }
+            lo = b;
+            g_lo = g_b;
+        }
+    }
+    None
+}
+
+/// Sign of `s theta'` just after `tau` (from `theta''` where `omega` is 0).
+#[inline]
+fn slope_sign(p: &Hermite, s: f64, tau: f64) -> f64 {
+    let d = s * p.dtheta(tau);
+    if d != 0.0 {
+        d
+    } else {
+        s * p.d2theta(tau)
+    }
+}
+
+/// Root of `f = target` on `[lo, hi]` where `f` is monotone, decreasing
+/// through the target if `decreasing`; bisection-safeguarded Newton to the
+/// last bits. Returns the end of the bracket where `f` has crossed.
+fn refine(
+    f: &dyn Fn(f64) -> f64,
+    df: &dyn Fn(f64) -> f64,
+    mut lo: f64,
+    mut hi: f64,
+    decreasing: bool,
+    target: f64,
+) -> f64 {
+    // normalise to an increasing function crossing 0
+    let sgn = if decreasing { -1.0 } else { 1.0 };
+    let r = |t: f64| sgn * (f(t) - target);
+    let mut x = 0.5 * (lo + hi);
+    for _ in 0..100 {
+        let fx = r(x);
+        if fx >= 0.0 {
+            hi = x;
+        } else {
+            lo = x;
+        }
+        let d = sgn * df(x);
+        let mut next = if d != 0.0 { x - fx / d } else { f64::NAN };
+        if !(next > lo && next < hi) {
+            next = 0.5 * (lo + hi);
+        }
+        if next <= lo || next >= hi || hi - lo <= 4.0 * f64::EPSILON {
+            break;
+        }
+        if (next - x).abs() <= 2.0 * f64::EPSILON * x.abs().max(f64::MIN_POSITIVE) {
+            x = next;
+            if r(x) >= 0.0 {
+                hi = x;
+            }
+            break;
+        }
+        x = next;
+    }
+    hi
+}

@@ -1,0 +1,229 @@
+//! Rigid free rocking (Housner) against its exact solution (MODEL.md §3).
+//!
+//! Between impacts the energy `E = IO omega²/2 + V(phi)`,
+//! `V(phi) = W R0 (cos(alpha - phi) - cos(alpha))`, is conserved; each impact
+//! multiplies it by `eta²`, so the peak amplitudes satisfy
+//! `V(phi_{n+1}) = eta² V(phi_n)` and the time from a peak `phi` to the next
+//! impact is the quadrature `T(phi) = ∫_0^phi dpsi / omega(psi)`, computed here
+//! by Gauss-Legendre after the substitution `psi = phi sin(u)` that removes the
+//! turning-point singularity. None of this uses the code under test.
+
+mod dyncommon;
+
+use dyncommon::{quad_adaptive, rigid_block};
+use rocking::dynamics::{GroundInput, Simulator, State, DEFAULT_RTOL};
+use rocking::Model;
+
+/// The exact Housner solution of a rigid block released from `theta0` at rest.
+struct Exact {
+    w_r0: f64,
+    io: f64,
+    alpha: f64,
+    eta: f64,
+}
+
+impl Exact {
+    fn new(m: &Model) -> Exact {
+        let b = &m.body;
+        Exact {
+            w_r0: b.weight * b.r0,
+            io: b.io,
+            alpha: b.alpha,
+            eta: m.eta,
+        }
+    }
+
+    /// `V(phi) = 2 W R0 sin(phi/2) sin(alpha - phi/2)`, free of cancellation.
+    fn v(&self, phi: f64) -> f64 {
+        2.0 * self.w_r0 * (0.5 * phi).sin() * (self.alpha - 0.5 * phi).sin()
+    }
+
+    /// The amplitude with potential energy `e`: Newton on `V(phi) = e`.
+    fn amplitude(&self, e: f64) -> f64 {
+        let mut phi = e / (self.w_r0 * self.alpha.sin());
+        for _ in 0..100 {
+            let f = self.v(phi) - e;
+            let df = self.w_r0 * (self.alpha - phi).sin();
+            let d = f / df;
+            phi -= d;
+            if d.abs() <= 1e-17 * phi {
+                break;
+            }
+        }
+        phi
+    }
+
+    /// Time from the peak `phi` to `theta = 0`.
+    fn fall_time(&self, phi: f64) -> f64 {
+        // psi = phi sin(u), v = pi/4 - u/2: phi - psi = 2 phi sin²(v),
+        // cos(u) = 2 sin(v) cos(v), V(phi) - V(psi) = 2 W R0 sin(alpha - (phi + psi)/2) sin(phi sin²(v)).
+        let f = |u: f64| {
+            let v = std::f64::consts::FRAC_PI_4 - 0.5 * u;
+            let psi = phi * u.sin();
+            // V(phi) - V(psi) = 2 W R0 sin(alpha - (phi+psi)/2) x sin²(v) phi sinc(phi sin²(v))
+            let x = phi * v.sin().powi(2);
+            let dv_over_sin2 =
+                2.0 * self.w_r0 * (self.alpha - 0.5 * (phi + psi)).sin() * phi * sinc(x);
+            phi * 2.0 * v.cos() / (2.0 * dv_over_sin2 / self.io).sqrt()
+        };
+        quad_adaptive(&f, 0.0, std::f64::consts::FRAC_PI_2, 1e-15)
+    }
+
+    /// Impact times and post-impact peak amplitudes, `n` impacts.
+    fn impacts(&self, theta0: f64, n: usize) -> Vec<(f64, f64)> {
+        let mut out = Vec::with_capacity(n);
+        let mut e = self.v(theta0);
+        let mut t = self.fall_time(theta0);
+        for _ in 0..n {
+            e *= self.eta * self.eta;
+            let phi = self.amplitude(e);
+            out.push((t, phi));
+            t += 2.0 * self.fall_time(phi);
+        }
+        out
+    }
+}
+
+/// `sin(x) / x`.
+fn sinc(x: f64) -> f64 {
+    if x.abs() < 1e-4 {
+        1.0 - x * x / 6.0
+    } else {
+        x.sin() / x
+    }
+}
+
+/// Runs impact by impact; returns `(time, amplitude from the post-impact energy)`.
+fn simulate_impacts(sim: &Simulator, ex: &Exact, theta0: f64, n: usize) -> Vec<(f64, f64)> {
+    let mut st = sim.initial_state(theta0, 0.0);
+    let mut out = Vec::new();
+    while out.len() < n {
+        let ev = sim.advance_to_event(&mut st, 1e3, GroundInput::default());
+        assert!(!st.overturned && !st.at_rest, "{st:?}");
+        if ev.impacts > 0 {
+            assert_eq!(st.theta, 0.0);
+            let e = 0.5 * ex.io * st.omega * st.omega;
+            out.push((st.t, ex.amplitude(e)));
+        }
+    }
+    out
+}
+
+fn check_free_rocking(b: f64, h: f64, theta0_over_alpha: f64) {
+    let m = rigid_block(b, h);
+    let ex = Exact::new(&m);
+    let theta0 = theta0_over_alpha * ex.alpha;
+    let exact = ex.impacts(theta0, 20);
+    let sim = Simulator::new(m, DEFAULT_RTOL);
+    let got = simulate_impacts(&sim, &ex, theta0, 20);
+    let mut worst = (0.0f64, 0.0f64);
+    for (i, (&(te, pe), &(tg, pg))) in exact.iter().zip(&got).enumerate() {
+        let dt = (tg - te).abs() / te;
+        let dp = (pg - pe).abs() / pe;
+        worst = (worst.0.max(dt), worst.1.max(dp));
+        assert!(
+            dt < 1e-9 && dp < 1e-9,
+            "alpha = {}: impact {}: t {tg} vs {te} ({dt:.1e}), amplitude {pg} vs {pe} ({dp:.1e})",
+            ex.alpha,
+            i + 1
+        );
+    }
+    eprintln!(
+        "alpha = {:.3}, eta = {:.3}: worst relative error over 20 impacts: time {:.1e}, amplitude {:.1e}",
+        ex.alpha, ex.eta, worst.0, worst.1
+    );
+}
+
+#[test]
+fn rigid_free_rocking_slender_matches_exact_solution() {
+    check_free_rocking(0.4, 4.0, 0.8);
+}
+
+#[test]
+fn rigid_free_rocking_stocky_matches_exact_solution() {
+    check_free_rocking(1.0, 2.0, 0.8);
+}
+
+#[test]
+fn rigid_energy_conserved_between_impacts() {
+    for (b, h) in [(0.4, 4.0), (1.0, 2.0)] {
+        let m = rigid_block(b, h);
+        let ex = Exact::new(&m);
+        let sim = Simulator::new(m, DEFAULT_RTOL);
+        let theta0 = 0.9 * ex.alpha;
+        let mut st = sim.initial_state(theta0, 0.0);
+        let mut e_segment = ex.v(theta0);
+        let mut impacts = 0;
+        let energy = |st: &State| 0.5 * ex.io * st.omega * st.omega + ex.v(st.theta.abs());
+        let mut worst = 0.0f64;
+        // outputs every 0.25 s (longer than the natural steps) over the first 10 impacts
+        let mut k = 0;
+        while impacts < 10 {
+            k += 1;
+            let ev = sim.advance(&mut st, k as f64 * 0.25, GroundInput::default());
+            if ev.impacts > 0 {
+                impacts += ev.impacts;
+                e_segment *= ex.eta.powi(2 * ev.impacts as i32);
+                continue; // the sample may straddle the impact: skip it
+            }
+            let rel = (energy(&st) - e_segment).abs() / e_segment;
+            worst = worst.max(rel);
+        }
+        eprintln!(
+            "alpha = {:.3}: energy drift between impacts {worst:.1e}",
+            ex.alpha
+        );
+        assert!(worst < 1e-9, "energy drift {worst:.2e}");
+    }
+}
+
+#[test]
+fn rigid_chattering_ends_in_rest_at_the_accumulation_time() {
+    // stocky block, eta = 0.7: the impacts accumulate at
+    // t_inf = T(phi0) + 2 sum_n T(phi_n), a convergent series.
+    let m = rigid_block(1.0, 2.0);
+    let ex = Exact::new(&m);
+    let theta0 = 0.5 * ex.alpha;
+    let sim = Simulator::new(m, DEFAULT_RTOL);
+    let exact = ex.impacts(theta0, 400);
+    let (t_last, phi_last) = exact[exact.len() - 1];
+    let t_inf = t_last + 2.0 * ex.fall_time(phi_last);
+    let mut st = sim.initial_state(theta0, 0.0);
+    let mut t_rest = f64::NAN;
+    let mut t = 0.0;
+    while t < 20.0 {
+        t += 0.01;
+        let before = st.t;
+        let ev = sim.advance_to_event(&mut st, t, GroundInput::default());
+        if ev.came_to_rest {
+            t_rest = st.t;
+            break;
+        }
+        if st.t < t {
+            t -= 0.01; // stopped at an impact: continue to the same t
+        }
+        assert!(st.t > before || ev.impacts > 0);
+    }
+    assert!(st.at_rest, "not at rest: {st:?}");
+    let err = (t_rest - t_inf).abs() / t_inf;
+    eprintln!(
+        "rest at {t_rest} after {} impacts, accumulation time {t_inf}: relative {err:.1e}",
+        st.impacts
+    );
+    // The rest criterion (docs/dynamics.md) snaps to rest after an impact
+    // with |omega+| <= rtol p alpha; the chattering it skips lasts at most
+    // sum_k 2 |omega+| eta^k / g_eff = 2 |omega+| / ((1 - eta) g_eff), with
+    // g_eff = W b / IO the deceleration at theta = 0; plus the integration
+    // error of the time, rtol t.
+    let b = &m.body;
+    let p = (b.weight * b.r0 / b.io).sqrt();
+    let g_eff = b.weight * b.b / b.io;
+    let bound = 2.0 * DEFAULT_RTOL * p * ex.alpha / ((1.0 - ex.eta) * g_eff) + DEFAULT_RTOL * t_inf;
+    assert!(
+        (t_rest - t_inf).abs() <= bound,
+        "rest at {t_rest}, accumulation at {t_inf}, bound {bound:.1e}"
+    );
+    // and it stays at rest under zero input, O(1) per call
+    let ev = sim.advance(&mut st, 1e6, GroundInput::default());
+    assert!(st.at_rest && st.t == 1e6 && ev.stats.evals == 0);
+}
