@@ -271,3 +271,38 @@ fn restoring_moment_derivative_matches_differences() {
         );
     }
 }
+
+#[test]
+fn lumped_body_values_match_closed_forms() {
+    // The Dharahara tower of MODEL.md §4 as a lumped body on a hollow circle.
+    let (ro, ri, w, hg, g) = (3.99, 2.12, 24003.94e3, 30.20, 9.81);
+    let m_ = w / g;
+    let ic = m_ * ((2.0 * hg) * (2.0 * hg) / 12.0 + (ro * ro + ri * ri) / 4.0);
+    let p = Params {
+        shape: ShapeKind::HollowCircle,
+        ro,
+        ri,
+        mass_model: MassKind::Lumped,
+        w,
+        hg,
+        ic,
+        kn: 2e9,
+        fm: 2e6,
+        ..Params::default()
+    };
+    let m = p.build().unwrap();
+    assert!((m.body.mass / m_ - 1.0).abs() < 1e-15);
+    let r0 = (ro * ro + hg * hg).sqrt();
+    assert!((m.body.r0 / r0 - 1.0).abs() < 1e-15);
+    assert!((m.body.alpha - (ro / hg).atan()).abs() < 1e-15);
+    assert!((m.body.io / (ic + m_ * r0 * r0) - 1.0).abs() < 1e-15);
+    assert!((m.eta - (1.0 - 2.0 * m_ * ro * ro / (ic + m_ * r0 * r0))).abs() < 1e-15);
+    // MODEL.md §4: alpha = atan(3.99/30.20) = 0.131
+    assert!((m.body.alpha - 0.131).abs() < 5e-4);
+    // hollow circle section
+    let a = std::f64::consts::PI * (ro * ro - ri * ri);
+    assert!((m.interface.shape().area() / a - 1.0).abs() < 1e-15);
+    // thetaJo = 2 W / (kn A D) when crushing starts after opening (fm A / 2 >= W)
+    assert!(2e6 * a / 2.0 >= w);
+    assert!((m.interface.theta_jo() / (2.0 * w / (2e9 * a * 2.0 * ro)) - 1.0).abs() < 1e-14);
+}
