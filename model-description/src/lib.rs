@@ -1,1 +1,24 @@
-//! placeholder
+//! The one definition of an FMU's variables, and what is generated from it.
+//!
+//! - [`schema`]: FMI 2.0 model-description data (generic: variables, units,
+//!   enumeration types, capabilities, default experiment);
+//! - [`rocking_block`]: the RockingBlock FMU's description (MODEL.md §5) and
+//!   its value references [`rocking_block::vr`];
+//! - `xml` (feature `xml`): `modelDescription.xml` through serde + quick-xml,
+//!   and the GUID derived from its content;
+//! - `html` (feature `xml`): `documentation/index.html` with the variable table.
+//!
+//! The FMU binary uses the table and the value references; its build script
+//! generates the XML and the GUID, so the library embeds exactly the GUID the
+//! archive ships.
+
+pub mod rocking_block;
+pub mod schema;
+pub mod sha256;
+
+#[cfg(feature = "xml")]
+pub mod html;
+#[cfg(feature = "xml")]
+pub mod xml;
+
+pub use schema::*;

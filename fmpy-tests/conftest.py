@@ -1,0 +1,54 @@
+"""Fixtures for the RockingBlock FMU tests.
+
+Nothing is built here: the test command runs `cargo xtask fmu` first, which
+writes target/fmu/RockingBlock.fmu and target/release/examples/run_direct.
+"""
+
+import os
+import pathlib
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+TARGET = pathlib.Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target"))
+if not TARGET.is_absolute():
+    TARGET = ROOT / TARGET
+FMU = TARGET / "fmu" / "RockingBlock.fmu"
+RUN_DIRECT = TARGET / "release" / "examples" / "run_direct"
+
+
+def _require(path: pathlib.Path, what: str) -> pathlib.Path:
+    if not path.is_file():
+        pytest.fail(
+            f"{what} not found at {path}: run `cargo xtask fmu` first "
+            "(it builds the FMU and the run_direct tool)",
+            pytrace=False,
+        )
+    return path
+
+
+@pytest.fixture(scope="session")
+def fmu_path() -> str:
+    """Path of the packaged FMU (fails clearly if it was not built)."""
+    return str(_require(FMU, "The packaged FMU"))
+
+
+@pytest.fixture(scope="session")
+def run_direct_path() -> str:
+    """Path of the tool that runs the Rust engine directly."""
+    return str(_require(RUN_DIRECT, "The run_direct tool"))
+
+
+@pytest.fixture(scope="session")
+def model_description(fmu_path):
+    from fmpy import read_model_description
+
+    return read_model_description(fmu_path)
+
+
+@pytest.fixture(scope="session")
+def unzipped(fmu_path, tmp_path_factory) -> str:
+    """The FMU extracted once per session."""
+    from fmpy import extract
+
+    return extract(fmu_path, unzipdir=str(tmp_path_factory.mktemp("fmu")))

@@ -1,0 +1,186 @@
+"""modelDescription.xml: fmpy's validation, the FMI 2.0 schema, the interface of MODEL.md §5."""
+
+import os
+import zipfile
+
+import pytest
+from fmpy import read_model_description
+from fmpy.validation import validate_fmu
+
+PARAMETERS = [
+    "shape", "B", "L", "t", "Ro", "Ri", "massModel", "H", "rho", "W", "hG", "Ic",
+    "interface", "kn", "fm", "formulation", "restitution", "eta", "g",
+]
+OUTPUTS = [
+    "theta", "omega", "thetaOverAlpha", "af", "contactLength", "MR", "regime",
+    "impacts", "overturned", "Fx", "Fz",
+]
+CALCULATED = ["mass", "weight", "R0", "alpha", "IO", "etaHousner", "thetaJo", "thetaC", "thetaOv"]
+
+
+def variables(md):
+    return {v.name: v for v in md.modelVariables}
+
+
+def test_fmpy_validation_reports_no_problem(fmu_path):
+    assert validate_fmu(fmu_path) == []
+
+
+def test_xml_validates_against_the_fmi2_schema(fmu_path):
+    from lxml import etree
+    import fmpy
+
+    schema_dir = os.path.join(os.path.dirname(fmpy.__file__), "schema", "fmi2")
+    schema = etree.XMLSchema(etree.parse(os.path.join(schema_dir, "fmi2ModelDescription.xsd")))
+    with zipfile.ZipFile(fmu_path) as z:
+        doc = etree.fromstring(z.read("modelDescription.xml"))
+    schema.assertValid(doc)
+
+
+def test_archive_layout_is_reproducible(fmu_path):
+    with zipfile.ZipFile(fmu_path) as z:
+        infos = z.infolist()
+    names = [i.filename for i in infos]
+    assert names == sorted(names)
+    assert names == [
+        "binaries/linux64/RockingBlock.so",
+        "documentation/index.html",
+        "modelDescription.xml",
+    ]
+    assert all(i.date_time == (1980, 1, 1, 0, 0, 0) for i in infos)
+
+
+def test_co_simulation_capabilities(model_description):
+    cs = model_description.coSimulation
+    assert model_description.fmiVersion == "2.0"
+    assert model_description.modelExchange is None
+    assert cs.modelIdentifier == "RockingBlock"
+    assert cs.canHandleVariableCommunicationStepSize
+    assert cs.canInterpolateInputs
+    assert cs.maxOutputDerivativeOrder == 2
+    assert cs.canGetAndSetFMUstate
+    assert cs.canSerializeFMUstate
+    assert not cs.canBeInstantiatedOnlyOncePerProcess
+    assert not cs.needsExecutionTool
+    assert not cs.canRunAsynchronuously
+    assert not cs.providesDirectionalDerivative
+
+
+def test_raw_capability_flags_are_only_the_true_ones(fmu_path):
+    with zipfile.ZipFile(fmu_path) as z:
+        xml = z.read("modelDescription.xml").decode()
+    cs = xml[xml.index("<CoSimulation"):]
+    cs = cs[: cs.index(">")]
+    assert 'needsExecutionTool="false"' in cs
+    assert 'canBeInstantiatedOnlyOncePerProcess="false"' in cs
+    # every other flag that is present is true
+    import re
+
+    for name, value in re.findall(r'(\w+)="([^"]*)"', cs):
+        if name in ("modelIdentifier", "needsExecutionTool", "canBeInstantiatedOnlyOncePerProcess"):
+            continue
+        assert value in ("true", "2"), (name, value)
+
+
+def test_every_public_variable_is_declared(model_description):
+    v = variables(model_description)
+    for n in PARAMETERS:
+        assert v[n].causality == "parameter" and v[n].variability == "fixed", n
+    assert v["ag"].causality == "input" and v["ag"].variability == "continuous"
+    for n in OUTPUTS:
+        assert v[n].causality == "output", n
+    for n in ("theta", "omega"):
+        assert v[n].initial == "exact" and v[n].variability == "continuous"
+    for n in ("regime", "impacts"):
+        assert v[n].type == "Integer" and v[n].variability == "discrete"
+    assert v["overturned"].type == "Boolean" and v["overturned"].variability == "discrete"
+    for n in CALCULATED:
+        assert v[n].causality == "calculatedParameter", n
+    assert all(x.description for x in model_description.modelVariables)
+
+
+def test_enumerations(model_description):
+    v = variables(model_description)
+    items = lambda n: [i.name for i in v[n].declaredType.items]  # noqa: E731
+    assert items("shape") == ["solidRectangle", "hollowRectangle", "solidCircle", "hollowCircle"]
+    assert items("massModel") == ["prism", "lumped"]
+    assert items("interface") == ["rigid", "elastic", "elastoPlastic"]
+    assert items("formulation") == ["costa", "shiftingPivot"]
+    assert items("restitution") == ["housner", "given"]
+    assert all(v[n].type == "Enumeration" for n in ("shape", "massModel", "interface", "formulation", "restitution"))
+
+
+@pytest.mark.parametrize(
+    "name, unit, display",
+    [
+        ("theta", "rad", "deg"),
+        ("alpha", "rad", "deg"),
+        ("thetaOv", "rad", "deg"),
+        ("kn", "Pa/m", "MPa/m"),
+        ("fm", "Pa", "MPa"),
+        ("Fx", "N", "kN"),
+        ("Fz", "N", "kN"),
+        ("W", "N", "kN"),
+        ("ag", "m/s2", "g"),
+    ],
+)
+def test_units_and_display_units(model_description, name, unit, display):
+    v = variables(model_description)[name]
+    assert v.unit == unit
+    assert v.displayUnit == display
+    units = {u.name: u for u in model_description.unitDefinitions}
+    du = {d.name: d for d in units[unit].displayUnits}
+    assert display in du
+    if display == "deg":
+        assert du[display].factor == pytest.approx(57.29577951308232, rel=1e-15)
+    if display == "g":
+        assert du[display].factor == pytest.approx(1 / 9.80665, rel=1e-15)
+
+
+def test_model_structure_dependencies(model_description):
+    md = model_description
+    index = {v.name: i for i, v in enumerate(md.modelVariables)}
+    outputs = {u.variable.name: {d.name for d in u.dependencies} for u in md.outputs}
+    assert set(outputs) == {v.name for v in md.modelVariables if v.causality == "output"}
+    # direct feedthrough of ag only where the equation of motion enters
+    assert outputs["Fx"] == outputs["Fz"] == outputs["angularAcceleration"] == {"ag"}
+    for n in ("theta", "omega", "af", "contactLength", "MR", "regime", "impacts", "overturned"):
+        assert outputs[n] == set(), n
+    initial = {u.variable.name: {d.name for d in u.dependencies} for u in md.initialUnknowns}
+    assert set(CALCULATED) <= set(initial)
+    assert "theta" not in initial and "omega" not in initial
+    assert initial["alpha"] == {"shape", "B", "Ro", "massModel", "H", "hG"}
+    assert "fm" in initial["thetaC"] and "hG" not in initial["thetaC"]
+    assert "theta" in initial["af"]
+    assert initial["impacts"] == set()
+    order = [index[u.variable.name] for u in md.initialUnknowns]
+    assert order == sorted(order)
+
+
+def test_default_experiment(model_description):
+    de = model_description.defaultExperiment
+    assert de.startTime == "0" or float(de.startTime) == 0.0
+    assert float(de.tolerance) > 0
+    assert float(de.stepSize) > 0
+
+
+def test_guid_is_content_derived_and_embedded(fmu_path, model_description):
+    guid = model_description.guid
+    assert guid.startswith("{") and guid.endswith("}") and len(guid) == 38
+    with zipfile.ZipFile(fmu_path) as z:
+        so = z.read("binaries/linux64/RockingBlock.so")
+        html = z.read("documentation/index.html").decode()
+    assert guid.encode() in so
+    assert guid in html
+
+
+def test_documentation_lists_every_variable(fmu_path, model_description):
+    with zipfile.ZipFile(fmu_path) as z:
+        html = z.read("documentation/index.html").decode()
+    for v in model_description.modelVariables:
+        assert f'<tr id="{v.name}">' in html, v.name
+
+
+def test_read_with_schema_validation(fmu_path):
+    md = read_model_description(fmu_path, validate=True, validate_variable_names=True, validate_model_structure=True)
+    assert md.modelName == "RockingBlock"

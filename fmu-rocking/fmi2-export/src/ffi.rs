@@ -1,0 +1,620 @@
+//! The C side of every FMI 2.0 co-simulation function, generic over the
+//! model. [`crate::export_fmi2!`] exports them under their standard names.
+//!
+//! Every function checks its pointers, catches panics (none crosses the
+//! boundary: a panic becomes `fmi2Fatal` for that instance, or `NULL` from
+//! `fmi2Instantiate`) and reports failures through the host's logger.
+
+#![allow(clippy::missing_safety_doc)]
+
+use std::ffi::{CStr, CString};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::PathBuf;
+use std::ptr;
+use std::sync::Mutex;
+
+use libc::{c_char, size_t};
+
+use crate::instance::{error, panic_message, Fail, Inner, Instance, Machine, Res, INSTANCE_MAGIC};
+use crate::logging::{Logger, GENERIC_CATEGORIES};
+use crate::slave::Slave;
+use crate::types::*;
+
+/// The instance behind `c`, if it is one of ours (best effort for foreign pointers).
+unsafe fn instance<'a, S: Slave>(c: fmi2Component) -> Option<&'a Instance<S>> {
+    if c.is_null() || !(c as usize).is_multiple_of(std::mem::align_of::<Instance<S>>()) {
+        return None;
+    }
+    // SAFETY: the host passes back the pointer fmi2Instantiate returned; we
+    // check our magic number and GUID before using anything else.
+    let inst = unsafe { &*(c as *const Instance<S>) };
+    if inst.magic != INSTANCE_MAGIC || inst.guid != S::guid() {
+        return None;
+    }
+    Some(inst)
+}
+
+/// Runs `body` on the instance: state, logging, errors and panics handled.
+fn call<S: Slave>(
+    c: fmi2Component,
+    function: &'static str,
+    body: impl FnOnce(&mut Inner<S>) -> Res<Status>,
+) -> fmi2Status {
+    catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: see `instance`.
+        let Some(inst) = (unsafe { instance::<S>(c) }) else {
+            return fmi2Error;
+        };
+        let mut guard = inst.inner.lock().unwrap_or_else(|p| p.into_inner());
+        let inner = &mut *guard;
+        if inner.machine() == Machine::Fatal {
+            inner.logger.status(
+                Status::Error,
+                &format!("{function}: the instance is in state fatal after an internal error; only fmi2FreeInstance is possible"),
+            );
+            return fmi2Error;
+        }
+        match catch_unwind(AssertUnwindSafe(|| body(inner))) {
+            Ok(Ok(s)) => s.raw(),
+            Ok(Err(f)) => inner.fail(function, f),
+            Err(p) => inner.fail(
+                function,
+                Fail {
+                    status: Status::Fatal,
+                    message: format!("internal error: {}", panic_message(&*p)),
+                },
+            ),
+        }
+    }))
+    .unwrap_or(fmi2Fatal)
+}
+
+unsafe fn slice<'a, T>(p: *const T, n: size_t, what: &str) -> Res<&'a [T]> {
+    if n == 0 {
+        Ok(&[])
+    } else if p.is_null() {
+        error(format!("{what} is NULL but n = {n}"))
+    } else {
+        // SAFETY: the host promises n valid elements at p.
+        Ok(unsafe { std::slice::from_raw_parts(p, n) })
+    }
+}
+
+unsafe fn slice_mut<'a, T>(p: *mut T, n: size_t, what: &str) -> Res<&'a mut [T]> {
+    if n == 0 {
+        Ok(&mut [])
+    } else if p.is_null() {
+        error(format!("{what} is NULL but n = {n}"))
+    } else {
+        // SAFETY: the host promises n writable elements at p.
+        Ok(unsafe { std::slice::from_raw_parts_mut(p, n) })
+    }
+}
+
+unsafe fn out<'a, T>(p: *mut T, what: &str) -> Res<&'a mut T> {
+    if p.is_null() {
+        error(format!("{what} is NULL"))
+    } else {
+        // SAFETY: non-null, the host promises a writable T.
+        Ok(unsafe { &mut *p })
+    }
+}
+
+/// Decodes a `file:` URI (`file:///p`, `file:/p`, `file://localhost/p`,
+/// percent-encoded) to a path.
+pub fn decode_file_uri(uri: &str) -> Option<PathBuf> {
+    let rest = uri
+        .strip_prefix("file://localhost/")
+        .map(|r| format!("/{r}"))
+        .or_else(|| uri.strip_prefix("file:///").map(|r| format!("/{r}")))
+        .or_else(|| {
+            uri.strip_prefix("file:/")
+                .filter(|r| !r.starts_with('/'))
+                .map(|r| format!("/{r}"))
+        })?;
+    let b = rest.as_bytes();
+    let mut bytes = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        if b[i] == b'%' {
+            let hex = std::str::from_utf8(b.get(i + 1..i + 3)?).ok()?;
+            bytes.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            bytes.push(b[i]);
+            i += 1;
+        }
+    }
+    use std::os::unix::ffi::OsStringExt;
+    Some(PathBuf::from(std::ffi::OsString::from_vec(bytes)))
+}
+
+pub fn get_types_platform() -> *const c_char {
+    c"default".as_ptr()
+}
+
+pub fn get_version() -> *const c_char {
+    c"2.0".as_ptr()
+}
+
+unsafe fn c_str(p: fmi2String) -> Option<String> {
+    if p.is_null() {
+        None
+    } else {
+        // SAFETY: non-null NUL-terminated string from the host.
+        Some(unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned())
+    }
+}
+
+pub unsafe fn instantiate<S: Slave>(
+    instance_name: fmi2String,
+    fmu_type: fmi2Type,
+    guid: fmi2String,
+    resource_location: fmi2String,
+    functions: *const fmi2CallbackFunctions,
+    _visible: fmi2Boolean,
+    logging_on: fmi2Boolean,
+) -> fmi2Component {
+    catch_unwind(AssertUnwindSafe(|| {
+        let md = S::description();
+        // SAFETY: the host passes a valid callback struct or NULL.
+        let callbacks = unsafe { functions.as_ref() };
+        let name = unsafe { c_str(instance_name) };
+        let logger = Logger::new(
+            md,
+            callbacks.and_then(|f| f.logger),
+            callbacks.map_or(ptr::null_mut(), |f| f.componentEnvironment),
+            CString::new(name.clone().unwrap_or_default()).unwrap_or_default(),
+            logging_on != fmi2False,
+        );
+        let refuse = |m: String| {
+            logger.status(Status::Error, &format!("fmi2Instantiate: {m}"));
+            ptr::null_mut()
+        };
+        match &name {
+            Some(n) if !n.is_empty() => {}
+            _ => return refuse("instanceName must be a non-empty string".into()),
+        }
+        if fmu_type != fmi2CoSimulation {
+            return refuse(format!(
+                "fmuType = {fmu_type}: this FMU supports co-simulation (fmi2CoSimulation = 1) only"
+            ));
+        }
+        let g = unsafe { c_str(guid) };
+        if g.as_deref() != Some(S::guid()) {
+            return refuse(format!(
+                "fmuGUID = {}: this binary was built for the model description with GUID {}",
+                g.as_deref().unwrap_or("NULL"),
+                S::guid()
+            ));
+        }
+        for c in GENERIC_CATEGORIES {
+            debug_assert!(md.log_categories.iter().any(|x| x.name == c), "{c}");
+        }
+        let resource = unsafe { c_str(resource_location) };
+        let resource_dir = resource.as_deref().and_then(decode_file_uri);
+        let inner = Inner::<S>::new(logger, resource_dir);
+        if let (Some(r), None) = (&resource, &inner.resource_dir) {
+            inner.log_status_warning(&format!(
+                "fmi2Instantiate: fmuResourceLocation {r} is no file URI; resources are not used"
+            ));
+        }
+        inner.trace(|| {
+            format!(
+                "fmi2Instantiate: instance {:?}, GUID {}, resources {:?}",
+                name.as_deref().unwrap_or(""),
+                S::guid(),
+                inner.resource_dir
+            )
+        });
+        let inst = Box::new(Instance {
+            magic: INSTANCE_MAGIC,
+            guid: S::guid(),
+            inner: Mutex::new(inner),
+        });
+        Box::into_raw(inst) as fmi2Component
+    }))
+    .unwrap_or(ptr::null_mut())
+}
+
+pub unsafe fn free_instance<S: Slave>(c: fmi2Component) {
+    let _ = catch_unwind(AssertUnwindSafe(|| {
+        // SAFETY: see `instance`.
+        if unsafe { instance::<S>(c) }.is_none() {
+            return;
+        }
+        let p = c as *mut Instance<S>;
+        // SAFETY: one of ours, created by Box::into_raw in fmi2Instantiate.
+        let mut b = unsafe { Box::from_raw(p) };
+        {
+            let inner = b.inner.get_mut().unwrap_or_else(|e| e.into_inner());
+            inner.trace(|| "fmi2FreeInstance".into());
+        }
+        // A stale pointer passed again is recognised (best effort) as freed.
+        b.magic = 0;
+        // SAFETY: writing our own field before the memory is released.
+        unsafe { ptr::write_volatile(&mut (*p).magic, 0) };
+        drop(b);
+    }));
+}
+
+pub unsafe fn set_debug_logging<S: Slave>(
+    c: fmi2Component,
+    logging_on: fmi2Boolean,
+    n: size_t,
+    categories: *const fmi2String,
+) -> fmi2Status {
+    call::<S>(c, "fmi2SetDebugLogging", |i| {
+        let cats = unsafe { slice(categories, n, "categories") }?;
+        let mut names = Vec::with_capacity(cats.len());
+        for &p in cats {
+            match unsafe { c_str(p) } {
+                Some(s) => names.push(s),
+                None => return error("a category is NULL"),
+            }
+        }
+        i.set_debug_logging(logging_on != fmi2False, &names)
+    })
+}
+
+pub unsafe fn setup_experiment<S: Slave>(
+    c: fmi2Component,
+    tolerance_defined: fmi2Boolean,
+    tolerance: fmi2Real,
+    start_time: fmi2Real,
+    stop_time_defined: fmi2Boolean,
+    stop_time: fmi2Real,
+) -> fmi2Status {
+    call::<S>(c, "fmi2SetupExperiment", |i| {
+        let tol = (tolerance_defined != fmi2False).then_some(tolerance);
+        let stop = (stop_time_defined != fmi2False).then_some(stop_time);
+        i.trace(|| format!("fmi2SetupExperiment(tolerance = {tol:?}, startTime = {start_time}, stopTime = {stop:?})"));
+        i.setup_experiment(tol, start_time, stop)
+    })
+}
+
+pub unsafe fn enter_initialization_mode<S: Slave>(c: fmi2Component) -> fmi2Status {
+    call::<S>(c, "fmi2EnterInitializationMode", |i| {
+        i.trace(|| "fmi2EnterInitializationMode".into());
+        i.enter_initialization_mode()
+    })
+}
+
+pub unsafe fn exit_initialization_mode<S: Slave>(c: fmi2Component) -> fmi2Status {
+    call::<S>(c, "fmi2ExitInitializationMode", |i| {
+        i.trace(|| "fmi2ExitInitializationMode".into());
+        i.exit_initialization_mode()
+    })
+}
+
+pub unsafe fn terminate<S: Slave>(c: fmi2Component) -> fmi2Status {
+    call::<S>(c, "fmi2Terminate", |i| {
+        i.trace(|| "fmi2Terminate".into());
+        i.terminate()
+    })
+}
+
+pub unsafe fn reset<S: Slave>(c: fmi2Component) -> fmi2Status {
+    call::<S>(c, "fmi2Reset", |i| {
+        i.trace(|| "fmi2Reset".into());
+        i.reset()
+    })
+}
+
+pub unsafe fn get_real<S: Slave>(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    n: size_t,
+    value: *mut fmi2Real,
+) -> fmi2Status {
+    call::<S>(c, "fmi2GetReal", |i| {
+        let vr = unsafe { slice(vr, n, "vr") }?;
+        let value = unsafe { slice_mut(value, n, "value") }?;
+        i.get_real(vr, value)
+    })
+}
+
+pub unsafe fn get_integer<S: Slave>(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    n: size_t,
+    value: *mut fmi2Integer,
+) -> fmi2Status {
+    call::<S>(c, "fmi2GetInteger", |i| {
+        let vr = unsafe { slice(vr, n, "vr") }?;
+        let value = unsafe { slice_mut(value, n, "value") }?;
+        i.get_integer(vr, value)
+    })
+}
+
+pub unsafe fn get_boolean<S: Slave>(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    n: size_t,
+    value: *mut fmi2Boolean,
+) -> fmi2Status {
+    call::<S>(c, "fmi2GetBoolean", |i| {
+        let vr = unsafe { slice(vr, n, "vr") }?;
+        let value = unsafe { slice_mut(value, n, "value") }?;
+        i.get_boolean(vr, value)
+    })
+}
+
+pub unsafe fn get_string<S: Slave>(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    n: size_t,
+    value: *mut fmi2String,
+) -> fmi2Status {
+    call::<S>(c, "fmi2GetString", |i| {
+        let vr = unsafe { slice(vr, n, "vr") }?;
+        let value = unsafe { slice_mut(value, n, "value") }?;
+        i.get_string(vr, value)
+    })
+}
+
+pub unsafe fn set_real<S: Slave>(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    n: size_t,
+    value: *const fmi2Real,
+) -> fmi2Status {
+    call::<S>(c, "fmi2SetReal", |i| {
+        let vr = unsafe { slice(vr, n, "vr") }?;
+        let value = unsafe { slice(value, n, "value") }?;
+        i.set_real(vr, value)
+    })
+}
+
+pub unsafe fn set_integer<S: Slave>(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    n: size_t,
+    value: *const fmi2Integer,
+) -> fmi2Status {
+    call::<S>(c, "fmi2SetInteger", |i| {
+        let vr = unsafe { slice(vr, n, "vr") }?;
+        let value = unsafe { slice(value, n, "value") }?;
+        i.set_integer(vr, value)
+    })
+}
+
+pub unsafe fn set_boolean<S: Slave>(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    n: size_t,
+    value: *const fmi2Boolean,
+) -> fmi2Status {
+    call::<S>(c, "fmi2SetBoolean", |i| {
+        let vr = unsafe { slice(vr, n, "vr") }?;
+        let value = unsafe { slice(value, n, "value") }?;
+        i.set_boolean(vr, value)
+    })
+}
+
+pub unsafe fn set_string<S: Slave>(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    n: size_t,
+    value: *const fmi2String,
+) -> fmi2Status {
+    call::<S>(c, "fmi2SetString", |i| {
+        let vr = unsafe { slice(vr, n, "vr") }?;
+        let value = unsafe { slice(value, n, "value") }?;
+        let strings: Vec<Option<CString>> = value
+            .iter()
+            .map(|&p| (!p.is_null()).then(|| unsafe { CStr::from_ptr(p) }.to_owned()))
+            .collect();
+        i.set_string(vr, &strings)
+    })
+}
+
+pub unsafe fn get_fmu_state<S: Slave>(c: fmi2Component, state: *mut fmi2FMUstate) -> fmi2Status {
+    call::<S>(c, "fmi2GetFMUstate", |i| {
+        let state = unsafe { out(state, "FMUstate") }?;
+        let p = i.get_fmu_state(*state as usize)?;
+        *state = p as fmi2FMUstate;
+        i.trace(|| format!("fmi2GetFMUstate -> {p:#x}"));
+        Ok(Status::Ok)
+    })
+}
+
+pub unsafe fn set_fmu_state<S: Slave>(c: fmi2Component, state: fmi2FMUstate) -> fmi2Status {
+    call::<S>(c, "fmi2SetFMUstate", |i| {
+        i.trace(|| format!("fmi2SetFMUstate({:#x})", state as usize));
+        i.set_fmu_state(state as usize)
+    })
+}
+
+pub unsafe fn free_fmu_state<S: Slave>(c: fmi2Component, state: *mut fmi2FMUstate) -> fmi2Status {
+    call::<S>(c, "fmi2FreeFMUstate", |i| {
+        let state = unsafe { out(state, "FMUstate") }?;
+        i.trace(|| format!("fmi2FreeFMUstate({:#x})", *state as usize));
+        let s = i.free_fmu_state(*state as usize)?;
+        *state = ptr::null_mut();
+        Ok(s)
+    })
+}
+
+pub unsafe fn serialized_fmu_state_size<S: Slave>(
+    c: fmi2Component,
+    state: fmi2FMUstate,
+    size: *mut size_t,
+) -> fmi2Status {
+    call::<S>(c, "fmi2SerializedFMUstateSize", |i| {
+        let size = unsafe { out(size, "size") }?;
+        *size = i.serialized_size(state as usize)?;
+        Ok(Status::Ok)
+    })
+}
+
+pub unsafe fn serialize_fmu_state<S: Slave>(
+    c: fmi2Component,
+    state: fmi2FMUstate,
+    bytes: *mut fmi2Byte,
+    size: size_t,
+) -> fmi2Status {
+    call::<S>(c, "fmi2SerializeFMUstate", |i| {
+        let buf = unsafe { slice_mut(bytes as *mut u8, size, "serializedState") }?;
+        i.serialize_fmu_state(state as usize, buf)
+    })
+}
+
+pub unsafe fn deserialize_fmu_state<S: Slave>(
+    c: fmi2Component,
+    bytes: *const fmi2Byte,
+    size: size_t,
+    state: *mut fmi2FMUstate,
+) -> fmi2Status {
+    call::<S>(c, "fmi2DeSerializeFMUstate", |i| {
+        let state = unsafe { out(state, "FMUstate") }?;
+        let buf = unsafe { slice(bytes as *const u8, size, "serializedState") }?;
+        let p = i.deserialize_fmu_state(buf)?;
+        *state = p as fmi2FMUstate;
+        Ok(Status::Ok)
+    })
+}
+
+pub unsafe fn get_directional_derivative<S: Slave>(c: fmi2Component) -> fmi2Status {
+    call::<S>(c, "fmi2GetDirectionalDerivative", |_| {
+        error("not provided (providesDirectionalDerivative is false)")
+    })
+}
+
+pub unsafe fn set_real_input_derivatives<S: Slave>(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    n: size_t,
+    order: *const fmi2Integer,
+    value: *const fmi2Real,
+) -> fmi2Status {
+    call::<S>(c, "fmi2SetRealInputDerivatives", |i| {
+        let vr = unsafe { slice(vr, n, "vr") }?;
+        let order = unsafe { slice(order, n, "order") }?;
+        let value = unsafe { slice(value, n, "value") }?;
+        i.set_real_input_derivatives(vr, order, value)
+    })
+}
+
+pub unsafe fn get_real_output_derivatives<S: Slave>(
+    c: fmi2Component,
+    vr: *const fmi2ValueReference,
+    n: size_t,
+    order: *const fmi2Integer,
+    value: *mut fmi2Real,
+) -> fmi2Status {
+    call::<S>(c, "fmi2GetRealOutputDerivatives", |i| {
+        let vr = unsafe { slice(vr, n, "vr") }?;
+        let order = unsafe { slice(order, n, "order") }?;
+        let value = unsafe { slice_mut(value, n, "value") }?;
+        i.get_real_output_derivatives(vr, order, value)
+    })
+}
+
+pub unsafe fn do_step<S: Slave>(
+    c: fmi2Component,
+    current_communication_point: fmi2Real,
+    communication_step_size: fmi2Real,
+    _no_set_fmu_state_prior_to_current_point: fmi2Boolean,
+) -> fmi2Status {
+    call::<S>(c, "fmi2DoStep", |i| {
+        i.trace(|| {
+            format!(
+                "fmi2DoStep(currentCommunicationPoint = {current_communication_point}, communicationStepSize = {communication_step_size})"
+            )
+        });
+        i.do_step(current_communication_point, communication_step_size)
+    })
+}
+
+pub unsafe fn cancel_step<S: Slave>(c: fmi2Component) -> fmi2Status {
+    call::<S>(c, "fmi2CancelStep", |i| i.cancel_step())
+}
+
+pub unsafe fn get_status<S: Slave>(
+    c: fmi2Component,
+    kind: fmi2StatusKind,
+    value: *mut fmi2Status,
+) -> fmi2Status {
+    call::<S>(c, "fmi2GetStatus", |i| {
+        let value = unsafe { out(value, "value") }?;
+        *value = i.get_status(kind)?;
+        Ok(Status::Ok)
+    })
+}
+
+pub unsafe fn get_real_status<S: Slave>(
+    c: fmi2Component,
+    kind: fmi2StatusKind,
+    value: *mut fmi2Real,
+) -> fmi2Status {
+    call::<S>(c, "fmi2GetRealStatus", |i| {
+        let value = unsafe { out(value, "value") }?;
+        *value = i.get_real_status(kind)?;
+        Ok(Status::Ok)
+    })
+}
+
+pub unsafe fn get_integer_status<S: Slave>(
+    c: fmi2Component,
+    kind: fmi2StatusKind,
+    value: *mut fmi2Integer,
+) -> fmi2Status {
+    call::<S>(c, "fmi2GetIntegerStatus", |i| {
+        let value = unsafe { out(value, "value") }?;
+        *value = i.get_integer_status(kind)?;
+        Ok(Status::Ok)
+    })
+}
+
+pub unsafe fn get_boolean_status<S: Slave>(
+    c: fmi2Component,
+    kind: fmi2StatusKind,
+    value: *mut fmi2Boolean,
+) -> fmi2Status {
+    call::<S>(c, "fmi2GetBooleanStatus", |i| {
+        let value = unsafe { out(value, "value") }?;
+        *value = if i.get_boolean_status(kind)? {
+            fmi2True
+        } else {
+            fmi2False
+        };
+        Ok(Status::Ok)
+    })
+}
+
+pub unsafe fn get_string_status<S: Slave>(
+    c: fmi2Component,
+    kind: fmi2StatusKind,
+    value: *mut fmi2String,
+) -> fmi2Status {
+    call::<S>(c, "fmi2GetStringStatus", |i| {
+        let _ = unsafe { out(value, "value") }?;
+        i.get_string_status(kind)?;
+        Ok(Status::Ok)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn file_uris() {
+        assert_eq!(
+            decode_file_uri("file:///tmp/a%20b/resources").unwrap(),
+            PathBuf::from("/tmp/a b/resources")
+        );
+        assert_eq!(
+            decode_file_uri("file:/tmp/x").unwrap(),
+            PathBuf::from("/tmp/x")
+        );
+        assert_eq!(
+            decode_file_uri("file://localhost/tmp/x").unwrap(),
+            PathBuf::from("/tmp/x")
+        );
+        assert!(decode_file_uri("http://example.org/x").is_none());
+        assert!(decode_file_uri("file:///bad%2").is_none());
+        assert!(decode_file_uri("file:///bad%zz").is_none());
+    }
+}

@@ -1,0 +1,207 @@
+//! What a model implements to become an FMI 2.0 co-simulation slave.
+//!
+//! The generic layer keeps the values the master sets (parameters, inputs,
+//! start values, input derivatives), enforces the state machine, logs, saves
+//! and serializes states, and calls the model only through [`Slave`].
+
+use std::ffi::CString;
+
+use model_description::{BaseType, ModelDescription};
+
+use crate::bytes::{ByteReader, ByteWriter, ReadError};
+
+/// One stored value (of a variable the master can set).
+#[derive(Clone, Debug)]
+pub enum Scalar {
+    Real(f64),
+    Integer(i32),
+    Boolean(bool),
+    String(CString),
+}
+
+impl Scalar {
+    pub fn base(&self) -> BaseType {
+        match self {
+            Scalar::Real(_) => BaseType::Real,
+            Scalar::Integer(_) => BaseType::Integer,
+            Scalar::Boolean(_) => BaseType::Boolean,
+            Scalar::String(_) => BaseType::String,
+        }
+    }
+
+    /// Bit-exact equality (NaN equals itself).
+    pub fn same(&self, other: &Scalar) -> bool {
+        match (self, other) {
+            (Scalar::Real(a), Scalar::Real(b)) => a.to_bits() == b.to_bits(),
+            (Scalar::Integer(a), Scalar::Integer(b)) => a == b,
+            (Scalar::Boolean(a), Scalar::Boolean(b)) => a == b,
+            (Scalar::String(a), Scalar::String(b)) => a == b,
+            _ => false,
+        }
+    }
+}
+
+/// Read access to the stored values, by value reference.
+#[derive(Clone, Copy)]
+pub struct Values<'a> {
+    pub(crate) md: &'static ModelDescription,
+    pub(crate) values: &'a [Option<Scalar>],
+}
+
+impl<'a> Values<'a> {
+    fn get(&self, base: BaseType, vr: u32) -> &'a Scalar {
+        let (i, v) = self
+            .md
+            .by_vr(base, vr)
+            .unwrap_or_else(|| panic!("no {} variable with value reference {vr}", base.as_str()));
+        self.values[i]
+            .as_ref()
+            .unwrap_or_else(|| panic!("{} is not a stored variable", v.name))
+    }
+
+    /// The stored Real `vr` (a parameter, an input or a start value).
+    pub fn real(&self, vr: u32) -> f64 {
+        match self.get(BaseType::Real, vr) {
+            Scalar::Real(x) => *x,
+            _ => unreachable!(),
+        }
+    }
+
+    /// The stored Integer or Enumeration `vr`.
+    pub fn integer(&self, vr: u32) -> i32 {
+        match self.get(BaseType::Integer, vr) {
+            Scalar::Integer(x) => *x,
+            _ => unreachable!(),
+        }
+    }
+
+    pub fn boolean(&self, vr: u32) -> bool {
+        match self.get(BaseType::Boolean, vr) {
+            Scalar::Boolean(x) => *x,
+            _ => unreachable!(),
+        }
+    }
+}
+
+/// The inputs during a step or an evaluation: values and first derivatives.
+#[derive(Clone, Copy)]
+pub struct Inputs<'a> {
+    pub values: Values<'a>,
+    pub(crate) derivatives: &'a [f64],
+}
+
+impl<'a> Inputs<'a> {
+    /// Value of the Real input `vr` at the start of the step (or now).
+    pub fn real(&self, vr: u32) -> f64 {
+        self.values.real(vr)
+    }
+
+    /// First time derivative of the Real input `vr` (0 unless the master set it).
+    pub fn derivative(&self, vr: u32) -> f64 {
+        let (i, _) = self
+            .values
+            .md
+            .by_vr(BaseType::Real, vr)
+            .unwrap_or_else(|| panic!("no Real variable with value reference {vr}"));
+        self.derivatives[i]
+    }
+}
+
+/// Experiment settings from `fmi2SetupExperiment`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Setup {
+    /// Relative tolerance, if the master defined one.
+    pub tolerance: Option<f64>,
+    pub start_time: f64,
+    pub stop_time: Option<f64>,
+}
+
+/// Event messages a slave reports during a step (category `logEvents`).
+pub struct EventLog {
+    enabled: bool,
+    pub(crate) messages: Vec<String>,
+}
+
+impl EventLog {
+    pub(crate) fn new(enabled: bool) -> EventLog {
+        EventLog {
+            enabled,
+            messages: Vec::new(),
+        }
+    }
+
+    /// Whether anyone listens (to skip formatting otherwise).
+    pub fn enabled(&self) -> bool {
+        self.enabled
+    }
+
+    pub fn event(&mut self, message: impl Into<String>) {
+        if self.enabled {
+            self.messages.push(message.into());
+        }
+    }
+}
+
+/// How a step ended.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StepEnd {
+    /// The step reached `t + h`.
+    Completed,
+    /// The model ended the run at `time` (within the step): `fmi2DoStep`
+    /// returns `fmi2Discard`, `fmi2LastSuccessfulTime` is `time` and
+    /// `fmi2Terminated` is true.
+    Terminated { time: f64, reason: String },
+}
+
+/// A model as an FMI 2.0 co-simulation slave.
+///
+/// Every method may return `Err(message)`: the FMI function then returns
+/// `fmi2Error` with the message through the logger. A panic is caught and
+/// reported the same way; the model's state is restored from before the call.
+pub trait Slave: Sized + Send + 'static {
+    /// Everything that determines the future of a run: saved, restored and
+    /// serialized bit for bit.
+    type State: Copy + Send + 'static;
+
+    /// The model's variables (value references, causality, start values...).
+    fn description() -> &'static ModelDescription;
+
+    /// The GUID of the `modelDescription.xml` the binary was built with.
+    fn guid() -> &'static str;
+
+    /// Builds the model from the parameters and start values; `Err` names the
+    /// offending variable and the violated condition.
+    fn new(values: Values<'_>, setup: &Setup) -> Result<Self, String>;
+
+    /// A Real output, local or calculated parameter at the current state.
+    fn get_real(&mut self, vr: u32, inputs: Inputs<'_>) -> Result<f64, String>;
+
+    /// An Integer output, local or calculated parameter.
+    fn get_integer(&mut self, vr: u32, _inputs: Inputs<'_>) -> Result<i32, String> {
+        Err(format!("no computed Integer with value reference {vr}"))
+    }
+
+    /// A Boolean output, local or calculated parameter.
+    fn get_boolean(&mut self, vr: u32, _inputs: Inputs<'_>) -> Result<bool, String> {
+        Err(format!("no computed Boolean with value reference {vr}"))
+    }
+
+    /// The `order`-th time derivative of the Real output `vr`.
+    fn output_derivative(&mut self, vr: u32, order: i32, inputs: Inputs<'_>)
+        -> Result<f64, String>;
+
+    /// Advances from `t` to `t + h`, the inputs being `value + derivative * (s - t)`.
+    fn do_step(
+        &mut self,
+        t: f64,
+        h: f64,
+        inputs: Inputs<'_>,
+        log: &mut EventLog,
+    ) -> Result<StepEnd, String>;
+
+    fn state(&self) -> Self::State;
+    fn set_state(&mut self, state: Self::State);
+    fn write_state(state: &Self::State, w: &mut ByteWriter);
+    /// Reads a state back; must check every field it can.
+    fn read_state(r: &mut ByteReader<'_>) -> Result<Self::State, ReadError>;
+}

@@ -1,0 +1,344 @@
+//! The rocking model as an FMI 2.0 co-simulation slave: parameters from the
+//! stored values, outputs from `rocking::dynamics`, one `advance` per step.
+
+use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
+use fmi2_export::model_description::rocking_block::{enums, vr, ROCKING_BLOCK};
+use fmi2_export::model_description::ModelDescription;
+use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Values};
+use rocking::dynamics::{GroundInput, Outputs, Simulator, State};
+use rocking::model::{LawKind, MassKind, ShapeKind};
+use rocking::{Formulation, Params, Regime, Restitution};
+
+/// Layout version of the serialized [`State`] (inside the generic envelope).
+const STATE_VERSION: u32 = 1;
+
+pub struct RockingSlave {
+    sim: Simulator,
+    state: State,
+    /// Outputs at `state` for the ground acceleration with these bits.
+    cache: Option<(u64, Outputs)>,
+}
+
+fn enum_value<T>(name: &str, x: i32, table: &[(i32, T)]) -> Result<T, String>
+where
+    T: Copy,
+{
+    table
+        .iter()
+        .find(|(v, _)| *v == x)
+        .map(|(_, t)| *t)
+        .ok_or_else(|| format!("{name} = {x}: not an item of its enumeration"))
+}
+
+/// The physics parameters from the stored values.
+pub fn params(v: Values<'_>) -> Result<Params, String> {
+    use enums::*;
+    Ok(Params {
+        shape: enum_value(
+            "shape",
+            v.integer(vr::SHAPE),
+            &[
+                (SOLID_RECTANGLE, ShapeKind::SolidRectangle),
+                (HOLLOW_RECTANGLE, ShapeKind::HollowRectangle),
+                (SOLID_CIRCLE, ShapeKind::SolidCircle),
+                (HOLLOW_CIRCLE, ShapeKind::HollowCircle),
+            ],
+        )?,
+        b: v.real(vr::B),
+        l: v.real(vr::L),
+        t: v.real(vr::T),
+        ro: v.real(vr::RO),
+        ri: v.real(vr::RI),
+        mass_model: enum_value(
+            "massModel",
+            v.integer(vr::MASS_MODEL),
+            &[(PRISM, MassKind::Prism), (LUMPED, MassKind::Lumped)],
+        )?,
+        h: v.real(vr::H),
+        rho: v.real(vr::RHO),
+        w: v.real(vr::W),
+        hg: v.real(vr::HG),
+        ic: v.real(vr::IC),
+        interface: enum_value(
+            "interface",
+            v.integer(vr::INTERFACE),
+            &[
+                (RIGID, LawKind::Rigid),
+                (ELASTIC, LawKind::Elastic),
+                (ELASTO_PLASTIC, LawKind::ElastoPlastic),
+            ],
+        )?,
+        kn: v.real(vr::KN),
+        fm: v.real(vr::FM),
+        formulation: enum_value(
+            "formulation",
+            v.integer(vr::FORMULATION),
+            &[
+                (COSTA, Formulation::Costa),
+                (SHIFTING_PIVOT, Formulation::ShiftingPivot),
+            ],
+        )?,
+        restitution: enum_value(
+            "restitution",
+            v.integer(vr::RESTITUTION),
+            &[(HOUSNER, Restitution::Housner), (GIVEN, Restitution::Given)],
+        )?,
+        eta: v.real(vr::ETA),
+        g: v.real(vr::G),
+        theta0: v.real(vr::THETA),
+        omega0: v.real(vr::OMEGA),
+    })
+}
+
+fn regime_name(r: Regime) -> &'static str {
+    match r {
+        Regime::FullContact => "full contact",
+        Regime::Partial => "partial contact",
+        Regime::PartialCrushing => "partial contact with crushing",
+        Regime::FullCrushing => "full contact with crushing",
+        Regime::Overturned => "overturned",
+    }
+}
+
+impl RockingSlave {
+    fn outputs(&mut self, ag: f64) -> Outputs {
+        match self.cache {
+            Some((bits, o)) if bits == ag.to_bits() => o,
+            _ => {
+                let o = self.sim.outputs(&self.state, ag);
+                self.cache = Some((ag.to_bits(), o));
+                o
+            }
+        }
+    }
+
+    fn regime(&mut self, ag: f64) -> Regime {
+        if self.state.overturned {
+            Regime::Overturned
+        } else {
+            self.outputs(ag).regime
+        }
+    }
+}
+
+impl Slave for RockingSlave {
+    type State = State;
+
+    fn description() -> &'static ModelDescription {
+        &ROCKING_BLOCK
+    }
+
+    fn guid() -> &'static str {
+        crate::GUID
+    }
+
+    fn new(values: Values<'_>, setup: &Setup) -> Result<Self, String> {
+        let p = params(values)?;
+        let model = p.build().map_err(|e| e.to_string())?;
+        let rtol = setup
+            .tolerance
+            .unwrap_or(ROCKING_BLOCK.default_experiment.tolerance);
+        let sim = Simulator::new(model, rtol);
+        let mut state = sim.initial_state(p.theta0, p.omega0);
+        state.t = setup.start_time;
+        Ok(RockingSlave {
+            sim,
+            state,
+            cache: None,
+        })
+    }
+
+    fn get_real(&mut self, r: u32, inputs: Inputs<'_>) -> Result<f64, String> {
+        let m = &self.sim.model;
+        let b = &m.body;
+        let ag = inputs.real(vr::AG);
+        Ok(match r {
+            vr::THETA => self.state.theta,
+            vr::OMEGA => self.state.omega,
+            vr::THETA_OVER_ALPHA => self.state.theta / b.alpha,
+            vr::MASS => b.mass,
+            vr::WEIGHT => b.weight,
+            vr::R0 => b.r0,
+            vr::ALPHA => b.alpha,
+            vr::IO => b.io,
+            vr::ETA_HOUSNER => b.eta_housner(),
+            vr::THETA_JO => m.interface.theta_jo(),
+            vr::THETA_C => m.interface.theta_c(),
+            vr::THETA_OV => m.theta_ov,
+            vr::ANGULAR_ACCELERATION => self.outputs(ag).theta_dd,
+            vr::AF => self.outputs(ag).af,
+            vr::CONTACT_LENGTH => self.outputs(ag).contact_length,
+            vr::MR => self.outputs(ag).mr,
+            vr::FX => self.outputs(ag).fx,
+            vr::FZ => self.outputs(ag).fz,
+            _ => return Err(format!("no computed Real with value reference {r}")),
+        })
+    }
+
+    fn get_integer(&mut self, r: u32, inputs: Inputs<'_>) -> Result<i32, String> {
+        match r {
+            vr::REGIME => Ok(self.regime(inputs.real(vr::AG)) as i32),
+            vr::IMPACTS => Ok(i32::try_from(self.state.impacts).unwrap_or(i32::MAX)),
+            _ => Err(format!("no computed Integer with value reference {r}")),
+        }
+    }
+
+    fn get_boolean(&mut self, r: u32, _inputs: Inputs<'_>) -> Result<bool, String> {
+        match r {
+            vr::OVERTURNED => Ok(self.state.overturned),
+            _ => Err(format!("no computed Boolean with value reference {r}")),
+        }
+    }
+
+    fn output_derivative(&mut self, r: u32, order: i32, inputs: Inputs<'_>) -> Result<f64, String> {
+        let alpha = self.sim.model.body.alpha;
+        let ag = inputs.real(vr::AG);
+        match (r, order) {
+            (vr::THETA, 1) => Ok(self.state.omega),
+            (vr::THETA, 2) | (vr::OMEGA, 1) => Ok(self.outputs(ag).theta_dd),
+            (vr::THETA_OVER_ALPHA, 1) => Ok(self.state.omega / alpha),
+            (vr::THETA_OVER_ALPHA, 2) => Ok(self.outputs(ag).theta_dd / alpha),
+            _ => Err("not provided: derivatives are available for theta (orders 1, 2), omega (order 1) and thetaOverAlpha (orders 1, 2)".into()),
+        }
+    }
+
+    fn do_step(
+        &mut self,
+        t: f64,
+        h: f64,
+        inputs: Inputs<'_>,
+        log: &mut EventLog,
+    ) -> Result<StepEnd, String> {
+        let ag = inputs.real(vr::AG);
+        let dag = inputs.derivative(vr::AG);
+        if !(ag.is_finite() && dag.is_finite()) {
+            return Err(format!(
+                "ag = {ag}, dag/dt = {dag}: the input must be finite"
+            ));
+        }
+        if self.state.overturned {
+            return Ok(StepEnd::Terminated {
+                time: self.state.t,
+                reason: "the body has already overturned".into(),
+            });
+        }
+        let before = log.enabled().then(|| self.regime(ag));
+        let mut s = self.state;
+        let ev = self.sim.advance(&mut s, t + h, GroundInput { ag, dag });
+        if !(s.theta.is_finite() && s.omega.is_finite() && s.t.is_finite()) {
+            return Err(format!(
+                "the integration produced a non-finite state (theta = {}, omega = {}) at t = {}",
+                s.theta, s.omega, s.t
+            ));
+        }
+        self.state = s;
+        self.cache = None;
+        if log.enabled() {
+            if ev.uplift {
+                log.event(format!(
+                    "uplift in ({t}, {}]: the body starts rocking",
+                    t + h
+                ));
+            }
+            if ev.impacts > 0 {
+                log.event(format!(
+                    "{} impact(s) in ({t}, {}], {} so far",
+                    ev.impacts,
+                    t + h,
+                    s.impacts
+                ));
+            }
+            if ev.came_to_rest {
+                log.event(format!("came to rest in ({t}, {}]", t + h));
+            }
+            let a_end = ag + dag * h;
+            let after = self.regime(a_end);
+            if let Some(b) = before {
+                if b != after {
+                    log.event(format!(
+                        "regime {} ({}) -> {} ({}) in ({t}, {}]",
+                        b as i32,
+                        regime_name(b),
+                        after as i32,
+                        regime_name(after),
+                        t + h
+                    ));
+                }
+            }
+        }
+        if let Some(t_ov) = ev.overturned_at {
+            log.event(format!(
+                "overturned at t = {t_ov}: |theta| reached thetaOv = {} rad",
+                self.sim.model.theta_ov
+            ));
+            return Ok(StepEnd::Terminated {
+                time: t_ov,
+                reason: format!(
+                    "the body overturned (|theta| reached thetaOv = {} rad) at t = {t_ov}",
+                    self.sim.model.theta_ov
+                ),
+            });
+        }
+        Ok(StepEnd::Completed)
+    }
+
+    fn state(&self) -> State {
+        self.state
+    }
+
+    fn set_state(&mut self, state: State) {
+        self.state = state;
+        self.cache = None;
+    }
+
+    fn write_state(s: &State, w: &mut ByteWriter) {
+        // Destructured: a new field in State breaks the build here, not the format.
+        let State {
+            t,
+            theta,
+            omega,
+            impacts,
+            at_rest,
+            overturned,
+            h,
+            a,
+        } = *s;
+        w.u32(STATE_VERSION);
+        w.f64(t);
+        w.f64(theta);
+        w.f64(omega);
+        w.u64(impacts);
+        w.bool(at_rest);
+        w.bool(overturned);
+        w.f64(h);
+        w.f64(a);
+    }
+
+    fn read_state(r: &mut ByteReader<'_>) -> Result<State, ReadError> {
+        let v = r.u32("state version")?;
+        if v != STATE_VERSION {
+            return Err(format!(
+                "rocking state version {v}, this FMU reads version {STATE_VERSION}"
+            ));
+        }
+        let s = State {
+            t: r.f64("t")?,
+            theta: r.f64("theta")?,
+            omega: r.f64("omega")?,
+            impacts: r.u64("impacts")?,
+            at_rest: r.bool("at_rest")?,
+            overturned: r.bool("overturned")?,
+            h: r.f64("h")?,
+            a: r.f64("a")?,
+        };
+        for (name, x) in [("t", s.t), ("theta", s.theta), ("omega", s.omega)] {
+            if !x.is_finite() {
+                return Err(format!("{name} = {x} is not finite"));
+            }
+        }
+        if !(s.h.is_finite() && s.h >= 0.0 && s.a.is_finite() && s.a >= 0.0) {
+            return Err(format!("step h = {}, contact a = {}: invalid", s.h, s.a));
+        }
+        Ok(s)
+    }
+}

@@ -1,0 +1,760 @@
+//! The RockingBlock FMU: the one definition of its variables (MODEL.md §5),
+//! units, enumeration types, capabilities and default experiment.
+//!
+//! The value references the binary uses ([`vr`]), the `modelDescription.xml`
+//! and the variable table of `documentation/index.html` all come from here.
+
+use crate::schema::*;
+
+/// Relative tolerance of the integrator when the master gives none
+/// (`DefaultExperiment/@tolerance`).
+pub const DEFAULT_TOLERANCE: f64 = 1e-9;
+
+/// Declares the value-reference constants ([`vr`]) and the variable table
+/// ([`VARIABLES`]) from one list.
+macro_rules! variables {
+    ($( $(#[$meta:meta])* $konst:ident = $vr:literal => { $($field:ident : $value:expr),* $(,)? } )*) => {
+        /// Value references, one constant per variable.
+        pub mod vr {
+            $( $(#[$meta])* pub const $konst: u32 = $vr; )*
+        }
+        /// The variables, in XML order (sorted by value reference).
+        #[allow(clippy::needless_update)] // some entries set every field
+        pub static VARIABLES: &[Variable] = &[
+            $( Variable { vr: $vr, $($field: $value,)* ..Variable::DEFAULT }, )*
+        ];
+    };
+}
+
+const fn real(
+    unit: Option<&'static str>,
+    display_unit: Option<&'static str>,
+    start: Option<f64>,
+) -> Type {
+    Type::Real {
+        unit,
+        display_unit,
+        start,
+        min: None,
+        max: None,
+    }
+}
+
+const fn enumeration(declared_type: &'static str, start: i32) -> Type {
+    Type::Enumeration {
+        declared_type,
+        start: Some(start),
+    }
+}
+
+use Causality::{CalculatedParameter as CalcParam, Input, Output, Parameter};
+use Initial::{Calculated, Exact};
+use Variability::{Continuous, Discrete, Fixed};
+
+// Dependencies at initialization (ModelStructure/InitialUnknowns); their
+// inputs are the output's dependencies in ModelStructure/Outputs.
+const D_WEIGHT: &[&str] = &[
+    "shape",
+    "B",
+    "L",
+    "t",
+    "Ro",
+    "Ri",
+    "massModel",
+    "H",
+    "rho",
+    "W",
+    "g",
+];
+const D_LEVER: &[&str] = &["shape", "B", "Ro", "massModel", "H", "hG"];
+const D_INERTIA: &[&str] = &[
+    "shape",
+    "B",
+    "L",
+    "t",
+    "Ro",
+    "Ri",
+    "massModel",
+    "H",
+    "rho",
+    "W",
+    "hG",
+    "Ic",
+    "g",
+];
+const D_THRESHOLD: &[&str] = &[
+    "shape",
+    "B",
+    "L",
+    "t",
+    "Ro",
+    "Ri",
+    "massModel",
+    "H",
+    "rho",
+    "W",
+    "interface",
+    "kn",
+    "fm",
+    "g",
+];
+const D_OVERTURN: &[&str] = &[
+    "shape",
+    "B",
+    "L",
+    "t",
+    "Ro",
+    "Ri",
+    "massModel",
+    "H",
+    "rho",
+    "W",
+    "hG",
+    "interface",
+    "kn",
+    "fm",
+    "g",
+];
+const D_THETA_ALPHA: &[&str] = &["shape", "B", "Ro", "massModel", "H", "hG", "theta"];
+const D_CONTACT: &[&str] = &[
+    "shape",
+    "B",
+    "L",
+    "t",
+    "Ro",
+    "Ri",
+    "massModel",
+    "H",
+    "rho",
+    "W",
+    "interface",
+    "kn",
+    "fm",
+    "g",
+    "theta",
+];
+const D_MOMENT: &[&str] = &[
+    "shape",
+    "B",
+    "L",
+    "t",
+    "Ro",
+    "Ri",
+    "massModel",
+    "H",
+    "rho",
+    "W",
+    "hG",
+    "interface",
+    "kn",
+    "fm",
+    "g",
+    "theta",
+];
+const D_DYNAMIC: &[&str] = &[
+    "shape",
+    "B",
+    "L",
+    "t",
+    "Ro",
+    "Ri",
+    "massModel",
+    "H",
+    "rho",
+    "W",
+    "hG",
+    "Ic",
+    "interface",
+    "kn",
+    "fm",
+    "formulation",
+    "g",
+    "ag",
+    "theta",
+    "omega",
+];
+
+variables! {
+    /// `shape` (enumeration `ShapeKind`).
+    SHAPE = 0 => {
+        name: "shape",
+        description: "Base section: solidRectangle (B, L), hollowRectangle (B, L, t), solidCircle (Ro), hollowCircle (Ro, Ri)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: enumeration("ShapeKind", 1),
+    }
+    B = 1 => {
+        name: "B",
+        description: "Rectangle depth along the rocking direction (base depth D = B)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("m"), None, Some(0.5)),
+    }
+    L = 2 => {
+        name: "L",
+        description: "Rectangle width perpendicular to the rocking plane",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("m"), None, Some(1.0)),
+    }
+    T = 3 => {
+        name: "t",
+        description: "Wall thickness of the hollow rectangle (2 t < min(B, L))",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("m"), None, Some(0.1)),
+    }
+    RO = 4 => {
+        name: "Ro",
+        description: "Outer radius of the circular sections (base depth D = 2 Ro)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("m"), None, Some(0.5)),
+    }
+    RI = 5 => {
+        name: "Ri",
+        description: "Inner radius of the hollow circle (Ri < Ro), concentric",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("m"), None, Some(0.3)),
+    }
+    MASS_MODEL = 6 => {
+        name: "massModel",
+        description: "Mass model: prism (the section extruded to height H with density rho) or lumped (W, hG, Ic given)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: enumeration("MassModelKind", 1),
+    }
+    H = 7 => {
+        name: "H",
+        description: "Prism height (hG = H/2)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("m"), None, Some(2.5)),
+    }
+    RHO = 8 => {
+        name: "rho",
+        description: "Prism density",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("kg/m3"), None, Some(1800.0)),
+    }
+    W = 9 => {
+        name: "W",
+        description: "Lumped weight",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("N"), Some("kN"), Some(1.0e5)),
+    }
+    HG = 10 => {
+        name: "hG",
+        description: "Lumped height of the centre of mass above the base (G over the section centroid)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("m"), None, Some(1.25)),
+    }
+    IC = 11 => {
+        name: "Ic",
+        description: "Lumped inertia about the centre of mass, about the rocking axis",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("kg.m2"), None, Some(1.0e4)),
+    }
+    INTERFACE = 12 => {
+        name: "interface",
+        description: "Interface law: rigid (Housner), elastic no-tension Winkler bed (kn), elastoPlastic (kn, crushing at fm)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: enumeration("InterfaceLaw", 3),
+    }
+    KN = 13 => {
+        name: "kn",
+        description: "Normal stiffness of the interface (stress per unit closure)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("Pa/m"), Some("MPa/m"), Some(5.0e9)),
+    }
+    FM = 14 => {
+        name: "fm",
+        description: "Compressive strength of the interface (inf: no crushing)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("Pa"), Some("MPa"), Some(5.0e6)),
+    }
+    FORMULATION = 15 => {
+        name: "formulation",
+        description: "Equation of motion: costa (the paper's Eq. 1) or shiftingPivot (Eq. 9, Lagrangian, energy-consistent)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: enumeration("FormulationKind", 2),
+    }
+    RESTITUTION = 16 => {
+        name: "restitution",
+        description: "Coefficient of restitution at impacts: housner (1 - 2 m b^2/IO) or given (eta)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: enumeration("RestitutionKind", 1),
+    }
+    ETA = 17 => {
+        name: "eta",
+        description: "Coefficient of restitution used when restitution = given (0 <= eta <= 1)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(None, None, Some(0.9)),
+    }
+    G = 18 => {
+        name: "g",
+        description: "Gravitational acceleration",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("m/s2"), None, Some(9.81)),
+    }
+    AG = 19 => {
+        name: "ag",
+        description: "Horizontal ground acceleration, positive along +x of the theta > 0 toe (interpolated with its first derivative when given)",
+        causality: Input, variability: Continuous,
+        ty: real(Some("m/s2"), Some("g"), Some(0.0)),
+    }
+    THETA = 20 => {
+        name: "theta",
+        description: "Rotation of the body, positive about the +x toe; its start value is the initial rotation",
+        causality: Output, variability: Continuous, initial: Some(Exact),
+        ty: real(Some("rad"), Some("deg"), Some(0.0)),
+    }
+    OMEGA = 21 => {
+        name: "omega",
+        description: "Angular velocity dtheta/dt; its start value is the initial angular velocity",
+        causality: Output, variability: Continuous, initial: Some(Exact),
+        ty: real(Some("rad/s"), Some("deg/s"), Some(0.0)),
+    }
+    ANGULAR_ACCELERATION = 22 => {
+        name: "angularAcceleration",
+        description: "Angular acceleration d2theta/dt2 from the equation of motion at the current state and ag",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("rad/s2"), Some("deg/s2"), None),
+        depends_on: D_DYNAMIC,
+    }
+    THETA_OVER_ALPHA = 23 => {
+        name: "thetaOverAlpha",
+        description: "Normalised rotation theta/alpha",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("1"), None, None),
+        depends_on: D_THETA_ALPHA,
+    }
+    AF = 24 => {
+        name: "af",
+        description: "Position of the interface reaction from the active toe (D/2 at rest)",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("m"), None, None),
+        depends_on: D_CONTACT,
+    }
+    CONTACT_LENGTH = 25 => {
+        name: "contactLength",
+        description: "Length of the closed part of the base, min(a, D)",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("m"), None, None),
+        depends_on: D_CONTACT,
+    }
+    MR = 26 => {
+        name: "MR",
+        description: "Restoring moment W hW(|theta|) about the shifted pivot",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("N.m"), Some("kN.m"), None),
+        depends_on: D_MOMENT,
+    }
+    REGIME = 27 => {
+        name: "regime",
+        description: "Contact regime: 0 full contact, 1 partial contact, 2 partial contact with crushing, 3 full contact with crushing, 4 overturned",
+        causality: Output, variability: Discrete, initial: Some(Calculated),
+        ty: Type::Integer { start: None },
+        depends_on: D_CONTACT,
+    }
+    IMPACTS = 28 => {
+        name: "impacts",
+        description: "Number of impacts (zero crossings of theta) so far",
+        causality: Output, variability: Discrete, initial: Some(Calculated),
+        ty: Type::Integer { start: None },
+    }
+    OVERTURNED = 29 => {
+        name: "overturned",
+        description: "True once |theta| has reached thetaOv: the run is over",
+        causality: Output, variability: Discrete, initial: Some(Calculated),
+        ty: Type::Boolean { start: None },
+    }
+    FX = 30 => {
+        name: "Fx",
+        description: "Horizontal force of the support on the body, m (ag + xG'')",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("N"), Some("kN"), None),
+        depends_on: D_DYNAMIC,
+    }
+    FZ = 31 => {
+        name: "Fz",
+        description: "Vertical force of the support on the body, m (g + zG'')",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("N"), Some("kN"), None),
+        depends_on: D_DYNAMIC,
+    }
+    MASS = 32 => {
+        name: "mass",
+        description: "Mass m = W/g",
+        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
+        ty: real(Some("kg"), None, None),
+        depends_on: D_WEIGHT,
+    }
+    WEIGHT = 33 => {
+        name: "weight",
+        description: "Weight W (rho g A H for the prism)",
+        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
+        ty: real(Some("N"), Some("kN"), None),
+        depends_on: D_WEIGHT,
+    }
+    R0 = 34 => {
+        name: "R0",
+        description: "Distance from the toe to the centre of mass, sqrt(b^2 + hG^2)",
+        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
+        ty: real(Some("m"), None, None),
+        depends_on: D_LEVER,
+    }
+    ALPHA = 35 => {
+        name: "alpha",
+        description: "Slenderness atan(b/hG)",
+        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
+        ty: real(Some("rad"), Some("deg"), None),
+        depends_on: D_LEVER,
+    }
+    IO = 36 => {
+        name: "IO",
+        description: "Inertia about the toe, Ic + m R0^2",
+        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
+        ty: real(Some("kg.m2"), None, None),
+        depends_on: D_INERTIA,
+    }
+    ETA_HOUSNER = 37 => {
+        name: "etaHousner",
+        description: "Housner's coefficient of restitution 1 - 2 m b^2/IO",
+        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
+        ty: real(Some("1"), None, None),
+        depends_on: D_INERTIA,
+    }
+    THETA_JO = 38 => {
+        name: "thetaJo",
+        description: "Rotation at which the heel opens (0 for the rigid interface)",
+        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
+        ty: real(Some("rad"), Some("deg"), None),
+        depends_on: D_THRESHOLD,
+    }
+    THETA_C = 39 => {
+        name: "thetaC",
+        description: "Rotation at which the toe starts to crush (inf without crushing)",
+        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
+        ty: real(Some("rad"), Some("deg"), None),
+        depends_on: D_THRESHOLD,
+    }
+    THETA_OV = 40 => {
+        name: "thetaOv",
+        description: "Overturning rotation, the first root of hW(phi) = 0 (alpha for the rigid interface)",
+        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
+        ty: real(Some("rad"), Some("deg"), None),
+        depends_on: D_OVERTURN,
+    }
+}
+
+const fn base(kg: i32, m: i32, s: i32, rad: i32) -> BaseUnit {
+    BaseUnit {
+        kg,
+        m,
+        s,
+        rad,
+        ..BaseUnit::ONE
+    }
+}
+
+const fn du(name: &'static str, factor: f64) -> DisplayUnit {
+    DisplayUnit {
+        name,
+        factor,
+        offset: 0.0,
+    }
+}
+
+/// Standard gravity for the display unit `g` (not the parameter `g`).
+pub const STANDARD_GRAVITY: f64 = 9.80665;
+
+pub static UNITS: &[Unit] = &[
+    Unit {
+        name: "1",
+        base: BaseUnit::ONE,
+        display: &[],
+    },
+    Unit {
+        name: "m",
+        base: base(0, 1, 0, 0),
+        display: &[du("mm", 1e3)],
+    },
+    Unit {
+        name: "kg",
+        base: base(1, 0, 0, 0),
+        display: &[du("t", 1e-3)],
+    },
+    Unit {
+        name: "kg/m3",
+        base: base(1, -3, 0, 0),
+        display: &[],
+    },
+    Unit {
+        name: "kg.m2",
+        base: base(1, 2, 0, 0),
+        display: &[du("t.m2", 1e-3)],
+    },
+    Unit {
+        name: "N",
+        base: base(1, 1, -2, 0),
+        display: &[du("kN", 1e-3), du("MN", 1e-6)],
+    },
+    Unit {
+        name: "N.m",
+        base: base(1, 2, -2, 0),
+        display: &[du("kN.m", 1e-3), du("MN.m", 1e-6)],
+    },
+    Unit {
+        name: "Pa",
+        base: base(1, -1, -2, 0),
+        display: &[du("MPa", 1e-6)],
+    },
+    Unit {
+        name: "Pa/m",
+        base: base(1, -2, -2, 0),
+        display: &[du("MPa/m", 1e-6), du("GPa/m", 1e-9)],
+    },
+    Unit {
+        name: "m/s2",
+        base: base(0, 1, -2, 0),
+        display: &[du("g", 1.0 / STANDARD_GRAVITY)],
+    },
+    Unit {
+        name: "rad",
+        base: base(0, 0, 0, 1),
+        display: &[du("deg", 180.0 / std::f64::consts::PI)],
+    },
+    Unit {
+        name: "rad/s",
+        base: base(0, 0, -1, 1),
+        display: &[du("deg/s", 180.0 / std::f64::consts::PI)],
+    },
+    Unit {
+        name: "rad/s2",
+        base: base(0, 0, -2, 1),
+        display: &[du("deg/s2", 180.0 / std::f64::consts::PI)],
+    },
+];
+
+const fn item(name: &'static str, value: i32, description: &'static str) -> EnumItem {
+    EnumItem {
+        name,
+        value,
+        description,
+    }
+}
+
+/// Values of the enumerations, as the binary sees them.
+pub mod enums {
+    pub const SOLID_RECTANGLE: i32 = 1;
+    pub const HOLLOW_RECTANGLE: i32 = 2;
+    pub const SOLID_CIRCLE: i32 = 3;
+    pub const HOLLOW_CIRCLE: i32 = 4;
+    pub const PRISM: i32 = 1;
+    pub const LUMPED: i32 = 2;
+    pub const RIGID: i32 = 1;
+    pub const ELASTIC: i32 = 2;
+    pub const ELASTO_PLASTIC: i32 = 3;
+    pub const COSTA: i32 = 1;
+    pub const SHIFTING_PIVOT: i32 = 2;
+    pub const HOUSNER: i32 = 1;
+    pub const GIVEN: i32 = 2;
+}
+
+pub static TYPES: &[EnumType] = &[
+    EnumType {
+        name: "ShapeKind",
+        description: "Base section shape",
+        items: &[
+            item(
+                "solidRectangle",
+                enums::SOLID_RECTANGLE,
+                "Solid rectangle B x L",
+            ),
+            item(
+                "hollowRectangle",
+                enums::HOLLOW_RECTANGLE,
+                "Hollow rectangle B x L, wall t",
+            ),
+            item(
+                "solidCircle",
+                enums::SOLID_CIRCLE,
+                "Solid circle of radius Ro",
+            ),
+            item(
+                "hollowCircle",
+                enums::HOLLOW_CIRCLE,
+                "Concentric ring Ro, Ri",
+            ),
+        ],
+    },
+    EnumType {
+        name: "MassModelKind",
+        description: "How the body's mass is described",
+        items: &[
+            item(
+                "prism",
+                enums::PRISM,
+                "The section extruded to height H, density rho",
+            ),
+            item("lumped", enums::LUMPED, "W, hG and Ic given directly"),
+        ],
+    },
+    EnumType {
+        name: "InterfaceLaw",
+        description: "Law of the base interface",
+        items: &[
+            item(
+                "rigid",
+                enums::RIGID,
+                "Rigid contact (Housner): the reaction at the toe",
+            ),
+            item(
+                "elastic",
+                enums::ELASTIC,
+                "Elastic no-tension Winkler bed of stiffness kn",
+            ),
+            item(
+                "elastoPlastic",
+                enums::ELASTO_PLASTIC,
+                "Elastic no-tension, perfectly plastic at fm",
+            ),
+        ],
+    },
+    EnumType {
+        name: "FormulationKind",
+        description: "Equation of motion",
+        items: &[
+            item(
+                "costa",
+                enums::COSTA,
+                "The paper's Eq. 1 (Costa 2012), without the dI/dphi term",
+            ),
+            item(
+                "shiftingPivot",
+                enums::SHIFTING_PIVOT,
+                "The paper's Eq. 9, Lagrangian, energy-consistent",
+            ),
+        ],
+    },
+    EnumType {
+        name: "RestitutionKind",
+        description: "Coefficient of restitution at impacts",
+        items: &[
+            item("housner", enums::HOUSNER, "eta = 1 - 2 m b^2 / IO"),
+            item("given", enums::GIVEN, "eta = the parameter eta"),
+        ],
+    },
+];
+
+pub static LOG_CATEGORIES: &[LogCategory] = &[
+    LogCategory {
+        name: "logEvents",
+        description: "Impacts, uplift, coming to rest, regime changes and overturning",
+    },
+    LogCategory {
+        name: "logStatusWarning",
+        description: "Messages that accompany fmi2Warning and fmi2Discard",
+    },
+    LogCategory {
+        name: "logStatusError",
+        description: "Messages that accompany fmi2Error and fmi2Fatal",
+    },
+    LogCategory {
+        name: "logAll",
+        description: "Everything, including a trace of the FMI calls",
+    },
+];
+
+pub static ROCKING_BLOCK: ModelDescription = ModelDescription {
+    model_name: "RockingBlock",
+    description: "Rocking of a masonry body on a flexible, no-tension interface that can crush (co-simulation)",
+    author: "RockingBlock developers",
+    version: env!("CARGO_PKG_VERSION"),
+    copyright: "RockingBlock developers",
+    license: "MIT OR Apache-2.0",
+    generation_tool: concat!("RockingBlock model-description ", env!("CARGO_PKG_VERSION")),
+    co_simulation: CoSimulation {
+        model_identifier: "RockingBlock",
+        needs_execution_tool: false,
+        can_handle_variable_communication_step_size: true,
+        can_interpolate_inputs: true,
+        max_output_derivative_order: 2,
+        can_run_asynchronuously: false,
+        can_be_instantiated_only_once_per_process: false,
+        can_not_use_memory_management_functions: true,
+        can_get_and_set_fmu_state: true,
+        can_serialize_fmu_state: true,
+        provides_directional_derivative: false,
+    },
+    units: UNITS,
+    types: TYPES,
+    log_categories: LOG_CATEGORIES,
+    default_experiment: DefaultExperiment {
+        start_time: 0.0,
+        stop_time: 10.0,
+        tolerance: DEFAULT_TOLERANCE,
+        step_size: 0.01,
+    },
+    variables: VARIABLES,
+    documentation: include_str!("rocking_block.html"),
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn table_is_consistent() {
+        ROCKING_BLOCK.check().unwrap();
+    }
+
+    #[test]
+    fn sorted_by_value_reference() {
+        for (i, v) in VARIABLES.iter().enumerate() {
+            assert_eq!(v.vr as usize, i, "{}", v.name);
+        }
+    }
+
+    #[test]
+    fn every_model_md_variable_is_there() {
+        for n in [
+            "shape",
+            "B",
+            "L",
+            "t",
+            "Ro",
+            "Ri",
+            "massModel",
+            "H",
+            "rho",
+            "W",
+            "hG",
+            "Ic",
+            "interface",
+            "kn",
+            "fm",
+            "formulation",
+            "restitution",
+            "eta",
+            "g",
+            "ag",
+            "theta",
+            "omega",
+            "thetaOverAlpha",
+            "af",
+            "contactLength",
+            "MR",
+            "regime",
+            "impacts",
+            "overturned",
+            "Fx",
+            "Fz",
+            "mass",
+            "weight",
+            "R0",
+            "alpha",
+            "IO",
+            "etaHousner",
+            "thetaJo",
+            "thetaC",
+            "thetaOv",
+        ] {
+            assert!(ROCKING_BLOCK.variable(n).is_some(), "{n}");
+        }
+    }
+}

@@ -1,0 +1,561 @@
+//! `modelDescription.xml` (FMI 2.0) from a [`ModelDescription`], through
+//! serde and quick-xml. Element and attribute order follow the FMI 2.0 XSD.
+
+use serde::Serialize;
+
+use crate::schema::*;
+
+/// Formats a real as an `xs:double`: shortest round-trip representation,
+/// with an exponent for very large or small magnitudes.
+pub fn fmt_real(x: f64) -> String {
+    if x.is_nan() {
+        "NaN".into()
+    } else if x.is_infinite() {
+        if x > 0.0 { "INF" } else { "-INF" }.into()
+    } else if x == 0.0 || (1e-4..1e7).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+fn flag(b: bool) -> Option<&'static str> {
+    b.then_some("true")
+}
+
+#[derive(Serialize)]
+#[serde(rename = "fmiModelDescription")]
+struct Root {
+    #[serde(rename = "@fmiVersion")]
+    fmi_version: &'static str,
+    #[serde(rename = "@modelName")]
+    model_name: &'static str,
+    #[serde(rename = "@guid")]
+    guid: String,
+    #[serde(rename = "@description")]
+    description: &'static str,
+    #[serde(rename = "@author")]
+    author: &'static str,
+    #[serde(rename = "@version")]
+    version: &'static str,
+    #[serde(rename = "@copyright")]
+    copyright: &'static str,
+    #[serde(rename = "@license")]
+    license: &'static str,
+    #[serde(rename = "@generationTool")]
+    generation_tool: &'static str,
+    #[serde(rename = "@variableNamingConvention")]
+    naming: &'static str,
+    #[serde(rename = "@numberOfEventIndicators")]
+    event_indicators: u32,
+    #[serde(rename = "CoSimulation")]
+    co_simulation: XCoSimulation,
+    #[serde(rename = "UnitDefinitions")]
+    units: XUnits,
+    #[serde(rename = "TypeDefinitions")]
+    types: XTypes,
+    #[serde(rename = "LogCategories")]
+    log_categories: XLogCategories,
+    #[serde(rename = "DefaultExperiment")]
+    default_experiment: XDefaultExperiment,
+    #[serde(rename = "ModelVariables")]
+    variables: XVariables,
+    #[serde(rename = "ModelStructure")]
+    structure: XStructure,
+}
+
+#[derive(Serialize)]
+struct XCoSimulation {
+    #[serde(rename = "@modelIdentifier")]
+    model_identifier: &'static str,
+    #[serde(rename = "@needsExecutionTool")]
+    needs_execution_tool: &'static str,
+    #[serde(
+        rename = "@canHandleVariableCommunicationStepSize",
+        skip_serializing_if = "Option::is_none"
+    )]
+    variable_step: Option<&'static str>,
+    #[serde(
+        rename = "@canInterpolateInputs",
+        skip_serializing_if = "Option::is_none"
+    )]
+    interpolate_inputs: Option<&'static str>,
+    #[serde(
+        rename = "@maxOutputDerivativeOrder",
+        skip_serializing_if = "Option::is_none"
+    )]
+    max_output_derivative_order: Option<u32>,
+    #[serde(
+        rename = "@canRunAsynchronuously",
+        skip_serializing_if = "Option::is_none"
+    )]
+    asynchronuously: Option<&'static str>,
+    #[serde(rename = "@canBeInstantiatedOnlyOncePerProcess")]
+    only_once: &'static str,
+    #[serde(
+        rename = "@canNotUseMemoryManagementFunctions",
+        skip_serializing_if = "Option::is_none"
+    )]
+    no_memory_management: Option<&'static str>,
+    #[serde(
+        rename = "@canGetAndSetFMUstate",
+        skip_serializing_if = "Option::is_none"
+    )]
+    get_set_state: Option<&'static str>,
+    #[serde(
+        rename = "@canSerializeFMUstate",
+        skip_serializing_if = "Option::is_none"
+    )]
+    serialize_state: Option<&'static str>,
+    #[serde(
+        rename = "@providesDirectionalDerivative",
+        skip_serializing_if = "Option::is_none"
+    )]
+    directional_derivative: Option<&'static str>,
+}
+
+#[derive(Serialize)]
+struct XUnits {
+    #[serde(rename = "Unit")]
+    units: Vec<XUnit>,
+}
+
+#[derive(Serialize)]
+struct XUnit {
+    #[serde(rename = "@name")]
+    name: &'static str,
+    #[serde(rename = "BaseUnit")]
+    base: XBaseUnit,
+    #[serde(rename = "DisplayUnit")]
+    display: Vec<XDisplayUnit>,
+}
+
+#[derive(Serialize)]
+struct XBaseUnit {
+    #[serde(rename = "@kg", skip_serializing_if = "Option::is_none")]
+    kg: Option<i32>,
+    #[serde(rename = "@m", skip_serializing_if = "Option::is_none")]
+    m: Option<i32>,
+    #[serde(rename = "@s", skip_serializing_if = "Option::is_none")]
+    s: Option<i32>,
+    #[serde(rename = "@A", skip_serializing_if = "Option::is_none")]
+    a: Option<i32>,
+    #[serde(rename = "@K", skip_serializing_if = "Option::is_none")]
+    k: Option<i32>,
+    #[serde(rename = "@mol", skip_serializing_if = "Option::is_none")]
+    mol: Option<i32>,
+    #[serde(rename = "@cd", skip_serializing_if = "Option::is_none")]
+    cd: Option<i32>,
+    #[serde(rename = "@rad", skip_serializing_if = "Option::is_none")]
+    rad: Option<i32>,
+    #[serde(rename = "@factor", skip_serializing_if = "Option::is_none")]
+    factor: Option<String>,
+    #[serde(rename = "@offset", skip_serializing_if = "Option::is_none")]
+    offset: Option<String>,
+}
+
+#[derive(Serialize)]
+struct XDisplayUnit {
+    #[serde(rename = "@name")]
+    name: &'static str,
+    #[serde(rename = "@factor")]
+    factor: String,
+    #[serde(rename = "@offset", skip_serializing_if = "Option::is_none")]
+    offset: Option<String>,
+}
+
+#[derive(Serialize)]
+struct XTypes {
+    #[serde(rename = "SimpleType")]
+    types: Vec<XSimpleType>,
+}
+
+#[derive(Serialize)]
+struct XSimpleType {
+    #[serde(rename = "@name")]
+    name: &'static str,
+    #[serde(rename = "@description")]
+    description: &'static str,
+    #[serde(rename = "Enumeration")]
+    enumeration: XEnumeration,
+}
+
+#[derive(Serialize)]
+struct XEnumeration {
+    #[serde(rename = "Item")]
+    items: Vec<XItem>,
+}
+
+#[derive(Serialize)]
+struct XItem {
+    #[serde(rename = "@name")]
+    name: &'static str,
+    #[serde(rename = "@value")]
+    value: i32,
+    #[serde(rename = "@description")]
+    description: &'static str,
+}
+
+#[derive(Serialize)]
+struct XLogCategories {
+    #[serde(rename = "Category")]
+    categories: Vec<XCategory>,
+}
+
+#[derive(Serialize)]
+struct XCategory {
+    #[serde(rename = "@name")]
+    name: &'static str,
+    #[serde(rename = "@description")]
+    description: &'static str,
+}
+
+#[derive(Serialize)]
+struct XDefaultExperiment {
+    #[serde(rename = "@startTime")]
+    start_time: String,
+    #[serde(rename = "@stopTime")]
+    stop_time: String,
+    #[serde(rename = "@tolerance")]
+    tolerance: String,
+    #[serde(rename = "@stepSize")]
+    step_size: String,
+}
+
+#[derive(Serialize)]
+struct XVariables {
+    #[serde(rename = "ScalarVariable")]
+    variables: Vec<XScalarVariable>,
+}
+
+#[derive(Serialize)]
+struct XScalarVariable {
+    #[serde(rename = "@name")]
+    name: &'static str,
+    #[serde(rename = "@valueReference")]
+    vr: u32,
+    #[serde(rename = "@description")]
+    description: &'static str,
+    #[serde(rename = "@causality")]
+    causality: &'static str,
+    #[serde(rename = "@variability")]
+    variability: &'static str,
+    #[serde(rename = "@initial", skip_serializing_if = "Option::is_none")]
+    initial: Option<&'static str>,
+    #[serde(rename = "$value")]
+    ty: XType,
+}
+
+#[derive(Serialize)]
+enum XType {
+    Real(XReal),
+    Integer(XStart),
+    Boolean(XStart),
+    Enumeration(XEnum),
+    String(XStart),
+}
+
+#[derive(Serialize)]
+struct XReal {
+    #[serde(rename = "@unit", skip_serializing_if = "Option::is_none")]
+    unit: Option<&'static str>,
+    #[serde(rename = "@displayUnit", skip_serializing_if = "Option::is_none")]
+    display_unit: Option<&'static str>,
+    #[serde(rename = "@min", skip_serializing_if = "Option::is_none")]
+    min: Option<String>,
+    #[serde(rename = "@max", skip_serializing_if = "Option::is_none")]
+    max: Option<String>,
+    #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
+    start: Option<String>,
+}
+
+#[derive(Serialize)]
+struct XStart {
+    #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
+    start: Option<String>,
+}
+
+#[derive(Serialize)]
+struct XEnum {
+    #[serde(rename = "@declaredType")]
+    declared_type: &'static str,
+    #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
+    start: Option<String>,
+}
+
+#[derive(Serialize)]
+struct XStructure {
+    #[serde(rename = "Outputs")]
+    outputs: XUnknowns,
+    #[serde(rename = "InitialUnknowns")]
+    initial_unknowns: XUnknowns,
+}
+
+#[derive(Serialize)]
+struct XUnknowns {
+    #[serde(rename = "Unknown")]
+    unknowns: Vec<XUnknown>,
+}
+
+#[derive(Serialize)]
+struct XUnknown {
+    #[serde(rename = "@index")]
+    index: usize,
+    #[serde(rename = "@dependencies")]
+    dependencies: String,
+}
+
+fn nz(x: i32) -> Option<i32> {
+    (x != 0).then_some(x)
+}
+
+fn unit(u: &Unit) -> XUnit {
+    let b = &u.base;
+    XUnit {
+        name: u.name,
+        base: XBaseUnit {
+            kg: nz(b.kg),
+            m: nz(b.m),
+            s: nz(b.s),
+            a: nz(b.ampere),
+            k: nz(b.kelvin),
+            mol: nz(b.mol),
+            cd: nz(b.cd),
+            rad: nz(b.rad),
+            factor: (b.factor != 1.0).then(|| fmt_real(b.factor)),
+            offset: (b.offset != 0.0).then(|| fmt_real(b.offset)),
+        },
+        display: u
+            .display
+            .iter()
+            .map(|d| XDisplayUnit {
+                name: d.name,
+                factor: fmt_real(d.factor),
+                offset: (d.offset != 0.0).then(|| fmt_real(d.offset)),
+            })
+            .collect(),
+    }
+}
+
+fn variable(v: &Variable) -> XScalarVariable {
+    let ty = match v.ty {
+        Type::Real {
+            unit,
+            display_unit,
+            start,
+            min,
+            max,
+        } => XType::Real(XReal {
+            unit,
+            display_unit,
+            min: min.map(fmt_real),
+            max: max.map(fmt_real),
+            start: start.map(fmt_real),
+        }),
+        Type::Integer { start } => XType::Integer(XStart {
+            start: start.map(|s| s.to_string()),
+        }),
+        Type::Boolean { start } => XType::Boolean(XStart {
+            start: start.map(|s| s.to_string()),
+        }),
+        Type::Enumeration {
+            declared_type,
+            start,
+        } => XType::Enumeration(XEnum {
+            declared_type,
+            start: start.map(|s| s.to_string()),
+        }),
+        Type::String { start } => XType::String(XStart {
+            start: start.map(|s| s.to_string()),
+        }),
+    };
+    XScalarVariable {
+        name: v.name,
+        vr: v.vr,
+        description: v.description,
+        causality: v.causality.as_str(),
+        variability: v.variability.as_str(),
+        initial: v.initial.map(Initial::as_str),
+        ty,
+    }
+}
+
+fn indices<'a>(md: &ModelDescription, names: impl Iterator<Item = &'a str>) -> String {
+    let mut ix: Vec<usize> = names
+        .map(|n| md.index_of(n).expect("dependency names are checked"))
+        .collect();
+    ix.sort_unstable();
+    ix.dedup();
+    ix.iter()
+        .map(|i| i.to_string())
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+fn structure(md: &ModelDescription) -> XStructure {
+    let mut outputs = Vec::new();
+    let mut initial = Vec::new();
+    for (i, v) in md.variables.iter().enumerate() {
+        if v.causality == Causality::Output {
+            let inputs = v.depends_on.iter().copied().filter(|d| {
+                md.variable(d)
+                    .is_some_and(|k| k.causality == Causality::Input)
+            });
+            outputs.push(XUnknown {
+                index: i + 1,
+                dependencies: indices(md, inputs),
+            });
+        }
+        if v.is_initial_unknown() {
+            initial.push(XUnknown {
+                index: i + 1,
+                dependencies: indices(md, v.depends_on.iter().copied()),
+            });
+        }
+    }
+    XStructure {
+        outputs: XUnknowns { unknowns: outputs },
+        initial_unknowns: XUnknowns { unknowns: initial },
+    }
+}
+
+/// The XML with the given `guid` attribute.
+pub fn render(md: &ModelDescription, guid: &str) -> String {
+    if let Err(problems) = md.check() {
+        panic!("inconsistent model description:\n{}", problems.join("\n"));
+    }
+    let cs = &md.co_simulation;
+    let root = Root {
+        fmi_version: "2.0",
+        model_name: md.model_name,
+        guid: guid.to_string(),
+        description: md.description,
+        author: md.author,
+        version: md.version,
+        copyright: md.copyright,
+        license: md.license,
+        generation_tool: md.generation_tool,
+        naming: "flat",
+        event_indicators: 0,
+        co_simulation: XCoSimulation {
+            model_identifier: cs.model_identifier,
+            needs_execution_tool: if cs.needs_execution_tool {
+                "true"
+            } else {
+                "false"
+            },
+            variable_step: flag(cs.can_handle_variable_communication_step_size),
+            interpolate_inputs: flag(cs.can_interpolate_inputs),
+            max_output_derivative_order: (cs.max_output_derivative_order > 0)
+                .then_some(cs.max_output_derivative_order),
+            asynchronuously: flag(cs.can_run_asynchronuously),
+            only_once: if cs.can_be_instantiated_only_once_per_process {
+                "true"
+            } else {
+                "false"
+            },
+            no_memory_management: flag(cs.can_not_use_memory_management_functions),
+            get_set_state: flag(cs.can_get_and_set_fmu_state),
+            serialize_state: flag(cs.can_serialize_fmu_state),
+            directional_derivative: flag(cs.provides_directional_derivative),
+        },
+        units: XUnits {
+            units: md.units.iter().map(unit).collect(),
+        },
+        types: XTypes {
+            types: md
+                .types
+                .iter()
+                .map(|t| XSimpleType {
+                    name: t.name,
+                    description: t.description,
+                    enumeration: XEnumeration {
+                        items: t
+                            .items
+                            .iter()
+                            .map(|i| XItem {
+                                name: i.name,
+                                value: i.value,
+                                description: i.description,
+                            })
+                            .collect(),
+                    },
+                })
+                .collect(),
+        },
+        log_categories: XLogCategories {
+            categories: md
+                .log_categories
+                .iter()
+                .map(|c| XCategory {
+                    name: c.name,
+                    description: c.description,
+                })
+                .collect(),
+        },
+        default_experiment: XDefaultExperiment {
+            start_time: fmt_real(md.default_experiment.start_time),
+            stop_time: fmt_real(md.default_experiment.stop_time),
+            tolerance: fmt_real(md.default_experiment.tolerance),
+            step_size: fmt_real(md.default_experiment.step_size),
+        },
+        variables: XVariables {
+            variables: md.variables.iter().map(variable).collect(),
+        },
+        structure: structure(md),
+    };
+    let mut body = String::new();
+    let mut ser = quick_xml::se::Serializer::new(&mut body);
+    ser.indent(' ', 2);
+    root.serialize(ser)
+        .expect("the model description serializes");
+    format!("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n{body}\n")
+}
+
+/// The GUID of a model description: derived from its XML without the GUID,
+/// so it changes exactly when the description does.
+pub fn guid(md: &ModelDescription) -> String {
+    crate::sha256::guid_of(render(md, "").as_bytes())
+}
+
+/// The XML and its GUID.
+pub fn model_description_xml(md: &ModelDescription) -> (String, String) {
+    let g = guid(md);
+    (render(md, &g), g)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rocking_block::ROCKING_BLOCK;
+
+    #[test]
+    fn reals() {
+        assert_eq!(fmt_real(5e9), "5e9");
+        assert_eq!(fmt_real(0.5), "0.5");
+        assert_eq!(fmt_real(1e-6), "1e-6");
+        assert_eq!(fmt_real(1800.0), "1800");
+        assert_eq!(fmt_real(0.0), "0");
+        assert_eq!(fmt_real(-2.5e-9), "-2.5e-9");
+    }
+
+    #[test]
+    fn guid_is_stable_and_in_the_xml() {
+        let (xml, g) = model_description_xml(&ROCKING_BLOCK);
+        assert_eq!(g, guid(&ROCKING_BLOCK));
+        assert!(xml.contains(&format!("guid=\"{g}\"")));
+        assert!(xml.starts_with("<?xml"));
+        assert!(xml.contains("<CoSimulation modelIdentifier=\"RockingBlock\" needsExecutionTool=\"false\" canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"true\" maxOutputDerivativeOrder=\"2\" canBeInstantiatedOnlyOncePerProcess=\"false\""));
+        assert!(!xml.contains("canRunAsynchronuously"));
+        assert!(!xml.contains("providesDirectionalDerivative"));
+    }
+
+    #[test]
+    fn structure_lists() {
+        let xml = render(&ROCKING_BLOCK, "x");
+        // Fx (index 31) depends on ag (index 20) only among the inputs.
+        assert!(xml.contains("<Unknown index=\"31\" dependencies=\"20\"/>"));
+        // theta (21) is an output with no direct feedthrough.
+        assert!(xml.contains("<Unknown index=\"21\" dependencies=\"\"/>"));
+    }
+}
