@@ -74,12 +74,12 @@ FIG15_R0, FIG15_RHO, FIG15_L = 3.0, 1800.0, 1.0
 FIG15_KN = 340e6
 
 
-def fig15_block(alpha, formulation, theta0_over_alpha=0.9, kn=FIG15_KN, fm=None):
-    """A solid rectangular prism of slenderness alpha and size R0 = FIG15_R0:
+def fig15_block(alpha, formulation, theta0_over_alpha=0.9, kn=FIG15_KN, fm=None, r0=FIG15_R0):
+    """A solid rectangular prism of slenderness alpha and size r0 (default FIG15_R0):
     B = 2 R0 sin(alpha), H = 2 R0 cos(alpha), L = 1 m, rho = 1800 kg/m³,
     released from rest at theta0 = theta0_over_alpha * alpha (Housner's eta)."""
-    b = 2 * FIG15_R0 * math.sin(alpha)
-    h = 2 * FIG15_R0 * math.cos(alpha)
+    b = 2 * r0 * math.sin(alpha)
+    h = 2 * r0 * math.cos(alpha)
     params = dict(shape="solidRectangle", B=b, L=FIG15_L, massModel="prism", H=h, rho=FIG15_RHO,
                   interface="elastic" if fm is None else "elastoPlastic", kn=kn,
                   formulation=formulation, restitution="housner", g=G,

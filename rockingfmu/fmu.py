@@ -1,4 +1,4 @@
-"""One RockingBlock.fmu, extracted once, simulated through fmpy.
+"""One RockingBlock.fmu, extracted once, run through fmpy's FMU2Slave.
 
     from rockingfmu import RockingFMU
     with RockingFMU() as fmu:                       # target/fmu/RockingBlock.fmu
@@ -10,17 +10,32 @@ Enumeration parameters (shape, massModel, interface, formulation, restitution)
 may be given by item name ("hollowCircle") or by value; names are converted
 with the FMU's own modelDescription.xml. The start values of `theta` and
 `omega` are the initial conditions (MODEL.md §5).
+
+The ground acceleration is passed as the record's samples at the
+communication points together with its slope (fmi2SetRealInputDerivatives,
+the FMU declares canInterpolateInputs): the FMU sees the record's piecewise
+linear interpolation exactly. The loop is written here rather than with
+`fmpy.simulate_fmu(..., set_input_derivatives=True)`, which fails in fmpy
+0.3.32 for an FMI 2 FMU with one real input ("Can only assign sequence of same
+size": its derivative buffer has a fixed length of 9). Overturning: the FMU
+returns fmi2Discard with fmi2Terminated true; the run ends at
+fmi2LastSuccessfulTime, whose outputs are the last row.
 """
 
 import math
 import shutil
 import time as _time
+from ctypes import byref, c_double, c_int, c_uint32
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import fmpy
 import numpy as np
 from numpy.lib.recfunctions import repack_fields
+from fmpy.fmi1 import FMICallException, calloc, free
+from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2Discard,
+                       fmi2LastSuccessfulTime, fmi2Terminated)
 
 REPO = Path(__file__).resolve().parents[1]
 #: Where `cargo xtask fmu` writes the FMU.
@@ -28,7 +43,7 @@ DEFAULT_FMU = REPO / "target" / "fmu" / "RockingBlock.fmu"
 
 #: Outputs recorded by `simulate` unless told otherwise.
 DEFAULT_OUTPUTS = ("theta", "omega", "thetaOverAlpha", "MR", "af", "regime", "impacts", "overturned")
-#: Calculated parameters (MODEL.md §5), read once per run.
+#: Calculated parameters (MODEL.md §5), read once per run after initialization.
 CALCULATED = ("mass", "weight", "R0", "alpha", "IO", "etaHousner", "thetaJo", "thetaC", "thetaOv")
 
 _STATUS = ["OK", "WARNING", "DISCARD", "ERROR", "FATAL", "PENDING"]
@@ -85,16 +100,18 @@ class RockingFMU:
                     f"{self.path} does not exist: build it with `cargo xtask fmu` (or tools/main.sh)")
             self.unzipdir = Path(fmpy.extract(str(self.path)))
             self._owned = True
-        self.model_description = fmpy.read_model_description(str(self.unzipdir))
-        self.variables = {v.name: v for v in self.model_description.modelVariables}
+        md = self.model_description = fmpy.read_model_description(str(self.unzipdir))
+        self.variables = {v.name: v for v in md.modelVariables}
         self.enumerations = {}
-        for v in self.model_description.modelVariables:
+        for v in md.modelVariables:
             if v.type == "Enumeration" and v.declaredType is not None:
                 self.enumerations[v.name] = {it.name: int(it.value) for it in v.declaredType.items}
         missing = [n for n in ("ag", "theta", "thetaOverAlpha", "overturned", "impacts", "thetaOv")
                    if n not in self.variables]
         if missing:
             raise FMUError(f"{self.path or self.unzipdir}: variables missing from modelDescription.xml: {missing}")
+        self._slave = None
+        self._messages = []
 
     # context manager: delete the extraction we made
     def __enter__(self):
@@ -104,8 +121,17 @@ class RockingFMU:
         self.close()
 
     def close(self):
+        if self._slave is not None:
+            try:
+                self._slave.freeLibrary()
+            except Exception:  # noqa: BLE001
+                pass
+            self._slave = None
         if self._owned and self.unzipdir.exists():
             shutil.rmtree(self.unzipdir, ignore_errors=True)
+
+    def __getstate__(self):
+        raise TypeError("RockingFMU is not picklable: pass its unzipdir to the worker processes")
 
     def start_values(self, params):
         """`params` with enumeration item names replaced by their values; unknown names raise."""
@@ -123,6 +149,46 @@ class RockingFMU:
             out[name] = value
         return out
 
+    # -- the library, loaded once per process --------------------------------
+    def _library(self):
+        if self._slave is None:
+            md = self.model_description
+            slave = FMU2Slave(guid=md.guid, unzipDirectory=str(self.unzipdir),
+                              modelIdentifier=md.coSimulation.modelIdentifier,
+                              instanceName="RockingBlock")
+            messages = self._messages
+
+            def logger(_component, _instance, status, category, message):
+                label = _STATUS[status] if 0 <= status < len(_STATUS) else str(status)
+                messages.append(f"[{label}] {(category or b'').decode(errors='replace')}: "
+                                f"{(message or b'').decode(errors='replace')}")
+
+            callbacks = fmi2CallbackFunctions()
+            callbacks.logger = fmi2CallbackLoggerTYPE(logger)
+            callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+            callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+            try:
+                from fmpy.logging import addLoggerProxy
+                addLoggerProxy(byref(callbacks))
+            except Exception:  # noqa: BLE001 - messages then arrive unformatted
+                pass
+            self._callbacks, self._logger = callbacks, logger  # keep them alive
+            self._slave = slave
+        return self._slave
+
+    def _set(self, slave, values):
+        for name, value in values.items():
+            v = self.variables[name]
+            vr = (c_uint32 * 1)(v.valueReference)
+            if v.type == "Real":
+                slave.fmi2SetReal(slave.component, vr, 1, (c_double * 1)(float(value)))
+            elif v.type in ("Integer", "Enumeration"):
+                slave.fmi2SetInteger(slave.component, vr, 1, (c_int * 1)(int(value)))
+            elif v.type == "Boolean":
+                slave.fmi2SetBoolean(slave.component, vr, 1, (c_int * 1)(int(bool(value))))
+            else:
+                raise TypeError(f"{name}: cannot set a {v.type}")
+
     def simulate(self, params, record=None, scale=1.0, stop_time=None, output_interval=None,
                  rtol=None, outputs=DEFAULT_OUTPUTS, ag=None):
         """Run one case and return a `Run`.
@@ -130,56 +196,135 @@ class RockingFMU:
         params           parameter and start values by name (MODEL.md §5)
         record           a groundmotion Record (acc in m/s²) or None (no ground motion)
         scale            factor applied to the record's acceleration
-        ag               instead of `record`: (time, acc) arrays in s and m/s²
-        stop_time        default: the record's last sample (10 s without a record)
-        output_interval  default: the record's dt (0.01 s without one)
+        ag               instead of `record`: (time, acc) arrays in s and m/s², equally spaced
+        stop_time        default: the record's last sample (10 s without a record);
+                         after the record ends the ground is at rest
+        output_interval  default: the record's dt (0.01 s without one); the communication
+                         step is the record's dt (or the output interval without a
+                         record), the outputs are sampled every round(interval / step) steps
         rtol             the integrator's relative tolerance (default: the FMU's)
         """
-        t0 = _time.perf_counter()
+        t_start = _time.perf_counter()
         if record is not None:
-            t_in, a_in, dt = record.time, record.acc, record.dt
+            t_in, a_in, dt = np.asarray(record.time, float), np.asarray(record.acc, float), float(record.dt)
         elif ag is not None:
             t_in, a_in = (np.asarray(x, dtype=float) for x in ag)
-            dt = float(np.median(np.diff(t_in)))
+            dt = float(t_in[1] - t_in[0])
         else:
             t_in = a_in = None
-            dt = 0.01
+            dt = None
         if stop_time is None:
             stop_time = float(t_in[-1]) if t_in is not None else 10.0
         if output_interval is None:
-            output_interval = dt
-        signals = None
+            output_interval = dt if dt is not None else 0.01
+        h = dt if dt is not None else output_interval
+        every = max(1, int(round(output_interval / h)))
+        n_steps = int(math.ceil(stop_time / h - 1e-9))
+        grid = np.arange(n_steps + 1) * h
+        if n_steps and grid[-1] > stop_time:
+            grid[-1] = stop_time
         if t_in is not None:
-            tt, aa = np.asarray(t_in, dtype=float), scale * np.asarray(a_in, dtype=float)
-            if stop_time > tt[-1] + 1e-12:  # free motion after the record ends
-                tt = np.append(tt, [tt[-1] + dt, stop_time + dt])
-                aa = np.append(aa, [0.0, 0.0])
-            signals = np.zeros(len(tt), dtype=[("time", float), ("ag", float)])
-            signals["time"], signals["ag"] = tt, aa
-        messages = []
+            acc = scale * np.interp(grid, t_in, a_in, right=0.0)  # ground at rest after the record
+        else:
+            acc = np.zeros(len(grid))
+        slope = np.zeros(len(grid))
+        if len(grid) > 1:
+            slope[:-1] = np.diff(acc) / np.diff(grid)
 
-        def logger(_component, _instance, status, category, message):
-            messages.append(f"[{_STATUS[status] if 0 <= status < 6 else status}] "
-                            f"{category.decode(errors='replace')}: {message.decode(errors='replace')}")
+        reals = [o for o in outputs if self.variables[o].type == "Real"]
+        ints = [o for o in outputs if self.variables[o].type in ("Integer", "Enumeration")]
+        bools = [o for o in outputs if self.variables[o].type == "Boolean"]
+        for extra, bucket in (("thetaOverAlpha", reals), ("impacts", ints), ("overturned", bools)):
+            if extra not in bucket:
+                bucket.append(extra)
+        calc = [c for c in CALCULATED if c in self.variables]
+        vr_r = (c_uint32 * len(reals))(*[self.variables[n].valueReference for n in reals])
+        vr_i = (c_uint32 * len(ints))(*[self.variables[n].valueReference for n in ints])
+        vr_b = (c_uint32 * len(bools))(*[self.variables[n].valueReference for n in bools])
+        buf_r, buf_i, buf_b = (c_double * len(reals))(), (c_int * len(ints))(), (c_int * len(bools))()
+        n_rows = n_steps // every + 2
+        rows_r = np.empty((n_rows, len(reals)))
+        rows_i = np.empty((n_rows, len(ints)), dtype=np.int64)
+        rows_b = np.empty((n_rows, len(bools)), dtype=bool)
+        times = np.empty(n_rows)
+        vr_ag = (c_uint32 * 1)(self.variables["ag"].valueReference)
+        val, order = (c_double * 1)(), (c_int * 1)(1)
 
-        outs = list(dict.fromkeys(list(outputs) + ["thetaOverAlpha", "impacts", "overturned"]
-                                  + [c for c in CALCULATED if c in self.variables]))
+        slave = self._library()
+        self._messages.clear()
+        overturned = False
+        nrec = 0
+        component = None
         try:
-            result = fmpy.simulate_fmu(
-                str(self.unzipdir), validate=False, model_description=self.model_description,
-                start_values=self.start_values(params), input=signals, output=outs,
-                stop_time=stop_time, output_interval=output_interval,
-                relative_tolerance=rtol, set_input_derivatives=signals is not None,
-                logger=logger)
-        except Exception as exc:  # fmpy raises FMICallException and plain Exceptions
-            detail = "; ".join(messages) or "no message logged"
-            raise FMUError(f"{type(exc).__name__}: {exc} (FMU log: {detail})") from exc
-        wall = _time.perf_counter() - t0
-        calc = {c: float(result[c][0]) for c in CALCULATED if c in result.dtype.names}
-        overturned = bool(result["overturned"][-1]) or (
-            result["time"][-1] < stop_time - 0.5 * output_interval)
+            slave.instantiate(callbacks=self._callbacks)
+            component = slave.component
+            slave.setupExperiment(tolerance=rtol, startTime=0.0, stopTime=stop_time)
+            self._set(slave, self.start_values(params))
+            slave.enterInitializationMode()
+            val[0] = acc[0]
+            slave.fmi2SetReal(component, vr_ag, 1, val)
+            slave.exitInitializationMode()
+            vr_c = (c_uint32 * len(calc))(*[self.variables[n].valueReference for n in calc])
+            buf_c = (c_double * len(calc))()
+            slave.fmi2GetReal(component, vr_c, len(calc), buf_c)
+            calculated = dict(zip(calc, list(buf_c)))
+
+            def sample(t):
+                nonlocal nrec
+                if reals:
+                    slave.fmi2GetReal(component, vr_r, len(reals), buf_r)
+                    rows_r[nrec] = buf_r
+                if ints:
+                    slave.fmi2GetInteger(component, vr_i, len(ints), buf_i)
+                    rows_i[nrec] = buf_i
+                slave.fmi2GetBoolean(component, vr_b, len(bools), buf_b)
+                rows_b[nrec] = buf_b
+                times[nrec] = t
+                nrec += 1
+
+            sample(0.0)
+            do_step, set_real, set_der = slave.fmi2DoStep, slave.fmi2SetReal, slave.fmi2SetRealInputDerivatives
+            for k in range(n_steps):
+                t = grid[k]
+                if t_in is not None:
+                    val[0] = acc[k]
+                    set_real(component, vr_ag, 1, val)
+                    val[0] = slope[k]
+                    set_der(component, vr_ag, 1, order, val)
+                try:
+                    do_step(component, t, grid[k + 1] - t, 1)
+                except FMICallException as exc:
+                    if exc.status == fmi2Discard and slave.getBooleanStatus(fmi2Terminated):
+                        sample(slave.getRealStatus(fmi2LastSuccessfulTime))
+                        overturned = True
+                        break
+                    raise
+                if (k + 1) % every == 0 or k + 1 == n_steps:
+                    sample(grid[k + 1])
+            slave.terminate()
+        except Exception as exc:  # noqa: BLE001 - FMICallException and instantiation errors
+            if isinstance(exc, FMUError):
+                raise
+            detail = "; ".join(self._messages) or "no message logged"
+            raise FMUError(f"{exc} (FMU log: {detail})") from exc
+        finally:
+            if component is not None:
+                slave.fmi2FreeInstance(component)
+                slave.component = None
+
+        dtype = [("time", float)] + [(n, float) for n in reals] + [(n, np.int64) for n in ints] \
+            + [(n, bool) for n in bools]
+        result = np.empty(nrec, dtype=dtype)
+        result["time"] = times[:nrec]
+        for j, n in enumerate(reals):
+            result[n] = rows_r[:nrec, j]
+        for j, n in enumerate(ints):
+            result[n] = rows_i[:nrec, j]
+        for j, n in enumerate(bools):
+            result[n] = rows_b[:nrec, j]
+        overturned = overturned or bool(result["overturned"][-1])
+        keep = ["time"] + list(outputs)
         t_end = float(result["time"][-1])
-        keep = ["time"] + [o for o in outputs if o in result.dtype.names]
         return Run(
             result=repack_fields(result[keep]),
             overturned=overturned,
@@ -187,12 +332,11 @@ class RockingFMU:
             t_overturn=t_end if overturned else math.nan,
             peak_theta_over_alpha=float(np.max(np.abs(result["thetaOverAlpha"]))),
             impacts=int(result["impacts"][-1]),
-            calculated=calc,
-            wall=wall,
-            messages=messages,
+            calculated=calculated,
+            wall=_time.perf_counter() - t_start,
+            messages=list(self._messages),
         )
 
     def calculated(self, params):
         """The calculated parameters (MODEL.md §5) after initialization, without stepping."""
-        run = self.simulate(params, stop_time=0.0, output_interval=1.0, outputs=("theta",))
-        return run.calculated
+        return self.simulate(params, stop_time=0.0, outputs=("theta",)).calculated
