@@ -92,10 +92,11 @@ def main(argv=None):
                           progress=lambda d, t, r: print(f"\r  {d}/{t} runs", end="", flush=True))
             timings[workers] = time.perf_counter() - t0
             print(f"\r  {n} runs, {workers} worker(s): {timings[workers]:.2f} s, "
-                  f"{n / timings[workers]:.2f} runs/s (sum of run wall times {df['wall_s'].sum():.2f} s)",
+                  f"{n / timings[workers]:.2f} runs/s (sum over runs: wall {df['wall_s'].sum():.2f} s, "
+                  f"CPU {df['cpu_s'].sum():.2f} s)",
                   flush=True)
     cols = ["case", "interface", "kn", "fm", "record", "scale", "overturned", "t_overturn",
-            "peak_theta_over_alpha", "impacts", "wall_s", "error"]
+            "peak_theta_over_alpha", "impacts", "wall_s", "cpu_s", "error"]
     table = df[[c for c in cols if c in df.columns]]
     path = out / "parametric.csv"
     with open(path, "w") as f:

@@ -8,7 +8,9 @@ in parallel processes, one FMU extraction shared by all of them.
 
 One row per run, in grid order (cases outer, then records, then scales)
 whatever the number of workers: case, the parameters, record, scale,
-overturned, t_overturn, peak_theta_over_alpha, impacts, t_end, wall_s, error
+overturned, t_overturn, peak_theta_over_alpha, impacts, t_end, alpha, thetaOv
+(the FMU's calculated parameters), wall_s, cpu_s (this run's wall and CPU time
+in its process), error (empty when the run succeeded)
 (and history, the recorded outputs, with `histories=True`).
 """
 
@@ -33,7 +35,7 @@ def _init_worker(unzipdir):
 def _run_task(task):
     """Run one grid point in this process; never raises (errors go in the row)."""
     index, case, params, rec_name, record, scale, opts = task
-    t0 = _time.perf_counter()
+    t0, c0 = _time.perf_counter(), _time.process_time()
     row = {"case": case, "record": rec_name, "scale": scale}
     history = None
     try:
@@ -51,6 +53,7 @@ def _run_task(task):
                    impacts=-1, t_end=math.nan, alpha=math.nan, thetaOv=math.nan,
                    error=str(exc))
     row["wall_s"] = _time.perf_counter() - t0
+    row["cpu_s"] = _time.process_time() - c0
     return index, row, history
 
 
@@ -133,6 +136,6 @@ def run_grid(cases, records=(None,), scales=(1.0,), workers=None, fmu=None, *, s
         rows.append(full)
     columns = (["case"] + param_names + ["record", "scale", "overturned", "t_overturn",
                                          "peak_theta_over_alpha", "impacts", "t_end", "alpha",
-                                         "thetaOv", "wall_s", "error"]
+                                         "thetaOv", "wall_s", "cpu_s", "error"]
                + (["history"] if histories else []))
     return pd.DataFrame(rows, columns=columns)
