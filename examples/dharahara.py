@@ -243,6 +243,46 @@ def plot_histories(df, record, rec_label, group, out):
     return path
 
 
+def family(group, fm_pa):
+    if group == "rigid":
+        return "rigid"
+    return f"{group}, " + ("no crushing" if math.isinf(fm_pa) else f"fm = {fm_pa / 1e6:g} MPa")
+
+
+def scale_study(th, record, rec_label, standin, out, workers, fmu_path, stop_time, scales):
+    """The same cases with the record scaled: how many overturn, per family."""
+    cases = {c: dharahara_cases()[c] for c in th["case"]}
+    log(f"[2b/3] scale study: {len(cases)} cases x scales {', '.join(f'{s:g}' for s in scales)} "
+        f"({len(cases) * len(scales)} runs)")
+    t0 = time.perf_counter()
+
+    def progress(done, total, row):
+        if done % 20 == 0 or done == total:
+            log(f"      {done}/{total} runs ({time.perf_counter() - t0:.1f} s)")
+
+    df = run_grid(cases, records={rec_label: record}, scales=scales, workers=workers, fmu=fmu_path,
+                  stop_time=stop_time, progress=progress)
+    info = [case_info(c) for c in df["case"]]
+    df.insert(1, "group", [i[0] for i in info])
+    df["kn_Pa_per_m"], df["fm_Pa"] = [i[1] for i in info], [i[2] for i in info]
+    base = th.drop(columns=["history"]).copy()
+    allrows = pd.concat([base, df], ignore_index=True)
+    allrows["family"] = [family(g, f) for g, f in zip(allrows["group"], allrows["fm_Pa"])]
+    allrows["overturned"] = allrows["overturned"].fillna(False).astype(bool)
+    table = allrows.pivot_table(index="family", columns="scale", values="overturned",
+                                aggfunc=lambda v: f"{int(v.sum())}/{len(v)}", sort=False)
+    table.columns = [f"scale {c:g}" for c in table.columns]
+    path = out / "dharahara_scale_study.csv"
+    with open(path, "w") as f:
+        f.write(f"# Dharahara Tower, record {rec_label} scaled; one row per run\n")
+        if standin:
+            f.write("# THE RECORD IS A SYNTHETIC STAND-IN for KATNP N-S, not the real record\n")
+        allrows.drop(columns=["family"]).to_csv(f, index=False, float_format="%.6g")
+    log("      overturned cases per family and scale factor" + (" (STAND-IN record)" if standin else ""))
+    log("\n".join("      " + line for line in table.to_string().splitlines()))
+    return allrows, table
+
+
 # --------------------------------------------------------------------------
 # 3. claims
 # --------------------------------------------------------------------------
@@ -261,7 +301,7 @@ def check_invalid_foundation(fmu_path, mr_cases):
             return kn_lim, str(exc)
 
 
-def claims(mr, th, standin):
+def claims(mr, th, standin, study=None):
     """Rows (claim, paper, ours, verdict)."""
     rows = []
     a = mr.loc["rigid", "alpha"]
@@ -291,8 +331,13 @@ def claims(mr, th, standin):
     if th is not None:
         crush = th[th["fm_Pa"] < math.inf]
         n_ov = int(crush["overturned"].fillna(False).astype(bool).sum())
+        more = ""
+        if study is not None:
+            sc = study[(study["fm_Pa"] < math.inf) & (study["scale"] != 1.0)]
+            more = "; record scaled: " + ", ".join(
+                f"x{s:g}: {int(g['overturned'].sum())} of {len(g)}" for s, g in sc.groupby("scale"))
         rows.append(("with crushing every case overturns (Fig. 20b)", "all overturn",
-                     f"{n_ov} of {len(crush)} crushing cases overturn"
+                     f"{n_ov} of {len(crush)} crushing cases overturn" + more
                      + (" (stand-in record)" if standin else ""), ""))
         el = th[(th["group"] == "interface") & (th["fm_Pa"] == math.inf)]
         rows.append(("no crushing: overturns for kn <= 15 GPa/m, negligible response above "
@@ -314,6 +359,8 @@ def main(argv=None):
     ap.add_argument("--workers", type=int, default=2, help="worker processes for the FMU runs (default 2)")
     ap.add_argument("--fmu", default=None, help="the FMU (default target/fmu/RockingBlock.fmu)")
     ap.add_argument("--stop-time", type=float, default=None, help="end of the time histories (default: the record's)")
+    ap.add_argument("--scales", default="1.5,2",
+                    help="scale factors of the scale study (default 1.5,2; '' to skip it)")
     ap.add_argument("--cases", help="comma-separated case ids to simulate (default: all 49)")
     ap.add_argument("--curves-only", action="store_true", help="moment-rotation curves only (no FMU)")
     args = ap.parse_args(argv)
@@ -374,7 +421,13 @@ def main(argv=None):
             f"{mr.loc['F85_elastic', 'stability_margin_knIs_over_WhG']:.2f}x.\n"
             f"FMU with kn = 0.9 x the limit: {msg}\n")
 
-    rows = claims(mr, th, standin)
+    study = None
+    if th is not None and args.scales.strip():
+        scales = [float(x) for x in args.scales.split(",") if x.strip()]
+        study, _ = scale_study(th, record, rec_label, standin, out, args.workers, args.fmu, args.stop_time,
+                               scales)
+
+    rows = claims(mr, th, standin, study)
     cpath = out / "dharahara_claims.csv"
     pd.DataFrame(rows, columns=["claim", "paper", "ours", "note"]).to_csv(cpath, index=False)
     log("\n[3/3] the paper's claims and our numbers" + (" (time histories: STAND-IN record)" if standin else ""))
