@@ -60,7 +60,7 @@ def load_record(key):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cases", default="rigid,I5_elastic,I5_fm5,F340_fm15")
+    ap.add_argument("--cases", default="rigid,I5_elastic,I5_fm5,F340_fm15", help="case ids or 'all' (49)")
     ap.add_argument("--records", default="katnp,lomaprieta,coalinga")
     ap.add_argument("--scales", default="0.5,1,2")
     ap.add_argument("--workers", type=int, default=2)
@@ -72,7 +72,8 @@ def main(argv=None):
     out.mkdir(parents=True, exist_ok=True)
 
     all_cases = dharahara_cases()
-    names = [c.strip() for c in args.cases.split(",") if c.strip()]
+    names = (list(all_cases) if args.cases == "all"
+             else [c.strip() for c in args.cases.split(",") if c.strip()])
     unknown = [c for c in names if c not in all_cases]
     if unknown:
         sys.exit(f"unknown cases {unknown}; known: {', '.join(all_cases)}")
@@ -88,8 +89,8 @@ def main(argv=None):
         timings = {}
         for workers in ((1, 2) if args.bench else (args.workers,)):
             t0 = time.perf_counter()
-            df = run_grid(cases, records, scales, workers=workers, fmu=fmu,
-                          progress=lambda d, t, r: print(f"\r  {d}/{t} runs", end="", flush=True))
+            df = run_grid(cases, records, scales, workers=workers, fmu=fmu, progress=lambda d, t, r: print(
+                f"  {d}/{t} runs" if d % 10 == 0 or d == t else "", end="\r" if d < t else "\n", flush=True))
             timings[workers] = time.perf_counter() - t0
             print(f"\r  {n} runs, {workers} worker(s): {timings[workers]:.2f} s, "
                   f"{n / timings[workers]:.2f} runs/s (sum over runs: wall {df['wall_s'].sum():.2f} s, "

@@ -234,9 +234,8 @@ class RockingFMU:
         reals = [o for o in outputs if self.variables[o].type == "Real"]
         ints = [o for o in outputs if self.variables[o].type in ("Integer", "Enumeration")]
         bools = [o for o in outputs if self.variables[o].type == "Boolean"]
-        for extra, bucket in (("thetaOverAlpha", reals), ("impacts", ints), ("overturned", bools)):
-            if extra not in bucket:
-                bucket.append(extra)
+        if "thetaOverAlpha" not in reals:  # for the peak
+            reals.append("thetaOverAlpha")
         calc = [c for c in CALCULATED if c in self.variables]
         vr_r = (c_uint32 * len(reals))(*[self.variables[n].valueReference for n in reals])
         vr_i = (c_uint32 * len(ints))(*[self.variables[n].valueReference for n in ints])
@@ -269,38 +268,51 @@ class RockingFMU:
             slave.fmi2GetReal(component, vr_c, len(calc), buf_c)
             calculated = dict(zip(calc, list(buf_c)))
 
+            raw = slave._functions  # the ctypes functions: no per-call wrapper in the loop
+            get_real, get_int, get_bool = raw["fmi2GetReal"], raw["fmi2GetInteger"], raw["fmi2GetBoolean"]
+            set_real, set_der, do_step = raw["fmi2SetReal"], raw["fmi2SetRealInputDerivatives"], raw["fmi2DoStep"]
+            n_r, n_i, n_b = len(reals), len(ints), len(bools)
+
             def sample(t):
                 nonlocal nrec
-                if reals:
-                    slave.fmi2GetReal(component, vr_r, len(reals), buf_r)
-                    rows_r[nrec] = buf_r
-                if ints:
-                    slave.fmi2GetInteger(component, vr_i, len(ints), buf_i)
+                status = get_real(component, vr_r, n_r, buf_r)
+                if n_i:
+                    status = max(status, get_int(component, vr_i, n_i, buf_i))
                     rows_i[nrec] = buf_i
-                slave.fmi2GetBoolean(component, vr_b, len(bools), buf_b)
-                rows_b[nrec] = buf_b
+                if n_b:
+                    status = max(status, get_bool(component, vr_b, n_b, buf_b))
+                    rows_b[nrec] = buf_b
+                if status > 1:
+                    raise FMICallException("fmi2Get*", status)
+                rows_r[nrec] = buf_r
                 times[nrec] = t
                 nrec += 1
 
             sample(0.0)
-            do_step, set_real, set_der = slave.fmi2DoStep, slave.fmi2SetReal, slave.fmi2SetRealInputDerivatives
+            with_input = t_in is not None
             for k in range(n_steps):
                 t = grid[k]
-                if t_in is not None:
+                if with_input:
                     val[0] = acc[k]
-                    set_real(component, vr_ag, 1, val)
+                    status = set_real(component, vr_ag, 1, val)
                     val[0] = slope[k]
-                    set_der(component, vr_ag, 1, order, val)
-                try:
-                    do_step(component, t, grid[k + 1] - t, 1)
-                except FMICallException as exc:
-                    if exc.status == fmi2Discard and slave.getBooleanStatus(fmi2Terminated):
+                    status = max(status, set_der(component, vr_ag, 1, order, val))
+                    if status > 1:
+                        raise FMICallException("fmi2SetReal/fmi2SetRealInputDerivatives", status)
+                status = do_step(component, t, grid[k + 1] - t, 1)
+                if status > 1:
+                    if status == fmi2Discard and slave.getBooleanStatus(fmi2Terminated):
                         sample(slave.getRealStatus(fmi2LastSuccessfulTime))
                         overturned = True
                         break
-                    raise
+                    raise FMICallException("fmi2DoStep", status)
                 if (k + 1) % every == 0 or k + 1 == n_steps:
                     sample(grid[k + 1])
+            final = {}
+            for name in ("impacts", "overturned"):
+                v = self.variables[name]
+                final[name] = (slave.getInteger([v.valueReference])[0] if v.type == "Integer"
+                               else slave.getBoolean([v.valueReference])[0])
             slave.terminate()
         except Exception as exc:  # noqa: BLE001 - FMICallException and instantiation errors
             if isinstance(exc, FMUError):
@@ -322,7 +334,7 @@ class RockingFMU:
             result[n] = rows_i[:nrec, j]
         for j, n in enumerate(bools):
             result[n] = rows_b[:nrec, j]
-        overturned = overturned or bool(result["overturned"][-1])
+        overturned = overturned or bool(final["overturned"])
         keep = ["time"] + list(outputs)
         t_end = float(result["time"][-1])
         return Run(
@@ -331,7 +343,7 @@ class RockingFMU:
             t_end=t_end,
             t_overturn=t_end if overturned else math.nan,
             peak_theta_over_alpha=float(np.max(np.abs(result["thetaOverAlpha"]))),
-            impacts=int(result["impacts"][-1]),
+            impacts=int(final["impacts"]),
             calculated=calculated,
             wall=_time.perf_counter() - t_start,
             messages=list(self._messages),
