@@ -37,7 +37,7 @@ import pandas as pd  # noqa: E402
 
 import groundmotion as gm  # noqa: E402
 from rockingfmu import RockingFMU, run_grid  # noqa: E402
-from rockingfmu.cases import (FM_MPA, FOUNDATION_KN_MPA, INTERFACE_KN_GPA,  # noqa: E402
+from rockingfmu.cases import (FM_MPA, FOUNDATION_KN_MPA, HG, INTERFACE_KN_GPA,  # noqa: E402
                               case_info, dharahara_cases, dharahara_tower)
 
 STANDIN_LABEL = "KATNP N-S SYNTHETIC STAND-IN, not the real record"
@@ -56,9 +56,11 @@ def fm_text(fm_pa):
 # 1. moment-rotation curves
 # --------------------------------------------------------------------------
 
-def moment_rotation(out):
+def moment_rotation(out, hg=None, ic=None):
     """Run the Rust example; return (curves DataFrame, cases DataFrame)."""
     cmd = ["cargo", "run", "--release", "--quiet", "--example", "dharahara_curves", "--", str(out)]
+    if hg is not None or ic is not None:
+        cmd += [repr(hg if hg is not None else HG)] + ([repr(ic)] if ic is not None else [])
     log("[1/3] moment-rotation curves: " + " ".join(cmd))
     t0 = time.perf_counter()
     proc = subprocess.run(cmd, cwd=REPO, capture_output=True, text=True)
@@ -104,8 +106,8 @@ def plot_fig17(curves, cases, out):
         _mr_axes(ax, f"foundation stiffness, {fm_text(fm * 1e6)}")
     axes[0, 0].legend(fontsize=7)
     fig.suptitle("Dharahara Tower: moment-rotation curves, foundation stiffnesses (cf. paper Fig. 17)\n"
-                 r"o: crushing starts ($\theta_c$); $\alpha$ = %.4f (hG = R0 cos 0.125, see docs)"
-                 % cases.loc["rigid", "alpha"], fontsize=10)
+                 r"o: crushing starts ($\theta_c$); $\alpha$ = %.4f, hG = %.2f m (see docs/dharahara.md)"
+                 % (cases.loc["rigid", "alpha"], 3.99 / math.tan(cases.loc["rigid", "alpha"])), fontsize=10)
     fig.tight_layout()
     path = out / "dharahara_fig17_foundation.png"
     fig.savefig(path, dpi=110)
@@ -145,8 +147,8 @@ def plot_fig18(curves, cases, out):
 # 2. time histories through the FMU
 # --------------------------------------------------------------------------
 
-def time_histories(record, rec_label, standin, out, workers, fmu_path, stop_time, only=None):
-    cases = dharahara_cases()
+def time_histories(record, rec_label, standin, out, workers, fmu_path, stop_time, only=None, hg=None, ic=None):
+    cases = dharahara_cases(hg=hg, ic=ic)
     if only:
         unknown = [c for c in only if c not in cases]
         if unknown:
@@ -249,9 +251,10 @@ def family(group, fm_pa):
     return f"{group}, " + ("no crushing" if math.isinf(fm_pa) else f"fm = {fm_pa / 1e6:g} MPa")
 
 
-def scale_study(th, record, rec_label, standin, out, workers, fmu_path, stop_time, scales):
+def scale_study(th, record, rec_label, standin, out, workers, fmu_path, stop_time, scales, hg=None, ic=None):
     """The same cases with the record scaled: how many overturn, per family."""
-    cases = {c: dharahara_cases()[c] for c in th["case"]}
+    all_cases = dharahara_cases(hg=hg, ic=ic)
+    cases = {c: all_cases[c] for c in th["case"]}
     log(f"[2b/3] scale study: {len(cases)} cases x scales {', '.join(f'{s:g}' for s in scales)} "
         f"({len(cases) * len(scales)} runs)")
     t0 = time.perf_counter()
@@ -287,12 +290,12 @@ def scale_study(th, record, rec_label, standin, out, workers, fmu_path, stop_tim
 # 3. claims
 # --------------------------------------------------------------------------
 
-def check_invalid_foundation(fmu_path, mr_cases):
+def check_invalid_foundation(fmu_path, mr_cases, hg=None, ic=None):
     """What the FMU does when kn Is > W hG fails (90 % of the limiting kn)."""
     is_ = math.pi * (3.99 ** 4 - 2.12 ** 4) / 4
-    tower = dharahara_tower()
+    tower = dharahara_tower(hg, ic)
     kn_lim = tower["W"] * tower["hG"] / is_
-    params = dharahara_tower(interface="elastic", kn=0.9 * kn_lim)
+    params = dharahara_tower(hg, ic, interface="elastic", kn=0.9 * kn_lim)
     with RockingFMU(fmu_path) as fmu:
         try:
             fmu.simulate(params, stop_time=0.01)
@@ -408,13 +411,15 @@ def main(argv=None):
     ap.add_argument("--scales", default="1.5,2",
                     help="scale factors of the scale study (default 1.5,2; '' to skip it)")
     ap.add_argument("--cases", help="comma-separated case ids to simulate (default: all 49)")
+    ap.add_argument("--hg", type=float, help="height of G, m, instead of R0 cos(alpha) = 30.20 (sensitivity)")
+    ap.add_argument("--ic", type=float, help="inertia about G, kg m2, instead of the hollow cylinder of height 2 hG")
     ap.add_argument("--curves-only", action="store_true", help="moment-rotation curves only (no FMU)")
     args = ap.parse_args(argv)
     t_start = time.perf_counter()
     out = Path(args.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
 
-    mr_curves, mr = moment_rotation(out)
+    mr_curves, mr = moment_rotation(out, args.hg, args.ic)
     p17, p18 = plot_fig17(mr_curves, mr, out), plot_fig18(mr_curves, mr, out)
     log(f"      wrote {p17.name}, {p18.name}")
 
@@ -426,7 +431,8 @@ def main(argv=None):
         log(f"      record: {rec_label}: {record.npts} samples, dt = {record.dt:g} s, "
             f"PGA = {record.pga_g:.3f} g, PGV = {100 * record.pgv:.1f} cm/s")
         only = [c.strip() for c in args.cases.split(",") if c.strip()] if args.cases else None
-        th, wall = time_histories(record, rec_label, standin, out, args.workers, args.fmu, args.stop_time, only)
+        th, wall = time_histories(record, rec_label, standin, out, args.workers, args.fmu, args.stop_time, only,
+                                  args.hg, args.ic)
         # the FMU's thetaOv against the moment-rotation curves' (two codes paths: Rust example vs FMU)
         dev = max((abs(r["thetaOv"] / mr.loc[r["case"], "thetaOv"] - 1) for _, r in th.iterrows()
                    if not r["error"]), default=float("nan"))
@@ -458,7 +464,7 @@ def main(argv=None):
         if standin:
             log("  (record: SYNTHETIC STAND-IN for KATNP N-S, not the real record)")
 
-        kn_lim, msg = check_invalid_foundation(args.fmu, mr)
+        kn_lim, msg = check_invalid_foundation(args.fmu, mr, args.hg, args.ic)
         log(f"\n[stability] kn Is > W hG holds for every case (softest foundation 85 MPa/m: "
             f"margin {mr.loc['F85_elastic', 'stability_margin_knIs_over_WhG']:.1f}x; "
             f"limit kn = {kn_lim / 1e6:.3f} MPa/m). With kn = 0.9 x the limit the FMU refuses: {msg}")
@@ -471,7 +477,7 @@ def main(argv=None):
     if th is not None and args.scales.strip():
         scales = [float(x) for x in args.scales.split(",") if x.strip()]
         study, _ = scale_study(th, record, rec_label, standin, out, args.workers, args.fmu, args.stop_time,
-                               scales)
+                               scales, args.hg, args.ic)
 
     rows = claims(mr, th, standin, study)
     cpath = out / "dharahara_claims.csv"

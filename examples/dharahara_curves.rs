@@ -10,8 +10,9 @@
 //! 30.20 m and alpha = atan(3.99 / 30.20) = 0.131. Ic is an assumption: a
 //! hollow cylinder of height 2 hG, Ic = m (H²/12 + (Ro² + Ri²)/4).
 //!
-//! `cargo run --release --example dharahara_curves [-- OUT_DIR]` (default
-//! `out/dharahara`) writes
+//! `cargo run --release --example dharahara_curves [-- OUT_DIR [HG [IC]]]`
+//! (default `out/dharahara`; HG in m and IC in kg m² replace the choices above,
+//! for sensitivity studies) writes
 //! - `OUT_DIR/dharahara_mr_curves.csv`: MR (N m) of every case against theta;
 //! - `OUT_DIR/dharahara_mr_cases.csv`: one row per case: thresholds,
 //!   overturning rotation, peak MR, overturning energy, their ratios to the
@@ -48,8 +49,10 @@ struct Case {
     model: Model,
 }
 
-fn tower() -> Params {
-    let hg = R0_PAPER * ALPHA_PAPER.cos();
+/// The tower: `hg` defaults to R0 cos(alpha) of the paper, `ic` to the
+/// hollow cylinder of height 2 hG.
+fn tower(hg: Option<f64>, ic: Option<f64>) -> Params {
+    let hg = hg.unwrap_or(R0_PAPER * ALPHA_PAPER.cos());
     let m = W / G;
     let h = 2.0 * hg;
     Params {
@@ -59,7 +62,7 @@ fn tower() -> Params {
         mass_model: MassKind::Lumped,
         w: W,
         hg,
-        ic: m * (h * h / 12.0 + (RO * RO + RI * RI) / 4.0),
+        ic: ic.unwrap_or(m * (h * h / 12.0 + (RO * RO + RI * RI) / 4.0)),
         g: G,
         ..Params::default()
     }
@@ -145,11 +148,19 @@ fn peak(model: &Model, grid: &[f64]) -> (f64, f64) {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let out = std::env::args()
-        .nth(1)
+    let args: Vec<String> = std::env::args().collect();
+    let out = args
+        .get(1)
+        .cloned()
         .unwrap_or_else(|| "out/dharahara".to_string());
+    let number = |i: usize| -> Result<Option<f64>, Box<dyn std::error::Error>> {
+        match args.get(i) {
+            Some(s) => Ok(Some(s.parse::<f64>()?)),
+            None => Ok(None),
+        }
+    };
     std::fs::create_dir_all(&out)?;
-    let base = tower();
+    let base = tower(number(2)?, number(3)?);
 
     let mut cases = vec![Case {
         id: "rigid".into(),
@@ -203,11 +214,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         R0_PAPER * ALPHA_PAPER.sin()
     );
     println!(
-        "  here:  hG = R0 cos(alpha) = {:.4} m, R0 = {:.4} m, alpha = atan(Ro/hG) = {:.5}",
-        body.hg, body.r0, alpha
+        "  here:  hG = {} = {:.4} m, R0 = {:.4} m, alpha = atan(Ro/hG) = {:.5}",
+        if args.len() > 2 {
+            "(given)"
+        } else {
+            "R0 cos(alpha)"
+        },
+        body.hg,
+        body.r0,
+        alpha
     );
     println!(
-        "  Ic = m ((2 hG)²/12 + (Ro² + Ri²)/4) = {:.6e} kg m² (assumed: hollow cylinder of height 2 hG), IO = {:.6e} kg m², Housner eta = {:.5}",
+        "  Ic = {} = {:.6e} kg m², IO = {:.6e} kg m², Housner eta = {:.5}",
+        if args.len() > 3 {
+            "(given)"
+        } else {
+            "m ((2 hG)²/12 + (Ro² + Ri²)/4) (assumed: hollow cylinder of height 2 hG)"
+        },
         body.ic,
         body.io,
         body.eta_housner()

@@ -17,15 +17,23 @@ G = 9.81
 RO, RI, W = 3.99, 2.12, 24003.94e3
 R0_PAPER, ALPHA_PAPER = 30.44, 0.125
 HG = R0_PAPER * math.cos(ALPHA_PAPER)
-IC = W / G * ((2 * HG) ** 2 / 12 + (RO ** 2 + RI ** 2) / 4)
+IC = W / G * ((2 * HG) ** 2 / 12 + (RO ** 2 + RI ** 2) / 4)  # = tower_inertia(HG)
 FOUNDATION_KN_MPA = (85, 170, 340, 680, 1350, 13500)
 INTERFACE_KN_GPA = (2, 5, 15, 200, 500, 1500)
 FM_MPA = (2, 5, 15, math.inf)
 
 
-def dharahara_tower(**overrides):
-    """Start values of the tower on a rigid interface; override e.g. interface, kn, fm."""
-    params = dict(shape="hollowCircle", Ro=RO, Ri=RI, massModel="lumped", W=W, hG=HG, Ic=IC,
+def tower_inertia(hg):
+    """The assumed Ic: a hollow cylinder of height 2 hG, m (H²/12 + (Ro² + Ri²)/4)."""
+    return W / G * ((2 * hg) ** 2 / 12 + (RO ** 2 + RI ** 2) / 4)
+
+
+def dharahara_tower(hg=None, ic=None, **overrides):
+    """Start values of the tower on a rigid interface; override e.g. interface, kn, fm.
+    hg, ic replace hG = R0 cos(alpha) and the assumed Ic (which follows hg)."""
+    hg = HG if hg is None else hg
+    ic = tower_inertia(hg) if ic is None else ic
+    params = dict(shape="hollowCircle", Ro=RO, Ri=RI, massModel="lumped", W=W, hG=hg, Ic=ic,
                   interface="rigid", formulation="shiftingPivot", restitution="housner", g=G)
     params.update(overrides)
     return params
@@ -35,12 +43,12 @@ def fm_label(fm_mpa):
     return "elastic" if math.isinf(fm_mpa) else f"fm{fm_mpa:g}"
 
 
-def dharahara_cases(groups=("rigid", "foundation", "interface")):
+def dharahara_cases(groups=("rigid", "foundation", "interface"), hg=None, ic=None):
     """{case id: start values}, ids as in examples/dharahara_curves.rs:
-    rigid; F<kn MPa/m>_<fm2|fm5|fm15|elastic>; I<kn GPa/m>_<...>."""
+    rigid; F<kn MPa/m>_<fm2|fm5|fm15|elastic>; I<kn GPa/m>_<...>. hg, ic as for dharahara_tower."""
     cases = {}
     if "rigid" in groups:
-        cases["rigid"] = dharahara_tower()
+        cases["rigid"] = dharahara_tower(hg, ic)
     for group, prefix, unit, kns in (("foundation", "F", 1e6, FOUNDATION_KN_MPA),
                                      ("interface", "I", 1e9, INTERFACE_KN_GPA)):
         if group not in groups:
@@ -50,7 +58,7 @@ def dharahara_cases(groups=("rigid", "foundation", "interface")):
                 law = "elastic" if math.isinf(fm) else "elastoPlastic"
                 extra = {} if math.isinf(fm) else {"fm": fm * 1e6}
                 cases[f"{prefix}{kn:g}_{fm_label(fm)}"] = dharahara_tower(
-                    interface=law, kn=kn * unit, **extra)
+                    hg, ic, interface=law, kn=kn * unit, **extra)
     return cases
 
 
