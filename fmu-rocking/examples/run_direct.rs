@@ -11,7 +11,7 @@
 //! `t_end` the ground acceleration is `ag + dag (t - t_start)`. The step end is
 //! computed as a master does (`t + (t_end - t)`). Prints a CSV: one row at the
 //! start and one after each step (outputs with the input at the step's end,
-//! `ag + dag h`), up to overturning.
+//! `ag + dag h`), up to overturning (the last row at the overturning time).
 
 use std::env;
 use std::fs;
@@ -189,7 +189,7 @@ fn main() {
         let ev = sim.advance(&mut s, time + h, GroundInput { ag, dag });
         if let Some(t_ov) = ev.overturned_at {
             s.t = t_ov;
-            row(&sim, &s, ag + dag * h);
+            row(&sim, &s, ag + dag * (t_ov - time));
             break;
         }
         time = next;

@@ -757,6 +757,14 @@ impl<S: Slave> Inner<S> {
                 Ok(Status::Ok)
             }
             Ok(StepEnd::Terminated { time, reason }) => {
+                let dt = time - t;
+                for i in 0..self.values.len() {
+                    if let Some(Scalar::Real(x)) = &mut self.values[i] {
+                        if self.derivatives[i] != 0.0 {
+                            *x += self.derivatives[i] * dt;
+                        }
+                    }
+                }
                 self.time = time;
                 self.last_successful_time = time;
                 self.terminated = true;

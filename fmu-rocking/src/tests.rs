@@ -1,0 +1,267 @@
+//! In-process tests through the exported C functions.
+
+use std::ffi::{c_char, CStr, CString};
+use std::ptr;
+
+use fmi2_export::model_description::rocking_block::{vr, ROCKING_BLOCK, VARIABLES};
+use fmi2_export::model_description::{Causality, Type};
+use fmi2_export::types::*;
+use rocking::Params;
+
+use crate::*;
+
+/// A minimal host: no logger, the exported functions called directly.
+struct Host {
+    c: fmi2Component,
+}
+
+impl Host {
+    fn new() -> Host {
+        let name = CString::new("test").unwrap();
+        let guid = CString::new(GUID).unwrap();
+        let c = unsafe {
+            fmi2Instantiate(
+                name.as_ptr(),
+                fmi2CoSimulation,
+                guid.as_ptr(),
+                ptr::null(),
+                ptr::null(),
+                fmi2False,
+                fmi2False,
+            )
+        };
+        assert!(!c.is_null());
+        Host { c }
+    }
+    fn set_real(&self, r: u32, x: f64) -> fmi2Status {
+        unsafe { fmi2SetReal(self.c, &r, 1, &x) }
+    }
+    fn set_integer(&self, r: u32, x: i32) -> fmi2Status {
+        unsafe { fmi2SetInteger(self.c, &r, 1, &x) }
+    }
+    fn real(&self, r: u32) -> f64 {
+        let mut x = f64::NAN;
+        assert_eq!(
+            unsafe { fmi2GetReal(self.c, &r, 1, &mut x) },
+            fmi2OK,
+            "vr {r}"
+        );
+        x
+    }
+    fn integer(&self, r: u32) -> i32 {
+        let mut x = -1;
+        assert_eq!(unsafe { fmi2GetInteger(self.c, &r, 1, &mut x) }, fmi2OK);
+        x
+    }
+    fn enter_init(&self) {
+        assert_eq!(unsafe { fmi2EnterInitializationMode(self.c) }, fmi2OK);
+    }
+}
+
+impl Drop for Host {
+    fn drop(&mut self) {
+        unsafe { fmi2FreeInstance(self.c) };
+    }
+}
+
+#[test]
+fn start_values_are_the_physics_defaults() {
+    let p = Params::default();
+    let real = |name: &str| match ROCKING_BLOCK.variable(name).unwrap().ty {
+        Type::Real { start, .. } => start.unwrap(),
+        _ => panic!("{name}"),
+    };
+    let host = Host::new();
+    host.enter_init();
+    let pairs = [
+        ("B", p.b),
+        ("L", p.l),
+        ("t", p.t),
+        ("Ro", p.ro),
+        ("Ri", p.ri),
+        ("H", p.h),
+        ("rho", p.rho),
+        ("W", p.w),
+        ("hG", p.hg),
+        ("Ic", p.ic),
+        ("kn", p.kn),
+        ("fm", p.fm),
+        ("eta", p.eta),
+        ("g", p.g),
+        ("theta", p.theta0),
+        ("omega", p.omega0),
+    ];
+    for (n, x) in pairs {
+        assert_eq!(real(n).to_bits(), x.to_bits(), "{n}");
+    }
+    // the enumeration starts are the physics defaults too
+    use fmi2_export::model_description::rocking_block::enums::*;
+    use rocking::model::{LawKind, MassKind, ShapeKind};
+    let expect = |kind_ok: bool, r: u32, v: i32| {
+        assert!(kind_ok);
+        assert_eq!(host.integer(r), v, "vr {r}");
+    };
+    expect(
+        p.shape == ShapeKind::SolidRectangle,
+        vr::SHAPE,
+        SOLID_RECTANGLE,
+    );
+    expect(p.mass_model == MassKind::Prism, vr::MASS_MODEL, PRISM);
+    expect(
+        p.interface == LawKind::ElastoPlastic,
+        vr::INTERFACE,
+        ELASTO_PLASTIC,
+    );
+    expect(
+        p.formulation == rocking::Formulation::ShiftingPivot,
+        vr::FORMULATION,
+        SHIFTING_PIVOT,
+    );
+    expect(
+        p.restitution == rocking::Restitution::Housner,
+        vr::RESTITUTION,
+        HOUSNER,
+    );
+}
+
+#[test]
+fn default_tolerance_is_the_engines() {
+    assert_eq!(
+        ROCKING_BLOCK.default_experiment.tolerance,
+        rocking::dynamics::DEFAULT_RTOL
+    );
+}
+
+#[test]
+fn instantiate_checks_the_guid_and_the_type() {
+    let name = CString::new("x").unwrap();
+    let wrong = CString::new("{00000000-0000-0000-0000-000000000000}").unwrap();
+    let guid = CString::new(GUID).unwrap();
+    unsafe {
+        let c = fmi2Instantiate(
+            name.as_ptr(),
+            fmi2CoSimulation,
+            wrong.as_ptr(),
+            ptr::null(),
+            ptr::null(),
+            0,
+            0,
+        );
+        assert!(c.is_null());
+        let c = fmi2Instantiate(
+            name.as_ptr(),
+            fmi2ModelExchange,
+            guid.as_ptr(),
+            ptr::null(),
+            ptr::null(),
+            0,
+            0,
+        );
+        assert!(c.is_null());
+        let c = fmi2Instantiate(
+            ptr::null(),
+            fmi2CoSimulation,
+            guid.as_ptr(),
+            ptr::null(),
+            ptr::null(),
+            0,
+            0,
+        );
+        assert!(c.is_null());
+        assert_eq!(
+            CStr::from_ptr(fmi2GetTypesPlatform() as *const c_char)
+                .to_str()
+                .unwrap(),
+            "default"
+        );
+        assert_eq!(CStr::from_ptr(fmi2GetVersion()).to_str().unwrap(), "2.0");
+        // NULL and foreign components are refused, never dereferenced blindly.
+        assert_eq!(fmi2Reset(ptr::null_mut()), fmi2Error);
+        let mut junk = [0u64; 64];
+        assert_eq!(fmi2Reset(junk.as_mut_ptr() as fmi2Component), fmi2Error);
+    }
+}
+
+/// The values of every initial unknown at one configuration.
+fn initial_unknowns(config: &[(u32, i32)], reals: &[(u32, f64)]) -> Vec<(u32, f64)> {
+    let h = Host::new();
+    for &(r, x) in config {
+        assert_eq!(h.set_integer(r, x), fmi2OK);
+    }
+    for &(r, x) in reals {
+        assert_eq!(h.set_real(r, x), fmi2OK);
+    }
+    h.enter_init();
+    VARIABLES
+        .iter()
+        .filter(|v| v.is_initial_unknown())
+        .map(|v| {
+            let x = match v.ty {
+                Type::Real { .. } => h.real(v.vr),
+                Type::Integer { .. } => h.integer(v.vr) as f64,
+                Type::Boolean { .. } => {
+                    let mut b = 0;
+                    assert_eq!(unsafe { fmi2GetBoolean(h.c, &v.vr, 1, &mut b) }, fmi2OK);
+                    b as f64
+                }
+                _ => unreachable!(),
+            };
+            (v.vr, x)
+        })
+        .collect()
+}
+
+/// Every real parameter, start value or input that changes an initial
+/// unknown is among its declared dependencies (ModelStructure).
+#[test]
+fn declared_dependencies_cover_the_real_ones() {
+    let knowns: Vec<_> = VARIABLES
+        .iter()
+        .filter(|v| {
+            matches!(v.ty, Type::Real { .. })
+                && (matches!(v.causality, Causality::Parameter | Causality::Input)
+                    || v.initial == Some(fmi2_export::model_description::Initial::Exact))
+        })
+        .collect();
+    for shape in 1..=4 {
+        for mass in 1..=2 {
+            for law in 1..=3 {
+                for formulation in 1..=2 {
+                    let config = [
+                        (vr::SHAPE, shape),
+                        (vr::MASS_MODEL, mass),
+                        (vr::INTERFACE, law),
+                        (vr::FORMULATION, formulation),
+                    ];
+                    let base_reals = [(vr::THETA, 0.02), (vr::OMEGA, 0.1), (vr::AG, 1.0)];
+                    let base = initial_unknowns(&config, &base_reals);
+                    for k in &knowns {
+                        let x0 = base_reals
+                            .iter()
+                            .find(|(r, _)| *r == k.vr)
+                            .map(|(_, x)| *x)
+                            .unwrap_or_else(|| match k.ty {
+                                Type::Real { start, .. } => start.unwrap(),
+                                _ => unreachable!(),
+                            });
+                        let mut reals = base_reals.to_vec();
+                        reals.retain(|(r, _)| *r != k.vr);
+                        reals.push((k.vr, x0 * 1.01 + 1e-3));
+                        let changed = initial_unknowns(&config, &reals);
+                        for ((r, a), (_, b)) in base.iter().zip(&changed) {
+                            if a.to_bits() != b.to_bits() {
+                                let v = VARIABLES.iter().find(|v| v.vr == *r).unwrap();
+                                assert!(
+                                    v.depends_on.contains(&k.name),
+                                    "{} changes with {} (config {config:?}) but does not declare it",
+                                    v.name,
+                                    k.name
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
