@@ -154,3 +154,17 @@ def run_direct(path, params, steps, start=0.0, tolerance=None):
     rows = list(csv.reader(io.StringIO(out)))
     header, data = rows[0], rows[1:]
     return {h: np.array([float(r[i]) for r in data]) for i, h in enumerate(header)}
+
+
+ENUMS = {
+    "shape": ["solidRectangle", "hollowRectangle", "solidCircle", "hollowCircle"],
+    "massModel": ["prism", "lumped"],
+    "interface": ["rigid", "elastic", "elastoPlastic"],
+    "formulation": ["costa", "shiftingPivot"],
+    "restitution": ["housner", "given"],
+}
+
+
+def start_values(params):
+    """fmpy start values: enumeration items as their (1-based) numbers."""
+    return {k: (ENUMS[k].index(v) + 1 if k in ENUMS and isinstance(v, str) else v) for k, v in params.items()}
