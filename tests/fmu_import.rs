@@ -4,7 +4,9 @@
 //! co-simulation function, and run a free-rocking case, which must equal the
 //! engine run directly (this crate) bit for bit.
 //!
-//! Run `cargo xtask fmu` first (the test command does).
+//! The test packages the FMU itself first (`cargo xtask fmu`, a no-op when
+//! it is up to date), so it never runs against a stale archive and needs no
+//! particular order in the test command.
 //!
 //! Why not the `fmi` crate's FMI 2.0 importer: `fmi` 0.8 depends on `fmi-sys`,
 //! whose build script runs bindgen on the FMI headers and needs libclang,
@@ -65,8 +67,16 @@ extern "C" fn logger(
     log.lock().unwrap().push((status, c, m));
 }
 
+/// Packages the FMU (`cargo xtask fmu`) and returns the archive's path.
 fn fmu_path() -> PathBuf {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let status = std::process::Command::new(cargo)
+        .current_dir(root)
+        .args(["xtask", "fmu"])
+        .status()
+        .expect("run cargo xtask fmu");
+    assert!(status.success(), "cargo xtask fmu failed");
     let target = std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)
         .map(|p| if p.is_absolute() { p } else { root.join(p) })
@@ -74,7 +84,7 @@ fn fmu_path() -> PathBuf {
     let p = target.join("fmu").join("RockingBlock.fmu");
     assert!(
         p.is_file(),
-        "{} not found: run `cargo xtask fmu` first",
+        "{} not found after cargo xtask fmu",
         p.display()
     );
     p
