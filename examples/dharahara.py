@@ -232,7 +232,7 @@ def plot_histories(df, record, rec_label, group, out):
         ax.set_ylim(-1.05, 1.05)
         ax.set_title(f"{group} stiffnesses, {fm_text(fm * 1e6)}", fontsize=9)
         if ax.lines:
-            ax.legend(fontsize=6.5, loc="lower left", ncol=2)
+            ax.legend(fontsize=6.5, loc="upper right", ncol=2, framealpha=0.9)
         ax.grid(alpha=0.3)
     axes[-1].set_xlabel("time (s)")
     axes[-1].set_xlim(0, max(t_end, max(h["time"][-1] for h in sub["history"])))
