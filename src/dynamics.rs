@@ -28,6 +28,7 @@
 mod dense;
 mod eom;
 mod erk;
+mod rodas;
 
 use crate::interface::{Law, Regime};
 use crate::model::Model;
@@ -35,6 +36,7 @@ use crate::model::Model;
 use dense::{first_event, Hermite, Hit};
 use eom::{side_of, Eom};
 use erk::{Dop853, Dp5, Pair, StepOut, Tol};
+use rodas::Jac;
 
 /// Relative tolerance used when the caller gives none (or a non-positive
 /// one): `1e-9` (global errors of impact times and amplitudes
@@ -66,6 +68,10 @@ pub struct State {
     /// start of the next one (0: none). Part of the state so that a restored
     /// run repeats the same iterations.
     pub a: f64,
+    /// The integrator is in its stiff mode (RODAS; flexible laws only).
+    pub stiff: bool,
+    /// Consecutive steps that argued for switching the mode.
+    pub switch_count: u32,
 }
 
 /// Ground acceleration over one communication step: `ag(t) = ag + dag * (t - t0)`,
@@ -164,16 +170,17 @@ impl Simulator {
     }
 
     pub fn initial_state(&self, theta0: f64, omega0: f64) -> State {
-        let rigid = self.model.interface.law() == Law::Rigid;
         State {
             t: 0.0,
             theta: theta0,
             omega: omega0,
             impacts: 0,
-            at_rest: rigid && theta0 == 0.0 && omega0 == 0.0,
+            at_rest: theta0 == 0.0 && omega0 == 0.0,
             overturned: false,
             h: 0.0,
             a: 0.0,
+            stiff: false,
+            switch_count: 0,
         }
     }
 
@@ -262,10 +269,20 @@ impl Simulator {
         }
         let eom = Eom::new(&self.model, st.t, input);
         let tol = self.tol();
-        if eom.rigid && st.theta == 0.0 && st.omega == 0.0 {
+        if st.theta == 0.0 && st.omega == 0.0 {
             st.at_rest = true;
         }
         loop {
+            if st.at_rest && !eom.rigid {
+                // flexible law: theta = omega = 0 is an equilibrium as long
+                // as there is no ground motion
+                if eom.ag(st.t) == 0.0 && eom.dag() == 0.0 {
+                    st.t = t_end;
+                    return ev;
+                }
+                st.at_rest = false;
+                st.h = 0.0;
+            }
             if st.at_rest {
                 match self.uplift_time(&eom, st.t, t_end) {
                     None => {
@@ -367,6 +384,9 @@ impl Simulator {
         ev: &mut Events,
     ) -> Stop {
         let theta_ov = self.model.theta_ov;
+        let kink_levels = self.kinks();
+        let kinks = kink_levels.as_slice();
+        let theta_jo = self.model.interface.theta_jo();
         let mut side = side_of(st.theta, st.omega, eom.ag(st.t));
         let mut hint = st.a;
         let mut a0 = eom.accel(st.t, st.theta, st.omega, side, &mut hint);
@@ -385,26 +405,71 @@ impl Simulator {
             );
             ev.stats.evals += 1;
         }
+        if eom.rigid {
+            st.stiff = false;
+        }
         let mut rejected = false;
+        // the Rosenbrock Jacobian at the current step start
+        let mut jac: Option<Jac> = None;
         while st.t < t_end {
             let t = st.t;
             let y0 = [st.theta, st.omega];
             let last = t + 1.01 * h >= t_end;
             let t_new = if last { t_end } else { t + h };
             let hh = t_new - t;
+            let kind = if st.stiff {
+                let j = match jac {
+                    Some(j) => j,
+                    None => {
+                        let mut j = self.jacobian(eom, tol, t, hh, y0, a0, side, hint, ev);
+                        // In the stiff mode an oscillation about the
+                        // quasi-static state below the tolerance at the
+                        // rocking scale, rtol thetaOv, is projected away
+                        // (onto the linearised slow manifold), so that RODAS
+                        // is not held to resolve it.
+                        let negligible = tol.rtol * theta_ov;
+                        if let Some((th, om)) = slow_state(&j, y0, a0, negligible) {
+                            st.theta = th;
+                            st.omega = om;
+                            a0 = eom.accel(t, th, om, side, &mut hint);
+                            ev.stats.evals += 1;
+                            j = self.jacobian(eom, tol, t, hh, [th, om], a0, side, hint, ev);
+                        }
+                        jac = Some(j);
+                        j
+                    }
+                };
+                Kind::Rodas(j)
+            } else {
+                Kind::Explicit
+            };
+            let y0 = [st.theta, st.omega];
             let mut step_hint = hint;
-            let out = P::step(eom, t, hh, y0, a0, side, &mut step_hint, tol);
-            ev.stats.evals += P::EVALS;
+            let out = attempt::<P>(eom, tol, &kind, t, hh, y0, a0, side, &mut step_hint, ev);
+            let err_exp = match kind {
+                Kind::Explicit => P::ERR_EXP,
+                Kind::Rodas(_) => rodas::ERR_EXP,
+            };
             let min_step = 16.0 * f64::EPSILON * t.abs().max(hh);
             let acceptable = out.err <= 1.0; // false for NaN
             if !acceptable && hh > min_step {
                 ev.stats.rejected += 1;
                 let f = if out.err.is_finite() {
-                    (0.9 * out.err.powf(P::ERR_EXP)).clamp(0.2, 1.0)
+                    (0.9 * out.err.powf(err_exp)).clamp(0.2, 1.0)
                 } else {
                     0.2
                 };
                 h = (hh * f).max(min_step);
+                // A step rejected because it ran across a kink of the
+                // right-hand side: retry to just past the kink, where the
+                // accepted step is then cut.
+                if !kinks.is_empty() && !st.stiff && out.err.is_finite() {
+                    let herm =
+                        Hermite::new(hh, [y0[0], y0[1], a0], [out.y[0], out.y[1], out.accel]);
+                    if let Some((Hit::Kink(_), tau)) = first_event(&herm, side, theta_ov, kinks) {
+                        h = h.min(1.01 * tau * hh).max(min_step);
+                    }
+                }
                 rejected = true;
                 continue;
             }
@@ -413,15 +478,52 @@ impl Simulator {
             let mut fac = if out.err == 0.0 {
                 10.0
             } else {
-                (0.9 * out.err.powf(P::ERR_EXP)).clamp(0.2, 10.0)
+                (0.9 * out.err.powf(err_exp)).clamp(0.2, 10.0)
             };
             if rejected {
                 fac = fac.min(1.0);
             }
             rejected = false;
-            let h_next = if last { (hh * fac).max(h) } else { hh * fac };
+            let mut h_next = if last { (hh * fac).max(h) } else { hh * fac };
+            h_next = h_next.max(min_step);
+            // Flexible laws, approaching theta = 0 in partial contact: the
+            // contact varies on the scale of phi itself (af ~ phi^(-1/2)),
+            // so the error of a step is a function of r = h |omega / theta|:
+            // control r (grown by the same factor as h) and keep it below
+            // R_MAX, rather than let h grow into the steep region.
+            if !eom.rigid && out.y[0] * out.y[1] < 0.0 && out.y[0].abs() > theta_jo {
+                let time_to_zero = (out.y[0] / out.y[1]).abs();
+                let r = (hh / time_to_zero * fac).min(R_MAX);
+                if r > 0.0 {
+                    h_next = h_next.min(r * time_to_zero);
+                }
+            }
+            // Stiffness switch (flexible laws), on steps not cut by t_end:
+            // explicit steps held at h rho > STIFF_ON by stability go to
+            // RODAS; RODAS steps that an explicit method could take as well
+            // (h rho < STIFF_OFF) come back.
+            if !eom.rigid && !last {
+                let stiff_now = if st.stiff {
+                    hh * out.rho >= STIFF_OFF
+                } else {
+                    hh * out.rho > STIFF_ON
+                };
+                if stiff_now == st.stiff {
+                    st.switch_count = 0;
+                } else {
+                    st.switch_count += 1;
+                    if st.switch_count >= SWITCH_AFTER {
+                        st.stiff = !st.stiff;
+                        st.switch_count = 0;
+                    }
+                }
+            }
             let herm = Hermite::new(hh, [y0[0], y0[1], a0], [out.y[0], out.y[1], out.accel]);
-            match first_event(&herm, side, theta_ov) {
+            jac = None;
+            // RODAS steps are not cut at the kinks: its steps are long, and
+            // the projection on the slow manifold moves the state off them
+            let step_kinks = if st.stiff { &[][..] } else { kinks };
+            match first_event(&herm, side, theta_ov, step_kinks) {
                 None => {
                     st.t = t_new;
                     st.theta = out.y[0];
@@ -435,11 +537,54 @@ impl Simulator {
                     }
                 }
                 Some((hit, tau)) => {
-                    let (t_ev, y_ev) =
-                        self.step_to_event::<P>(eom, tol, t, y0, a0, side, hint, hit, tau * hh, ev);
-                    st.t = t_ev;
+                    let (t_ev, y_ev, confirmed) = self.step_to_event::<P>(
+                        eom,
+                        tol,
+                        &kind,
+                        t,
+                        y0,
+                        a0,
+                        side,
+                        hint,
+                        hit,
+                        tau * hh,
+                        hh,
+                        ev,
+                    );
                     h = h_next;
+                    // a step that ends across zero has an impact in it even
+                    // if the polish fell short
+                    let confirmed = confirmed
+                        || (hit == Hit::Impact
+                            && side * out.y[0] <= 0.0
+                            && side * y_ev.y[1] < 0.0
+                            && y_ev.err <= 1.0);
+                    if !confirmed {
+                        // no event after all (see step_to_event): the
+                        // accepted step stands
+                        st.t = t_new;
+                        st.theta = out.y[0];
+                        st.omega = out.y[1];
+                        a0 = out.accel;
+                        hint = step_hint;
+                        st.a = hint;
+                        if !eom.rigid {
+                            side = side_of(st.theta, st.omega, eom.ag(st.t));
+                        }
+                        continue;
+                    }
+                    st.t = t_ev;
                     match hit {
+                        Hit::Kink(i) => {
+                            // exactly on the level, so that the next step
+                            // starts on it and is smooth
+                            st.theta = side * kinks[i];
+                            st.omega = y_ev.y[1];
+                            a0 = eom.accel(st.t, st.theta, st.omega, side, &mut hint);
+                            ev.stats.evals += 1;
+                            st.a = hint;
+                            side = side_of(st.theta, st.omega, eom.ag(st.t));
+                        }
                         Hit::Overturn => {
                             st.theta = side * theta_ov;
                             st.omega = y_ev.y[1];
@@ -454,7 +599,12 @@ impl Simulator {
                             st.impacts += 1;
                             ev.impacts += 1;
                             let ag = eom.ag(t_ev);
-                            if eom.rigid && self.comes_to_rest(st.omega, ag) {
+                            let rest = if eom.rigid {
+                                self.comes_to_rest(st.omega, ag)
+                            } else {
+                                ag == 0.0 && eom.dag() == 0.0 && self.settles(st.omega)
+                            };
+                            if rest {
                                 st.omega = 0.0;
                                 st.at_rest = true;
                                 ev.came_to_rest = true;
@@ -482,6 +632,78 @@ impl Simulator {
         Stop::End
     }
 
+    /// The Jacobian for RODAS at the start of a step.
+    #[allow(clippy::too_many_arguments)]
+    fn jacobian(
+        &self,
+        eom: &Eom,
+        tol: &Tol,
+        t: f64,
+        h: f64,
+        y0: [f64; 2],
+        a0: f64,
+        side: f64,
+        hint: f64,
+        ev: &mut Events,
+    ) -> Jac {
+        let mut jh = hint;
+        ev.stats.evals += 3;
+        rodas::jacobian(
+            eom,
+            t,
+            h,
+            y0,
+            a0,
+            side,
+            &mut jh,
+            tol.atol_theta / tol.rtol,
+            tol.atol_omega / tol.rtol,
+        )
+    }
+
+    /// Rotations where the right-hand side has a kink (flexible laws): the
+    /// regime thresholds `thetaJo` and `thetaC` below `thetaOv`. There `af'`
+    /// (hence `I'`, which the `shiftingPivot` term multiplies by `omega²`)
+    /// is continuous but its derivative jumps; a step across would see a
+    /// low-order error and be rejected several times, so steps are cut there.
+    fn kinks(&self) -> Kinks {
+        let mut k = Kinks::default();
+        if self.model.interface.law() == Law::Rigid {
+            return k;
+        }
+        for l in [
+            self.model.interface.theta_jo(),
+            self.model.interface.theta_c(),
+        ] {
+            if l > 0.0 && l < self.model.theta_ov {
+                k.levels[k.n] = l;
+                k.n += 1;
+            }
+        }
+        k
+    }
+
+    /// The rest criterion of the flexible laws, under zero ground motion:
+    /// after an impact at `theta = 0` with `omega`, the free oscillation in
+    /// full contact has the amplitude `|omega| sqrt(I0 / K0)`
+    /// (`K0 = kn Is - W hG`, `I0 = Ic + m hG²`, the linearisation at
+    /// `theta = 0`). Below `rtol thetaOv` (the error floor) it is set to rest
+    /// exactly: it would otherwise cross zero every half period for ever,
+    /// decaying by `eta` each time.
+    fn settles(&self, omega: f64) -> bool {
+        let (kn, is) = match self.model.interface.law() {
+            Law::Elastic { kn } | Law::ElastoPlastic { kn, .. } => {
+                (kn, self.model.interface.shape().second_moment())
+            }
+            Law::Rigid => return false,
+        };
+        let b = &self.model.body;
+        let k0 = kn * is - b.weight * b.hg;
+        let i0 = b.ic + b.mass * b.hg * b.hg;
+        let amp = omega.abs() * (i0 / k0).sqrt();
+        amp <= self.effective_rtol() * self.model.theta_ov
+    }
+
     /// Whether a rigid body leaving an impact with `omega` under `ag` is at
     /// rest to the tolerance ([`rest_bound`](Self::rest_bound) below the
     /// step's absolute tolerances).
@@ -496,13 +718,19 @@ impl Simulator {
 
     /// Redo the step from `(t, y0)` so that it ends at the event `t + dt`,
     /// then polish `dt` by Newton on the step itself until the event
-    /// function (`theta` or `|theta| - thetaOv`) is below a thousandth of
-    /// the absolute tolerance. Returns the event time and the step.
+    /// function (`theta`, `|theta| - level`) is below a thousandth of the
+    /// error scale of the motion. Returns the event time, the step, and
+    /// whether the event is confirmed: the polish converged and `theta`
+    /// moves the right way (toward the other side at an impact, outward at
+    /// overturning). An unconfirmed event (the interpolant of a step whose
+    /// error is below the floor can cross where the motion does not) leaves
+    /// a plain step to that time.
     #[allow(clippy::too_many_arguments)]
     fn step_to_event<P: Pair>(
         &self,
         eom: &Eom,
         tol: &Tol,
+        kind: &Kind,
         t: f64,
         y0: [f64; 2],
         a0: f64,
@@ -510,36 +738,54 @@ impl Simulator {
         hint: f64,
         hit: Hit,
         mut dt: f64,
+        h_max: f64,
         ev: &mut Events,
-    ) -> (f64, StepOut) {
+    ) -> (f64, StepOut, bool) {
         let target = match hit {
             Hit::Impact => 0.0,
             Hit::Overturn => side * self.model.theta_ov,
+            Hit::Kink(i) => side * self.kinks().as_slice()[i],
         };
         let mut out = StepOut {
             y: y0,
             accel: a0,
             err: 0.0,
+            rho: 0.0,
         };
-        for iter in 0..4 {
+        let mut converged = false;
+        for _ in 0..4 {
             if dt > 0.0 {
                 let mut hh = hint;
-                out = P::step(eom, t, dt, y0, a0, side, &mut hh, tol);
-                ev.stats.evals += P::EVALS;
+                out = attempt::<P>(eom, tol, kind, t, dt, y0, a0, side, &mut hh, ev);
                 ev.stats.steps += 1;
             }
+            // relative to the size of the motion itself, not to the error
+            // floor: the state is set exactly on the level, and a
+            // displacement at the floor would feed a spurious oscillation
             let r = out.y[0] - target;
-            let sc = tol.scales(out.y, out.y)[0];
-            if r.abs() <= 1e-3 * sc || out.y[1] == 0.0 || iter == 3 {
+            let sc = tol.rtol * tol.amp(out.y);
+            if r.abs() <= 1e-3 * sc {
+                converged = true;
                 break;
             }
+            // stay inside the step that was accepted
             let next = dt - r / out.y[1];
-            if next.is_nan() || next < 0.0 || next == dt {
+            if !next.is_finite() || next <= 0.0 || next > h_max || next == dt {
                 break;
             }
             dt = next;
         }
-        (t + dt, out)
+        let moving = side * out.y[1];
+        let progress = t + dt > t;
+        let confirmed = converged
+            && progress
+            && out.err <= 1.0
+            && match hit {
+                Hit::Impact => moving < 0.0,
+                Hit::Overturn => moving > 0.0,
+                Hit::Kink(_) => true,
+            };
+        (t + dt, out, confirmed)
     }
 
     /// Outputs at `state` under ground acceleration `ag` (m/s²).
@@ -598,6 +844,90 @@ impl Simulator {
             fx: b.mass * (ag + xg_dd),
             fz: b.mass * (b.g + zg_dd),
         }
+    }
+}
+
+/// The state on the linearised slow manifold near `y0` when the fast
+/// oscillation about it is below `floor`, else `None`. With `J` the Jacobian, the slow manifold has
+/// `theta'' = 0`: `omega_s = -a_t / a_theta` and
+/// `theta_s = theta - (a0 + a_omega (omega_s - omega)) / a_theta`. The
+/// fast part is `(theta - theta_s, (omega - omega_s) / rho)` in amplitude.
+/// Never across `theta = 0` (that is an impact).
+fn slow_state(j: &Jac, y0: [f64; 2], a0: f64, floor: f64) -> Option<(f64, f64)> {
+    if j.a_theta >= 0.0 {
+        return None;
+    }
+    let rho = (-j.a_theta).sqrt();
+    let om = -j.a_t / j.a_theta;
+    let th = y0[0] - (a0 + j.a_omega * (om - y0[1])) / j.a_theta;
+    let fast = (th - y0[0]).hypot((om - y0[1]) / rho);
+    let same_side = th * y0[0] > 0.0;
+    (fast <= floor && same_side && th.is_finite() && om.is_finite()).then_some((th, om))
+}
+
+/// One step attempt with the current kind of method.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn attempt<P: Pair>(
+    eom: &Eom,
+    tol: &Tol,
+    kind: &Kind,
+    t: f64,
+    h: f64,
+    y0: [f64; 2],
+    a0: f64,
+    side: f64,
+    hint: &mut f64,
+    ev: &mut Events,
+) -> StepOut {
+    match kind {
+        Kind::Explicit => {
+            ev.stats.evals += P::EVALS;
+            P::step(eom, t, h, y0, a0, side, hint, tol)
+        }
+        Kind::Rodas(j) => {
+            ev.stats.evals += rodas::EVALS - 3;
+            // In the stiff mode the floor of the velocity error is that of
+            // an oscillation at the Jacobian's frequency whose amplitude is
+            // the floor of the rotation error: oscillations of the interface
+            // below the floor are not resolved (RODAS damps them).
+            let stiff_tol = Tol {
+                atol_omega: tol.atol_omega.max(tol.atol_theta * j.rho()),
+                ..*tol
+            };
+            rodas::step(eom, t, h, y0, a0, j, side, hint, &stiff_tol)
+        }
+    }
+}
+
+/// The method of a step: the explicit pair, or RODAS with its Jacobian.
+#[derive(Clone, Copy, Debug)]
+enum Kind {
+    Explicit,
+    Rodas(Jac),
+}
+
+/// Explicit steps with `h rho` above this are taken as held by stability.
+const STIFF_ON: f64 = 1.0;
+/// RODAS steps with `h rho` below this could be explicit.
+const STIFF_OFF: f64 = 0.5;
+/// Consecutive steps that decide a switch.
+const SWITCH_AFTER: u32 = 15;
+
+/// Largest `h |omega / theta|` of a step toward `theta = 0` in partial
+/// contact (flexible laws).
+const R_MAX: f64 = 0.5;
+
+/// Kink levels of `|theta|`, at most a few.
+#[derive(Clone, Copy, Debug, Default)]
+struct Kinks {
+    levels: [f64; 4],
+    n: usize,
+}
+
+impl Kinks {
+    fn as_slice(&self) -> &[f64] {
+        &self.levels[..self.n]
     }
 }
 

@@ -7,7 +7,10 @@
 //! falls to 0 (an impact) or rises to `thetaOv` (overturning). The step is
 //! cut into monotone pieces of `theta` at the roots of `omega`, so a root is
 //! bracketed even when `theta` turns around inside the step (a small
-//! excursion after an impact), and refined by safeguarded Newton.
+//! excursion after an impact), and refined by safeguarded Newton. The same
+//! search cuts steps at the kinks of the right-hand side (regime
+//! thresholds), where the error estimate of a step across would be
+//! meaningless.
 
 /// `theta(t0 + tau h) = sum_k c[k] tau^k`.
 #[derive(Clone, Copy, Debug)]
@@ -64,18 +67,21 @@ pub(crate) enum Hit {
     Impact,
     /// `|theta|` reaches `thetaOv`.
     Overturn,
+    /// `|theta|` reaches the `k`-th kink level of the right-hand side (a
+    /// regime threshold): the step is cut there, nothing else happens.
+    Kink(usize),
 }
 
 /// Pieces the step is sampled in to find the turning points of `theta`.
 const PIECES: usize = 8;
 
 /// The first event in `(0, 1]` of the step interpolated by `p`, for a body
-/// on side `s` (`s theta >= 0` at the start): `(hit, tau)`.
-pub(crate) fn first_event(p: &Hermite, s: f64, theta_ov: f64) -> Option<(Hit, f64)> {
+/// on side `s` (`s theta >= 0` at the start): `(hit, tau)`. `kinks` are
+/// levels of `|theta|` in `(0, thetaOv)` crossed in either direction.
+pub(crate) fn first_event(p: &Hermite, s: f64, theta_ov: f64, kinks: &[f64]) -> Option<(Hit, f64)> {
     // g(tau) = s theta(tau); g(0) >= 0. Walk the monotone pieces of g.
     let g = |tau: f64| s * p.theta(tau);
     let dg = |tau: f64| s * p.dtheta(tau);
-    // The sign of g' just after 0: from theta'' if omega vanishes there.
     let mut lo = 0.0;
     let mut g_lo = g(0.0);
     for k in 1..=PIECES {
@@ -96,17 +102,54 @@ pub(crate) fn first_event(p: &Hermite, s: f64, theta_ov: f64) -> Option<(Hit, f6
             let g_b = g(b);
             // impact: g from > 0 to <= 0
             if g_lo > 0.0 && g_b <= 0.0 {
-                return Some((Hit::Impact, refine(&g, &dg, lo, b, true, 0.0)));
+                let first = first_kink_down(kinks, g_lo, g_b.max(0.0));
+                return Some(match first {
+                    Some(i) => (Hit::Kink(i), refine(&g, &dg, lo, b, true, kinks[i])),
+                    None => (Hit::Impact, refine(&g, &dg, lo, b, true, 0.0)),
+                });
             }
             // overturning: g from < thetaOv to >= thetaOv
             if g_lo < theta_ov && g_b >= theta_ov {
-                return Some((Hit::Overturn, refine(&g, &dg, lo, b, false, theta_ov)));
+                let first = first_kink_up(kinks, g_lo, theta_ov);
+                return Some(match first {
+                    Some(i) => (Hit::Kink(i), refine(&g, &dg, lo, b, false, kinks[i])),
+                    None => (Hit::Overturn, refine(&g, &dg, lo, b, false, theta_ov)),
+                });
+            }
+            if g_b > g_lo {
+                if let Some(i) = first_kink_up(kinks, g_lo, g_b) {
+                    return Some((Hit::Kink(i), refine(&g, &dg, lo, b, false, kinks[i])));
+                }
+            } else if let Some(i) = first_kink_down(kinks, g_lo, g_b) {
+                return Some((Hit::Kink(i), refine(&g, &dg, lo, b, true, kinks[i])));
             }
             lo = b;
             g_lo = g_b;
         }
     }
     None
+}
+
+/// The lowest level `L` with `from < L <= to` (g rising).
+fn first_kink_up(kinks: &[f64], from: f64, to: f64) -> Option<usize> {
+    let mut best: Option<usize> = None;
+    for (i, &l) in kinks.iter().enumerate() {
+        if from < l && l <= to && best.is_none_or(|j| l < kinks[j]) {
+            best = Some(i);
+        }
+    }
+    best
+}
+
+/// The highest level `L` with `to <= L < from` (g falling).
+fn first_kink_down(kinks: &[f64], from: f64, to: f64) -> Option<usize> {
+    let mut best: Option<usize> = None;
+    for (i, &l) in kinks.iter().enumerate() {
+        if to <= l && l < from && best.is_none_or(|j| l > kinks[j]) {
+            best = Some(i);
+        }
+    }
+    best
 }
 
 /// Sign of `s theta'` just after `tau` (from `theta''` where `omega` is 0).

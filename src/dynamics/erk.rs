@@ -32,7 +32,7 @@ pub(crate) struct Tol {
 
 impl Tol {
     #[inline(always)]
-    fn amp(&self, y: [f64; 2]) -> f64 {
+    pub fn amp(&self, y: [f64; 2]) -> f64 {
         y[0].abs() + y[1] * y[1] / self.two_g
     }
 
@@ -59,6 +59,21 @@ pub(crate) struct StepOut {
     pub accel: f64,
     /// Scaled error estimate: the step is acceptable when `err <= 1`.
     pub err: f64,
+    /// Estimate of the spectral radius of the Jacobian, 1/s: for the
+    /// explicit pairs `sqrt(|Δtheta'' / Δtheta|)` between the two stages at
+    /// `c = 1` (Hairer's stiffness detection), for RODAS from its Jacobian.
+    pub rho: f64,
+}
+
+/// `sqrt(|Δa / Δtheta|)` between two states at the same time.
+#[inline(always)]
+fn rho(th_a: f64, a_a: f64, th_b: f64, a_b: f64) -> f64 {
+    let d = th_a - th_b;
+    if d != 0.0 {
+        ((a_a - a_b) / d).abs().sqrt()
+    } else {
+        0.0
+    }
 }
 
 /// A pair of embedded formulas.
@@ -206,10 +221,16 @@ impl Pair for Dp5 {
         let sc = tol.scales(y0, y1);
         let e0 = h * ew / sc[0];
         let e1 = h * ea / sc[1];
+        // stage 6 is at c = 1 too
+        let mut s5 = 0.0;
+        for j in 0..5 {
+            s5 += DP5_A[5][j] * kw[j];
+        }
         StepOut {
             y: y1,
             accel: a1,
             err: (0.5 * (e0 * e0 + e1 * e1)).sqrt(),
+            rho: rho(y1[0], a1, y0[0] + h * s5, ka[5]),
         }
     }
 }
@@ -392,10 +413,16 @@ impl Pair for Dop853 {
         } else {
             h.abs() * n5 / ((n5 + 0.01 * n3) * 2.0).sqrt()
         };
+        // stage 12 is at c = 1 too
+        let mut s11 = 0.0;
+        for j in 0..11 {
+            s11 += DOP_A[11][j] * kw[j];
+        }
         StepOut {
             y: y1,
             accel: a1,
             err,
+            rho: rho(y1[0], a1, y0[0] + h * s11, ka[11]),
         }
     }
 }
