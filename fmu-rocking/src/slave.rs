@@ -10,7 +10,7 @@ use rocking::model::{LawKind, MassKind, ShapeKind};
 use rocking::{Formulation, Params, Regime, Restitution};
 
 /// Layout version of the serialized [`State`] (inside the generic envelope).
-const STATE_VERSION: u32 = 1;
+const STATE_VERSION: u32 = 2;
 
 pub struct RockingSlave {
     sim: Simulator,
@@ -302,6 +302,8 @@ impl Slave for RockingSlave {
             overturned,
             h,
             a,
+            stiff,
+            switch_count,
         } = *s;
         w.u32(STATE_VERSION);
         w.f64(t);
@@ -312,6 +314,8 @@ impl Slave for RockingSlave {
         w.bool(overturned);
         w.f64(h);
         w.f64(a);
+        w.bool(stiff);
+        w.u32(switch_count);
     }
 
     fn read_state(r: &mut ByteReader<'_>) -> Result<State, ReadError> {
@@ -330,6 +334,8 @@ impl Slave for RockingSlave {
             overturned: r.bool("overturned")?,
             h: r.f64("h")?,
             a: r.f64("a")?,
+            stiff: r.bool("stiff")?,
+            switch_count: r.u32("switch_count")?,
         };
         for (name, x) in [("t", s.t), ("theta", s.theta), ("omega", s.omega)] {
             if !x.is_finite() {
