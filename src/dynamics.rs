@@ -32,6 +32,7 @@ mod rodas;
 
 use crate::interface::{Law, Regime};
 use crate::model::Model;
+use crate::shape::Shape;
 
 use dense::{first_event, Hermite, Hit};
 use eom::{side_of, Eom};
@@ -92,6 +93,8 @@ pub struct Stats {
     pub rejected: u32,
     /// Right-hand-side evaluations.
     pub evals: u32,
+    /// Accepted steps taken in the stiff mode (RODAS).
+    pub stiff_steps: u32,
 }
 
 /// What happened during one `advance`.
@@ -140,6 +143,9 @@ pub struct Simulator {
     pub rtol: f64,
     /// Runge-Kutta pair.
     pub method: Method,
+    /// Kinks of the right-hand side (computed from `model` by `new`: a
+    /// changed model needs a new simulator).
+    kinks: Kinks,
 }
 
 /// Why a step loop stopped.
@@ -153,16 +159,13 @@ enum Stop {
 
 impl Simulator {
     pub fn new(model: Model, rtol: f64) -> Simulator {
-        Simulator {
-            model,
-            rtol,
-            method: Method::default(),
-        }
+        Simulator::with_method(model, rtol, Method::default())
     }
 
     /// The same with an explicit Runge-Kutta pair.
     pub fn with_method(model: Model, rtol: f64, method: Method) -> Simulator {
         Simulator {
+            kinks: find_kinks(&model),
             model,
             rtol,
             method,
@@ -384,7 +387,7 @@ impl Simulator {
         ev: &mut Events,
     ) -> Stop {
         let theta_ov = self.model.theta_ov;
-        let kink_levels = self.kinks();
+        let kink_levels = self.kinks;
         let kinks = kink_levels.as_slice();
         let theta_jo = self.model.interface.theta_jo();
         let mut side = side_of(st.theta, st.omega, eom.ag(st.t));
@@ -474,6 +477,9 @@ impl Simulator {
                 continue;
             }
             ev.stats.steps += 1;
+            if st.stiff {
+                ev.stats.stiff_steps += 1;
+            }
             // next step size
             let mut fac = if out.err == 0.0 {
                 10.0
@@ -537,7 +543,7 @@ impl Simulator {
                     }
                 }
                 Some((hit, tau)) => {
-                    let (t_ev, y_ev, confirmed) = self.step_to_event::<P>(
+                    let (t_ev, y_ev, status) = self.step_to_event::<P>(
                         eom,
                         tol,
                         &kind,
@@ -551,15 +557,16 @@ impl Simulator {
                         hh,
                         ev,
                     );
+                    if status == EventStatus::Retry && t_ev - t > min_step {
+                        // the step to the event is not accurate enough (a
+                        // singular kink, a poor interpolant): retry shorter
+                        ev.stats.rejected += 1;
+                        h = (0.5 * (t_ev - t)).max(min_step);
+                        rejected = true;
+                        continue;
+                    }
                     h = h_next;
-                    // a step that ends across zero has an impact in it even
-                    // if the polish fell short
-                    let confirmed = confirmed
-                        || (hit == Hit::Impact
-                            && side * out.y[0] <= 0.0
-                            && side * y_ev.y[1] < 0.0
-                            && y_ev.err <= 1.0);
-                    if !confirmed {
+                    if status == EventStatus::Spurious {
                         // no event after all (see step_to_event): the
                         // accepted step stands
                         st.t = t_new;
@@ -573,12 +580,32 @@ impl Simulator {
                         }
                         continue;
                     }
+                    // Put the state exactly on the level: move along the
+                    // trajectory by the residual, dt = -r / omega, to first
+                    // order (the residual is below 1e-3 of the error scale,
+                    // but in the contact zone I'(phi) omega² is large and a
+                    // bare shift of theta would change the energy).
+                    let level = match hit {
+                        Hit::Impact => 0.0,
+                        Hit::Overturn => side * theta_ov,
+                        Hit::Kink(i) => side * kinks[i],
+                    };
+                    let shift = if y_ev.y[1] != 0.0 {
+                        -(y_ev.y[0] - level) / y_ev.y[1]
+                    } else {
+                        0.0
+                    };
+                    let y_ev = StepOut {
+                        y: [level, y_ev.y[1] + y_ev.accel * shift],
+                        ..y_ev
+                    };
+                    let t_ev = t_ev + shift;
                     st.t = t_ev;
                     match hit {
-                        Hit::Kink(i) => {
+                        Hit::Kink(_) => {
                             // exactly on the level, so that the next step
                             // starts on it and is smooth
-                            st.theta = side * kinks[i];
+                            st.theta = level;
                             st.omega = y_ev.y[1];
                             a0 = eom.accel(st.t, st.theta, st.omega, side, &mut hint);
                             ev.stats.evals += 1;
@@ -661,28 +688,6 @@ impl Simulator {
         )
     }
 
-    /// Rotations where the right-hand side has a kink (flexible laws): the
-    /// regime thresholds `thetaJo` and `thetaC` below `thetaOv`. There `af'`
-    /// (hence `I'`, which the `shiftingPivot` term multiplies by `omega²`)
-    /// is continuous but its derivative jumps; a step across would see a
-    /// low-order error and be rejected several times, so steps are cut there.
-    fn kinks(&self) -> Kinks {
-        let mut k = Kinks::default();
-        if self.model.interface.law() == Law::Rigid {
-            return k;
-        }
-        for l in [
-            self.model.interface.theta_jo(),
-            self.model.interface.theta_c(),
-        ] {
-            if l > 0.0 && l < self.model.theta_ov {
-                k.levels[k.n] = l;
-                k.n += 1;
-            }
-        }
-        k
-    }
-
     /// The rest criterion of the flexible laws, under zero ground motion:
     /// after an impact at `theta = 0` with `omega`, the free oscillation in
     /// full contact has the amplitude `|omega| sqrt(I0 / K0)`
@@ -719,12 +724,8 @@ impl Simulator {
     /// Redo the step from `(t, y0)` so that it ends at the event `t + dt`,
     /// then polish `dt` by Newton on the step itself until the event
     /// function (`theta`, `|theta| - level`) is below a thousandth of the
-    /// error scale of the motion. Returns the event time, the step, and
-    /// whether the event is confirmed: the polish converged and `theta`
-    /// moves the right way (toward the other side at an impact, outward at
-    /// overturning). An unconfirmed event (the interpolant of a step whose
-    /// error is below the floor can cross where the motion does not) leaves
-    /// a plain step to that time.
+    /// error scale of the motion. Returns the event time, the step, and the
+    /// verdict ([`EventStatus`]).
     #[allow(clippy::too_many_arguments)]
     fn step_to_event<P: Pair>(
         &self,
@@ -740,11 +741,11 @@ impl Simulator {
         mut dt: f64,
         h_max: f64,
         ev: &mut Events,
-    ) -> (f64, StepOut, bool) {
+    ) -> (f64, StepOut, EventStatus) {
         let target = match hit {
             Hit::Impact => 0.0,
             Hit::Overturn => side * self.model.theta_ov,
-            Hit::Kink(i) => side * self.kinks().as_slice()[i],
+            Hit::Kink(i) => side * self.kinks.as_slice()[i],
         };
         let mut out = StepOut {
             y: y0,
@@ -776,16 +777,19 @@ impl Simulator {
             dt = next;
         }
         let moving = side * out.y[1];
-        let progress = t + dt > t;
-        let confirmed = converged
-            && progress
-            && out.err <= 1.0
-            && match hit {
-                Hit::Impact => moving < 0.0,
-                Hit::Overturn => moving > 0.0,
-                Hit::Kink(_) => true,
-            };
-        (t + dt, out, confirmed)
+        let direction = match hit {
+            Hit::Impact => moving < 0.0,
+            Hit::Overturn => moving > 0.0,
+            Hit::Kink(_) => true,
+        };
+        let status = if t + dt <= t || !direction {
+            EventStatus::Spurious
+        } else if converged && out.err <= 1.0 {
+            EventStatus::Confirmed
+        } else {
+            EventStatus::Retry
+        };
+        (t + dt, out, status)
     }
 
     /// Outputs at `state` under ground acceleration `ag` (m/s²).
@@ -900,6 +904,22 @@ fn attempt<P: Pair>(
     }
 }
 
+/// The verdict on an event found on the dense output (see
+/// `Simulator::step_to_event`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum EventStatus {
+    /// Located to the last bits by a step that passes the error test, with
+    /// `theta` moving the right way: applied.
+    Confirmed,
+    /// `theta` does not move the right way there (the interpolant of a step
+    /// whose error is below the floor can cross where the motion does not),
+    /// or no time passes: no event, the accepted step stands.
+    Spurious,
+    /// The step to the event failed the error test or the polish did not
+    /// converge: the step is retried shorter.
+    Retry,
+}
+
 /// The method of a step: the explicit pair, or RODAS with its Jacobian.
 #[derive(Clone, Copy, Debug)]
 enum Kind {
@@ -921,8 +941,72 @@ const R_MAX: f64 = 0.5;
 /// Kink levels of `|theta|`, at most a few.
 #[derive(Clone, Copy, Debug, Default)]
 struct Kinks {
-    levels: [f64; 4],
+    levels: [f64; 8],
     n: usize,
+}
+
+/// Rotations where the right-hand side has a kink (flexible laws), below
+/// `thetaOv`: there `af'` (hence `I'`, which the `shiftingPivot` term
+/// multiplies by `omega²`) is continuous but its derivative jumps, and a
+/// step across would see a low-order error and be rejected several times,
+/// so steps are cut there. They are the regime thresholds `thetaJo` and
+/// `thetaC`, and the rotations where the contact edge `a` or the plastic
+/// edge `xp = a - fm / (kn phi)` passes a corner of the width function:
+/// the flanges of a hollow rectangle (`w` jumps), the inner circle of a
+/// hollow circle (`w'` is infinite). Found by bisection on the contact
+/// solve (`a` decreases with `phi` beyond `thetaJo`, `xp` increases beyond
+/// `thetaC`).
+fn find_kinks(model: &Model) -> Kinks {
+    let mut k = Kinks::default();
+    let (kn, fm) = match model.interface.law() {
+        Law::Rigid => return k,
+        Law::Elastic { kn } => (kn, f64::INFINITY),
+        Law::ElastoPlastic { kn, fm } => (kn, fm),
+    };
+    let ov = model.theta_ov;
+    let mut push = |l: f64| {
+        if l > 0.0 && l < ov && k.n < k.levels.len() {
+            k.levels[k.n] = l;
+            k.n += 1;
+        }
+    };
+    let (jo, c) = (model.interface.theta_jo(), model.interface.theta_c());
+    push(jo);
+    push(c);
+    let corners: &[f64] = match *model.interface.shape() {
+        Shape::HollowRectangle { b, t, .. } => &[t, b - t],
+        Shape::HollowCircle { ro, ri } => &[ro - ri, ro + ri],
+        _ => &[],
+    };
+    let a = |phi: f64| model.interface.contact(phi).a;
+    let xp = |phi: f64| a(phi) - fm / (kn * phi);
+    for &x in corners {
+        // a(phi) = x: a from D at thetaJo down
+        if jo < ov && a(ov) < x {
+            push(bisect(|p| x - a(p), jo, ov));
+        }
+        // xp(phi) = x: xp from 0 at thetaC up
+        if c < ov && xp(ov) > x {
+            push(bisect(|p| xp(p) - x, c, ov));
+        }
+    }
+    k
+}
+
+/// Root of a function increasing through 0 on `[lo, hi]`, by bisection.
+fn bisect(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if f(mid) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    0.5 * (lo + hi)
 }
 
 impl Kinks {

@@ -77,3 +77,73 @@ pub fn rigid_block(b: f64, h: f64) -> Model {
     .build()
     .unwrap()
 }
+
+/// Rotations in `(0, phi)` where the restoring moment `MR(phi)` is not
+/// smooth: the regime thresholds, and where the contact edge `a` or the
+/// plastic edge `xp = a - fm / (kn phi)` passes a corner of the width
+/// function (hollow sections). Found by bisection on the contact solve.
+pub fn moment_breaks(m: &Model, phi: f64) -> Vec<f64> {
+    use rocking::{Law, Shape};
+    let mut out = Vec::new();
+    for l in [m.interface.theta_jo(), m.interface.theta_c()] {
+        if l > 0.0 && l < phi {
+            out.push(l);
+        }
+    }
+    let corners: Vec<f64> = match *m.interface.shape() {
+        Shape::HollowRectangle { b, t, .. } => vec![t, b - t],
+        Shape::HollowCircle { ro, ri } => vec![ro - ri, ro + ri],
+        _ => vec![],
+    };
+    let (kn, fm) = match m.interface.law() {
+        Law::Elastic { kn } => (kn, f64::INFINITY),
+        Law::ElastoPlastic { kn, fm } => (kn, fm),
+        Law::Rigid => return out,
+    };
+    let edges = |p: f64| {
+        let c = m.interface.contact(p);
+        [c.a, c.a - fm / (kn * p)]
+    };
+    // scan geometrically from far below the first threshold
+    let lo = 1e-6 * m.interface.theta_jo().min(phi);
+    let n = 2000;
+    let ratio = (phi / lo).powf(1.0 / n as f64);
+    for &x in &corners {
+        for k in 0..2 {
+            let mut p0 = lo;
+            let mut f0 = edges(p0)[k] - x;
+            for i in 1..=n {
+                let p1 = lo * ratio.powi(i);
+                let f1 = edges(p1)[k] - x;
+                if f0.is_finite() && f1.is_finite() && f0 * f1 < 0.0 {
+                    let (mut a, mut b) = (p0, p1);
+                    for _ in 0..200 {
+                        let c = 0.5 * (a + b);
+                        if (edges(c)[k] - x) * f0 > 0.0 {
+                            a = c;
+                        } else {
+                            b = c;
+                        }
+                    }
+                    out.push(0.5 * (a + b));
+                }
+                p0 = p1;
+                f0 = f1;
+            }
+        }
+    }
+    out.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    out
+}
+
+/// Potential energy `V(phi) = ∫_0^phi W hW`, by Gauss-Legendre between the
+/// non-smooth points of the restoring moment.
+pub fn potential(m: &Model, phi: f64, breaks: &[f64]) -> f64 {
+    let f = |p: f64| m.restoring_moment(p).0;
+    let mut pts = vec![0.0];
+    pts.extend(breaks.iter().copied().filter(|&b| b > 0.0 && b < phi));
+    pts.push(phi);
+    pts.windows(2)
+        .map(|w| quad_adaptive(&f, w[0], w[1], 1e-14))
+        .sum()
+}
