@@ -147,7 +147,8 @@ def plot_fig18(curves, cases, out):
 # 2. time histories through the FMU
 # --------------------------------------------------------------------------
 
-def time_histories(record, rec_label, standin, out, workers, fmu_path, stop_time, only=None, hg=None, ic=None):
+def time_histories(record, rec_label, standin, out, workers, fmu_path, stop_time, only=None, hg=None, ic=None,
+                   rtol=None):
     cases = dharahara_cases(hg=hg, ic=ic)
     if only:
         unknown = [c for c in only if c not in cases]
@@ -155,7 +156,7 @@ def time_histories(record, rec_label, standin, out, workers, fmu_path, stop_time
             sys.exit(f"unknown cases {unknown}; known: {', '.join(cases)}")
         cases = {c: cases[c] for c in only}
     log(f"[2/3] time histories through the FMU: {len(cases)} cases under {rec_label}, "
-        f"{workers} worker process(es)")
+        f"{workers} worker process(es), relative tolerance {rtol if rtol else 'the FMU default'}")
     t0 = time.perf_counter()
 
     def progress(done, total, row):
@@ -165,7 +166,7 @@ def time_histories(record, rec_label, standin, out, workers, fmu_path, stop_time
         log(f"      [{done:2d}/{total}] {row['case']:14s} {state:42s} "
             f"({row['wall_s']:.2f} s; {time.perf_counter() - t0:5.1f} s elapsed)")
 
-    df = run_grid(cases, records={rec_label: record}, workers=workers, fmu=fmu_path,
+    df = run_grid(cases, records={rec_label: record}, workers=workers, fmu=fmu_path, rtol=rtol,
                   stop_time=stop_time, histories=True, progress=progress,
                   outputs=("theta", "thetaOverAlpha", "impacts", "regime"))
     wall = time.perf_counter() - t0
@@ -251,7 +252,8 @@ def family(group, fm_pa):
     return f"{group}, " + ("no crushing" if math.isinf(fm_pa) else f"fm = {fm_pa / 1e6:g} MPa")
 
 
-def scale_study(th, record, rec_label, standin, out, workers, fmu_path, stop_time, scales, hg=None, ic=None):
+def scale_study(th, record, rec_label, standin, out, workers, fmu_path, stop_time, scales, hg=None, ic=None,
+                rtol=None):
     """The same cases with the record scaled: how many overturn, per family."""
     all_cases = dharahara_cases(hg=hg, ic=ic)
     cases = {c: all_cases[c] for c in th["case"]}
@@ -264,7 +266,7 @@ def scale_study(th, record, rec_label, standin, out, workers, fmu_path, stop_tim
             log(f"      {done}/{total} runs ({time.perf_counter() - t0:.1f} s)")
 
     df = run_grid(cases, records={rec_label: record}, scales=scales, workers=workers, fmu=fmu_path,
-                  stop_time=stop_time, progress=progress)
+                  stop_time=stop_time, progress=progress, rtol=rtol)
     info = [case_info(c) for c in df["case"]]
     df.insert(1, "group", [i[0] for i in info])
     df["kn_Pa_per_m"], df["fm_Pa"] = [i[1] for i in info], [i[2] for i in info]
@@ -411,6 +413,9 @@ def main(argv=None):
     ap.add_argument("--scales", default="1.5,2",
                     help="scale factors of the scale study (default 1.5,2; '' to skip it)")
     ap.add_argument("--cases", help="comma-separated case ids to simulate (default: all 49)")
+    ap.add_argument("--rtol", type=float, default=1e-11,
+                    help="the FMU's relative tolerance (default 1e-11: converged outcomes, see docs/dharahara.md; "
+                         "the FMU's own default is looser)")
     ap.add_argument("--hg", type=float, help="height of G, m, instead of R0 cos(alpha) = 30.20 (sensitivity)")
     ap.add_argument("--ic", type=float, help="inertia about G, kg m2, instead of the hollow cylinder of height 2 hG")
     ap.add_argument("--curves-only", action="store_true", help="moment-rotation curves only (no FMU)")
@@ -432,7 +437,7 @@ def main(argv=None):
             f"PGA = {record.pga_g:.3f} g, PGV = {100 * record.pgv:.1f} cm/s")
         only = [c.strip() for c in args.cases.split(",") if c.strip()] if args.cases else None
         th, wall = time_histories(record, rec_label, standin, out, args.workers, args.fmu, args.stop_time, only,
-                                  args.hg, args.ic)
+                                  args.hg, args.ic, args.rtol)
         # the FMU's thetaOv against the moment-rotation curves' (two codes paths: Rust example vs FMU)
         dev = max((abs(r["thetaOv"] / mr.loc[r["case"], "thetaOv"] - 1) for _, r in th.iterrows()
                    if not r["error"]), default=float("nan"))
@@ -451,8 +456,8 @@ def main(argv=None):
             if standin:
                 f.write("# THE RECORD IS A SYNTHETIC STAND-IN for KATNP N-S, not the real record: "
                         "results are indicative only\n")
-            f.write(f"# total wall time {wall:.1f} s with {args.workers} worker(s); "
-                    "peak |theta|/alpha over 0.01 s samples\n")
+            f.write(f"# total wall time {wall:.1f} s with {args.workers} worker(s); relative tolerance "
+                    f"{args.rtol}; peak |theta|/alpha over 0.01 s samples\n")
             summary.to_csv(f, index=False, float_format="%.6g")
         log("\n[summary] record: " + rec_label)
         with pd.option_context("display.width", 200, "display.max_rows", 100):
@@ -477,7 +482,7 @@ def main(argv=None):
     if th is not None and args.scales.strip():
         scales = [float(x) for x in args.scales.split(",") if x.strip()]
         study, _ = scale_study(th, record, rec_label, standin, out, args.workers, args.fmu, args.stop_time,
-                               scales, args.hg, args.ic)
+                               scales, args.hg, args.ic, args.rtol)
 
     rows = claims(mr, th, standin, study)
     cpath = out / "dharahara_claims.csv"

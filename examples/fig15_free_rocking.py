@@ -96,6 +96,7 @@ def main(argv=None):
     ap.add_argument("--kn", type=float, default=FIG15_KN, help="interface stiffness, Pa/m (default 340e6)")
     ap.add_argument("--fm", type=float, default=None, help="compressive strength, Pa (default: no crushing)")
     ap.add_argument("--r0", type=float, default=FIG15_R0, help="block size R0, m (default 3)")
+    ap.add_argument("--rtol", type=float, default=1e-11, help="the FMU's relative tolerance (default 1e-11)")
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--fmu", default=None)
     args = ap.parse_args(argv)
@@ -111,6 +112,7 @@ def main(argv=None):
     print(f"Fig. 15 free rocking: {len(FIG15_ALPHAS)} blocks x 2 equations, R0 = {args.r0:g} m, "
           f"theta0/alpha = 0.9, {interface}, {STOP_TIME:g} s", flush=True)
     df = run_grid(cases, workers=args.workers, fmu=args.fmu, stop_time=STOP_TIME, output_interval=DT_OUT,
+                  rtol=args.rtol,
                   histories=True, outputs=("theta", "thetaOverAlpha", "impacts"))
     runs = {c: (h, e) for c, h, e in zip(df["case"], df["history"], df["error"])}
     rows = []
