@@ -52,3 +52,40 @@ def unzipped(fmu_path, tmp_path_factory) -> str:
     from fmpy import extract
 
     return extract(fmu_path, unzipdir=str(tmp_path_factory.mktemp("fmu")))
+
+
+_FMPY_LOGGER = []
+
+
+# The test modules of the FMU itself (the others manage fmpy's logger themselves).
+FMU_MODULES = {"test_model_description", "test_fmi_calls", "test_state", "test_simulation", "test_crosscheck"}
+
+
+@pytest.fixture(autouse=True)
+def fmpy_logger_proxy(request):
+    """fmpy formats FMU messages with a C proxy that keeps the last Python
+    logger given to `addLoggerProxy` in one process-wide variable. A test (or
+    a library under test) whose logger is garbage collected leaves it
+    dangling, and the next FMU message through fmpy's default callbacks then
+    crashes the process. Around every test of the FMU modules, point it at
+    fmpy's own logger, kept alive for the process."""
+    if request.module.__name__ not in FMU_MODULES:
+        yield
+        return
+    from ctypes import byref
+
+    from fmpy.fmi2 import fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, printLogMessage
+    from fmpy.logging import addLoggerProxy
+
+    def restore():
+        if not _FMPY_LOGGER:
+            callbacks = fmi2CallbackFunctions()
+            thunk = fmi2CallbackLoggerTYPE(printLogMessage)
+            _FMPY_LOGGER.extend([callbacks, thunk])
+        callbacks, thunk = _FMPY_LOGGER
+        callbacks.logger = thunk  # the proxy only takes over a logger that is not itself
+        addLoggerProxy(byref(callbacks))
+
+    restore()
+    yield
+    restore()

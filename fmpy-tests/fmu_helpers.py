@@ -27,6 +27,21 @@ _free = _libc.free
 
 OK, WARNING, DISCARD, ERROR, FATAL = 0, 1, 2, 3, 4
 
+# Callbacks handed to an FMU must outlive every instance that may call them
+# (and fmpy's C logger proxy keeps the last one in a process-wide variable):
+# keep them for the life of the process.
+_KEEP_ALIVE = []
+
+
+def _restore_fmpy_logger():
+    """Points fmpy's process-wide proxy back at fmpy's own printing logger."""
+    from fmpy.fmi2 import printLogMessage
+
+    restore = fmi2CallbackFunctions()
+    restore.logger = fmi2CallbackLoggerTYPE(printLogMessage)
+    addLoggerProxy(byref(restore))
+    _KEEP_ALIVE.append(restore)
+
 
 class Host:
     """One instance with its own logger that records (status, category, message)."""
@@ -51,6 +66,7 @@ class Host:
             self.messages.append((status, category.decode(), text))
 
         self._log = fmi2CallbackLoggerTYPE(log)
+        self.proxy = proxy
         self.callbacks = fmi2CallbackFunctions()
         self.callbacks.logger = self._log
         self.callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(_calloc)
@@ -61,6 +77,7 @@ class Host:
             # fmpy's C proxy formats the message with vsnprintf, as a C host
             # would (it keeps one logger per process: one such host at a time)
             addLoggerProxy(byref(self.callbacks))
+        _KEEP_ALIVE.append((self._log, self.callbacks))
         self.fmu = FMU2Slave(
             guid=self.md.guid,
             unzipDirectory=unzipped,
@@ -111,6 +128,8 @@ class Host:
 
     def free(self):
         self.fmu.freeInstance()
+        if self.proxy:
+            _restore_fmpy_logger()
 
 
 def fmpy_steps(t, ag, start, stop, interval, derivatives):
