@@ -252,6 +252,16 @@ def family(group, fm_pa):
     return f"{group}, " + ("no crushing" if math.isinf(fm_pa) else f"fm = {fm_pa / 1e6:g} MPa")
 
 
+def robustness(th, study):
+    """Per case of th: does the outcome (overturned or not) stay the same with the record
+    scaled by 0.99 and 1.01? None when the study has no such scales."""
+    near = study[study["scale"].between(0.985, 1.015)]
+    if not (near["scale"] != 1.0).any():
+        return [None] * len(th)
+    same = near.groupby("case")["overturned"].agg(lambda v: v.astype(bool).nunique() == 1)
+    return [bool(same.get(c, True)) for c in th["case"]]
+
+
 def scale_study(th, record, rec_label, standin, out, workers, fmu_path, stop_time, scales, hg=None, ic=None,
                 rtol=None):
     """The same cases with the record scaled: how many overturn, per family."""
@@ -349,7 +359,7 @@ def claims(mr, th, standin, study=None):
         if study is not None:
             sc = study[(study["fm_Pa"] < math.inf) & (study["scale"] != 1.0)]
             more = "; record scaled: " + ", ".join(
-                f"x{s:g}: {int(g['overturned'].sum())} of {len(g)}" for s, g in sc.groupby("scale"))
+                f"x{s:g}: {int(g['overturned'].astype(bool).sum())} of {len(g)}" for s, g in sc.groupby("scale"))
         rows.append(("with crushing every case overturns (Fig. 20b)", "all overturn",
                      f"{n_ov} of {len(crush)} crushing cases overturn" + more
                      + (" (stand-in record)" if standin else ""), ""))
@@ -381,7 +391,10 @@ def write_markdown(out, mr, th, study, claim_rows, rec_label, standin):
         cap[c] = cap[c].map(lambda v: f"{v:.3f}")
     parts += ["## Moment-rotation curves: capacities relative to the rigid interface\n", _md_table(cap), ""]
     if th is not None:
-        t = th[["case", "overturned", "t_overturn", "peak_theta_over_alpha", "impacts", "wall_s"]].copy()
+        t = th[["case", "overturned", "t_overturn", "peak_theta_over_alpha", "impacts", "wall_s"]
+               + (["robust_1pct"] if "robust_1pct" in th else [])].copy()
+        if "robust_1pct" in t:
+            t["robust_1pct"] = t["robust_1pct"].map(lambda v: "" if v is None else ("yes" if v else "NO"))
         t["t_overturn"] = t["t_overturn"].map(lambda v: "" if math.isnan(v) else f"{v:.2f}")
         t["peak_theta_over_alpha"] = t["peak_theta_over_alpha"].map(lambda v: f"{v:.3g}")
         t["wall_s"] = t["wall_s"].map(lambda v: f"{v:.2f}")
@@ -410,8 +423,9 @@ def main(argv=None):
     ap.add_argument("--workers", type=int, default=2, help="worker processes for the FMU runs (default 2)")
     ap.add_argument("--fmu", default=None, help="the FMU (default target/fmu/RockingBlock.fmu)")
     ap.add_argument("--stop-time", type=float, default=None, help="end of the time histories (default: the record's)")
-    ap.add_argument("--scales", default="1.5,2",
-                    help="scale factors of the scale study (default 1.5,2; '' to skip it)")
+    ap.add_argument("--scales", default="0.99,1.01,1.5,2",
+                    help="scale factors of the scale study (default 0.99,1.01,1.5,2: robustness of the unscaled "
+                         "outcomes and stronger shaking; '' to skip it)")
     ap.add_argument("--cases", help="comma-separated case ids to simulate (default: all 49)")
     ap.add_argument("--rtol", type=float, default=1e-11,
                     help="the FMU's relative tolerance (default 1e-11: converged outcomes, see docs/dharahara.md; "
@@ -428,7 +442,7 @@ def main(argv=None):
     p17, p18 = plot_fig17(mr_curves, mr, out), plot_fig18(mr_curves, mr, out)
     log(f"      wrote {p17.name}, {p18.name}")
 
-    th = None
+    th = study = None
     standin = args.record is None
     if not args.curves_only:
         record = gm.katnp(args.record, component=args.component)
@@ -446,8 +460,15 @@ def main(argv=None):
         f1 = plot_histories(th, record, rec_label, "interface", out)
         f2 = plot_histories(th, record, rec_label, "foundation", out)
         log(f"      wrote {hp.name}, {f1.name}, {f2.name}")
+        study = None
+        if args.scales.strip():
+            scales = [float(x) for x in args.scales.split(",") if x.strip()]
+            study, _ = scale_study(th, record, rec_label, standin, out, args.workers, args.fmu, args.stop_time,
+                                   scales, args.hg, args.ic, args.rtol)
+            th["robust_1pct"] = robustness(th, study)
         summary = th[["case", "group", "kn_Pa_per_m", "fm_Pa", "overturned", "t_overturn",
-                      "peak_theta_over_alpha", "impacts", "thetaOv", "wall_s", "error"]].copy()
+                      "peak_theta_over_alpha", "impacts", "thetaOv", "wall_s", "error"]
+                     + (["robust_1pct"] if "robust_1pct" in th else [])].copy()
         summary.insert(4, "thetaOv_over_alpha", summary["thetaOv"] / mr["alpha"].iloc[0])
         summary = summary.drop(columns="thetaOv")
         spath = out / "dharahara_summary.csv"
@@ -477,12 +498,6 @@ def main(argv=None):
             f"limit kn = W hG / Is = {kn_lim:.6e} Pa/m; the softest foundation (85 MPa/m) has a margin of "
             f"{mr.loc['F85_elastic', 'stability_margin_knIs_over_WhG']:.2f}x.\n"
             f"FMU with kn = 0.9 x the limit: {msg}\n")
-
-    study = None
-    if th is not None and args.scales.strip():
-        scales = [float(x) for x in args.scales.split(",") if x.strip()]
-        study, _ = scale_study(th, record, rec_label, standin, out, args.workers, args.fmu, args.stop_time,
-                               scales, args.hg, args.ic, args.rtol)
 
     rows = claims(mr, th, standin, study)
     cpath = out / "dharahara_claims.csv"
