@@ -25,7 +25,7 @@ fmi2LastSuccessfulTime, whose outputs are the last row.
 import math
 import shutil
 import time as _time
-from ctypes import byref, c_double, c_int, c_uint32
+from ctypes import c_double, c_int, c_uint32
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -47,6 +47,28 @@ DEFAULT_OUTPUTS = ("theta", "omega", "thetaOverAlpha", "MR", "af", "regime", "im
 CALCULATED = ("mass", "weight", "R0", "alpha", "IO", "etaHousner", "thetaJo", "thetaC", "thetaOv")
 
 _STATUS = ["OK", "WARNING", "DISCARD", "ERROR", "FATAL", "PENDING"]
+
+
+# The FMU's logger, one for the process and alive as long as it: the messages of
+# the run in progress go to _MESSAGES (runs in one process are sequential).
+# fmpy's C proxy (fmpy.logging.addLoggerProxy), which would format the variadic
+# arguments, is not used: it keeps the last Python logger in one process-wide
+# variable, so a second RockingFMU would take the first one's messages and a
+# garbage-collected logger would leave it dangling for every other fmpy user.
+# The FMU formats its messages itself; '%%' (FMI's escaped percent) is undone.
+_MESSAGES = []
+
+
+def _log(_component, _instance, status, category, message):
+    label = _STATUS[status] if 0 <= status < len(_STATUS) else str(status)
+    text = (message or b"").decode(errors="replace").replace("%%", "%")
+    _MESSAGES.append(f"[{label}] {(category or b'').decode(errors='replace')}: {text}")
+
+
+_CALLBACKS = fmi2CallbackFunctions()
+_CALLBACKS.logger = fmi2CallbackLoggerTYPE(_log)
+_CALLBACKS.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+_CALLBACKS.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
 
 
 class FMUError(RuntimeError):
@@ -111,7 +133,6 @@ class RockingFMU:
         if missing:
             raise FMUError(f"{self.path or self.unzipdir}: variables missing from modelDescription.xml: {missing}")
         self._slave = None
-        self._messages = []
 
     # context manager: delete the extraction we made
     def __enter__(self):
@@ -156,23 +177,7 @@ class RockingFMU:
             slave = FMU2Slave(guid=md.guid, unzipDirectory=str(self.unzipdir),
                               modelIdentifier=md.coSimulation.modelIdentifier,
                               instanceName="RockingBlock")
-            messages = self._messages
-
-            def logger(_component, _instance, status, category, message):
-                label = _STATUS[status] if 0 <= status < len(_STATUS) else str(status)
-                messages.append(f"[{label}] {(category or b'').decode(errors='replace')}: "
-                                f"{(message or b'').decode(errors='replace')}")
-
-            callbacks = fmi2CallbackFunctions()
-            callbacks.logger = fmi2CallbackLoggerTYPE(logger)
-            callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-            callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-            try:
-                from fmpy.logging import addLoggerProxy
-                addLoggerProxy(byref(callbacks))
-            except Exception:  # noqa: BLE001 - messages then arrive unformatted
-                pass
-            self._callbacks, self._logger = callbacks, logger  # keep them alive
+            self._callbacks = _CALLBACKS
             self._slave = slave
         return self._slave
 
@@ -250,7 +255,7 @@ class RockingFMU:
         val, order = (c_double * 1)(), (c_int * 1)(1)
 
         slave = self._library()
-        self._messages.clear()
+        _MESSAGES.clear()
         overturned = False
         nrec = 0
         component = None
@@ -317,7 +322,7 @@ class RockingFMU:
         except Exception as exc:  # noqa: BLE001 - FMICallException and instantiation errors
             if isinstance(exc, FMUError):
                 raise
-            detail = "; ".join(self._messages) or "no message logged"
+            detail = "; ".join(_MESSAGES) or "no message logged"
             raise FMUError(f"{exc} (FMU log: {detail})") from exc
         finally:
             if component is not None:
@@ -346,7 +351,7 @@ class RockingFMU:
             impacts=int(final["impacts"]),
             calculated=calculated,
             wall=_time.perf_counter() - t_start,
-            messages=list(self._messages),
+            messages=list(_MESSAGES),
         )
 
     def calculated(self, params):
