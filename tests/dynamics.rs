@@ -227,3 +227,77 @@ fn rigid_chattering_ends_in_rest_at_the_accumulation_time() {
     let ev = sim.advance(&mut st, 1e6, GroundInput::default());
     assert!(st.at_rest && st.t == 1e6 && ev.stats.evals == 0);
 }
+
+#[test]
+fn uplift_threshold_and_direction() {
+    let m = rigid_block(0.5, 2.5);
+    let sim = Simulator::new(m, DEFAULT_RTOL);
+    let thr = m.body.g * m.body.b / m.body.hg; // g tan(alpha)
+    assert!((sim.uplift_acceleration() / thr - 1.0).abs() < 1e-15);
+    // below the threshold: at rest, no work
+    let mut st = sim.initial_state(0.0, 0.0);
+    let ev = sim.advance(
+        &mut st,
+        10.0,
+        GroundInput {
+            ag: 0.999 * thr,
+            dag: 0.0,
+        },
+    );
+    assert!(st.at_rest && ev.stats.evals == 0 && !ev.uplift);
+    // negative ag lifts toward theta > 0, positive toward theta < 0
+    for (ag, sign) in [(-1.01 * thr, 1.0), (1.01 * thr, -1.0)] {
+        let mut st = sim.initial_state(0.0, 0.0);
+        let ev = sim.advance(&mut st, 0.1, GroundInput { ag, dag: 0.0 });
+        assert!(ev.uplift && !st.at_rest);
+        assert_eq!(st.theta.signum(), sign, "ag = {ag}: {st:?}");
+    }
+    // a ramp crossing the threshold at t* = 0.5 s: uplift found there
+    let mut st = sim.initial_state(0.0, 0.0);
+    let ev = sim.advance_to_event(
+        &mut st,
+        1.0,
+        GroundInput {
+            ag: 0.0,
+            dag: -2.0 * thr,
+        },
+    );
+    assert!(ev.uplift);
+    assert!((st.t - 0.5).abs() < 1e-15, "uplift at {}", st.t);
+}
+
+#[test]
+fn save_and_restore_reproduce_a_run_bit_for_bit() {
+    let flexible = rocking::Params::default().build().unwrap();
+    for m in [rigid_block(0.5, 2.5), flexible] {
+        let sim = Simulator::new(m, DEFAULT_RTOL);
+        let thr = sim.uplift_acceleration();
+        let input = |k: usize| {
+            let t = k as f64 * 0.01;
+            let ag = |t: f64| -1.1 * thr * (6.0 * t).sin() * (-0.3 * t).exp();
+            GroundInput {
+                ag: ag(t),
+                dag: (ag(t + 0.01) - ag(t)) / 0.01,
+            }
+        };
+        let mut st = sim.initial_state(0.0, 0.0);
+        for k in 0..300 {
+            sim.advance(&mut st, (k + 1) as f64 * 0.01, input(k));
+        }
+        let saved = st;
+        let mut a = Vec::new();
+        for k in 300..1500 {
+            sim.advance(&mut st, (k + 1) as f64 * 0.01, input(k));
+            a.push(st);
+        }
+        let mut st = saved;
+        for (i, k) in (300..1500).enumerate() {
+            sim.advance(&mut st, (k + 1) as f64 * 0.01, input(k));
+            assert_eq!(st, a[i]);
+            assert_eq!(st.theta.to_bits(), a[i].theta.to_bits());
+            assert_eq!(st.omega.to_bits(), a[i].omega.to_bits());
+        }
+        let last = a.last().unwrap();
+        assert!(last.impacts > 0 && !last.overturned, "{last:?}");
+    }
+}
