@@ -28,6 +28,7 @@
 mod dense;
 mod eom;
 mod erk;
+mod free;
 mod rodas;
 
 use crate::interface::{Law, Regime};
@@ -37,6 +38,7 @@ use crate::shape::Shape;
 use dense::{first_event, Hermite, Hit};
 use eom::{side_of, Eom};
 use erk::{Dop853, Dp5, Pair, StepOut, Tol};
+use free::FreeRigid;
 use rodas::Jac;
 
 /// Relative tolerance used when the caller gives none (or a non-positive
@@ -626,11 +628,15 @@ impl Simulator {
                             st.impacts += 1;
                             ev.impacts += 1;
                             let ag = eom.ag(t_ev);
-                            let rest = if eom.rigid {
+                            let quiet = ag == 0.0 && eom.dag() == 0.0;
+                            let mut rest = if eom.rigid {
                                 self.comes_to_rest(st.omega, ag)
                             } else {
-                                ag == 0.0 && eom.dag() == 0.0 && self.settles(st.omega)
+                                quiet && self.settles(st.omega)
                             };
+                            if eom.rigid && quiet && !rest && !stop_at_event {
+                                rest = self.free_half_cycles(st, t_end, ev);
+                            }
                             if rest {
                                 st.omega = 0.0;
                                 st.at_rest = true;
@@ -686,6 +692,30 @@ impl Simulator {
             tol.atol_theta / tol.rtol,
             tol.atol_omega / tol.rtol,
         )
+    }
+
+    /// Rigid law without ground motion, after an impact: the half-cycles
+    /// that end before `t_end` in closed form (see `free`), each with its
+    /// impact and the rest test. Returns whether the body came to rest; else
+    /// `st` is just after the last impact that fits, and the integrator
+    /// takes over (for the partial half-cycle, or overturning).
+    fn free_half_cycles(&self, st: &mut State, t_end: f64, ev: &mut Events) -> bool {
+        let b = &self.model.body;
+        let free = FreeRigid::new(b.weight, b.r0, b.io, b.alpha);
+        while let Some(phi) = free.peak(st.omega) {
+            let t_next = st.t + 2.0 * free.fall_time(phi);
+            if t_next.is_nan() || t_next >= t_end {
+                break;
+            }
+            st.t = t_next;
+            st.omega *= -self.model.eta;
+            st.impacts += 1;
+            ev.impacts += 1;
+            if self.comes_to_rest(st.omega, 0.0) {
+                return true;
+            }
+        }
+        false
     }
 
     /// The rest criterion of the flexible laws, under zero ground motion:
