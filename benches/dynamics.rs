@@ -811,11 +811,7 @@ fn main() {
         csv.row("dharahara", "RK4", h, err, secs, evals);
     }
     let b = md.body;
-    let scipy_rtols: &[f64] = if quick {
-        &[1e-6]
-    } else {
-        &[1e-4, 1e-6, 1e-8, 1e-10]
-    };
+    let scipy_rtols: &[f64] = if quick { &[1e-6] } else { &[1e-4, 1e-6, 1e-8] };
     let req = format!(
         r#"{{"case":"flexible","rtols":{},"params":{{"ro":3.99,"ri":2.12,"W":{:e},"hG":{:e},"Ic":{:e},"g":{:e},"eta":{:e},"kn":2e9,"fm":2e6,"dt":{DT:e},"ag":{},"t_end":{T_DHARAHARA:e}}}}}"#,
         json_list(scipy_rtols),

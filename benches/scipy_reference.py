@@ -26,6 +26,8 @@ Cases:
   af' = -(kn / W) * (second moment of the elastic zone about its centroid).
   Events: theta = 0 (impact), omega = 0 (peaks, recorded), |theta| =
   thetaOv (overturning, terminal), with thetaOv the first root of hW here.
+  The input is integrated sample interval by sample interval while the
+  ground moves (no step across a kink of ag), as the FMU is driven.
   Returns the impact times, the peaks and the overturning time.
 
 Tolerances: rtol as given, atol = rtol * (thetaOv, p thetaOv) with
@@ -232,25 +234,39 @@ def flexible(p, rtol):
     first = next((a for a in ag_s if a != 0.0), 1.0)
     side = -math.copysign(1.0, first)
     times, peaks, t_ov = [], [], None
-    while t < t_end:
-        # theta = 0 at the start of each segment: only the return counts
-        impact.direction = -side
-        sol = solve_ivp(make(side), (t, t_end), y, method="DOP853", rtol=rtol, atol=atol,
-                        events=[impact, peak, over])
-        for tt, yy in zip(sol.t_events[1], sol.y_events[1]):
-            if tt > t:
-                peaks.append(abs(yy[0]))
-        if sol.t_events[2].size:
-            t_ov = float(sol.t_events[2][0])
+    # the input is linear between samples: integrate sample interval by
+    # sample interval while it moves (as an FMU master would), so that no
+    # step straddles a kink of ag; then in one piece to t_end
+    last = max((k for k, a in enumerate(ag_s) if a != 0.0), default=0) + 1
+    stops = [k * dt for k in range(1, last + 1) if k * dt < t_end] + [t_end]
+    h = None
+    for stop in stops:
+        while t < stop and t_ov is None:
+            # theta = 0 at the start of a segment after an impact: only the
+            # return counts
+            impact.direction = -side
+            sol = solve_ivp(make(side), (t, stop), y, method="DOP853", rtol=rtol, atol=atol,
+                            events=[impact, peak, over], first_step=h)
+            if len(sol.t) > 1:
+                h = sol.t[-1] - sol.t[-2]
+            for tt, yy in zip(sol.t_events[1], sol.y_events[1]):
+                if tt > t:
+                    peaks.append(abs(yy[0]))
+            if sol.t_events[2].size:
+                t_ov = float(sol.t_events[2][0])
+                break
+            if sol.t_events[0].size and sol.t_events[0][0] > t:
+                t = float(sol.t_events[0][0])
+                om = eta * sol.y_events[0][0][1]
+                times.append(t)
+                y = [0.0, om]
+                side = math.copysign(1.0, om)
+                continue
+            t, y = stop, [sol.y[0][-1], sol.y[1][-1]]
+            if y[0] != 0.0:
+                side = math.copysign(1.0, y[0])
+        if t_ov is not None:
             break
-        if sol.t_events[0].size and sol.t_events[0][0] > t:
-            t = float(sol.t_events[0][0])
-            om = eta * sol.y_events[0][0][1]
-            times.append(t)
-            y = [0.0, om]
-            side = math.copysign(1.0, om)
-            continue
-        break
     return {"impact_times": times, "peaks": peaks, "overturn": t_ov, "theta_ov": theta_ov}
 
 

@@ -145,6 +145,10 @@ pub struct Simulator {
     pub rtol: f64,
     /// Runge-Kutta pair.
     pub method: Method,
+    /// Whether the stiff mode (RODAS, flexible laws) may be entered; `true`
+    /// by default, `false` keeps the explicit pair throughout (for
+    /// measurements, docs/dynamics.md).
+    pub stiff_mode: bool,
     /// Kinks of the right-hand side (computed from `model` by `new`: a
     /// changed model needs a new simulator).
     kinks: Kinks,
@@ -171,6 +175,7 @@ impl Simulator {
             model,
             rtol,
             method,
+            stiff_mode: true,
         }
     }
 
@@ -410,7 +415,7 @@ impl Simulator {
             );
             ev.stats.evals += 1;
         }
-        if eom.rigid {
+        if eom.rigid || !self.stiff_mode {
             st.stiff = false;
         }
         let mut rejected = false;
@@ -510,7 +515,7 @@ impl Simulator {
             // explicit steps held at h rho > STIFF_ON by stability go to
             // RODAS; RODAS steps that an explicit method could take as well
             // (h rho < STIFF_OFF) come back.
-            if !eom.rigid && !last {
+            if !eom.rigid && !last && self.stiff_mode {
                 let stiff_now = if st.stiff {
                     hh * out.rho >= STIFF_OFF
                 } else {
