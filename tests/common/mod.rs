@@ -10,7 +10,6 @@ pub fn tanh_sinh(f: &dyn Fn(f64) -> f64, p: f64, q: f64, rtol: f64) -> f64 {
     if q <= p {
         return 0.0;
     }
-    let c = 0.5 * (p + q);
     let r = 0.5 * (q - p);
     let half_pi = std::f64::consts::FRAC_PI_2;
     let tmax = 3.5;
