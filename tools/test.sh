@@ -11,9 +11,7 @@ cargo fmt --all -- --check
 cargo clippy --workspace --all-targets --quiet -- -D warnings
 echo "== Rust tests"
 cargo test --workspace --release
-if [ -f xtask/src/fmu.rs ] || grep -q '"fmu"' xtask/src/main.rs; then
-  echo "== package the FMU"
-  cargo xtask fmu
-fi
+echo "== package the FMU and its FMI cross-check artefacts"
+cargo xtask crosscheck
 echo "== fmpy suite"
 .venv/bin/python -m pytest fmpy-tests -q
