@@ -8,7 +8,6 @@
 
 mod chost;
 
-use std::f64::consts::PI;
 use std::sync::{Arc, Barrier};
 use std::thread;
 
@@ -20,35 +19,24 @@ const STEPS: usize = 10_000;
 /// Steps at which each instance's FMU state is taken and serialized.
 const SNAPSHOT_EVERY: usize = 2_500;
 
-/// Bursts of shaking: every 10 s, a sine at `f` Hz whose amplitude rises to
-/// `a` and falls back over 4 s, then 6 s of quiet (the block rocks, impacts,
-/// comes to rest, and is shaken again), sampled every 0.01 s.
-fn bursts(a: f64, f: f64) -> Arc<Vec<f64>> {
-    Arc::new(
-        (0..STEPS + 1)
-            .map(|k| {
-                let t = k as f64 * 0.01;
-                let s = t % 10.0;
-                if s < 4.0 {
-                    a * (PI * s / 4.0).sin() * (2.0 * PI * f * t).sin()
-                } else {
-                    0.0
-                }
-            })
-            .collect(),
-    )
-}
-
 /// The two runs of thread `i`: parameters and forcing differ per thread.
 fn jobs(i: usize) -> [Case; 2] {
     let x = i as f64;
     let mut crushing = crushing_case(1.0 + 0.05 * x, 2e5 * (1.0 + 0.05 * x), 0.0);
     let alpha = (0.5f64 / (2.5 * (1.0 + 0.05 * x))).atan();
-    crushing.ground = Ground::Record(bursts(1.2 * 9.81 * alpha.tan(), 1.2 + 0.05 * x));
+    crushing.ground = Ground::Record(Arc::new(bursts(
+        1.2 * 9.81 * alpha.tan(),
+        1.2 + 0.05 * x,
+        STEPS + 1,
+    )));
     crushing.name = format!("crushing #{i}");
     let mut rigid = rigid_case(1.0 + 0.1 * x, 0.0);
     let alpha = (0.4f64 / (2.0 * (1.0 + 0.1 * x))).atan();
-    rigid.ground = Ground::Record(bursts(2.0 * 9.81 * alpha.tan(), 2.5 + 0.1 * x));
+    rigid.ground = Ground::Record(Arc::new(bursts(
+        2.0 * 9.81 * alpha.tan(),
+        2.5 + 0.1 * x,
+        STEPS + 1,
+    )));
     rigid.reals.push((vr::ETA, 0.85 + 0.01 * x));
     rigid.ints.push((
         vr::RESTITUTION,
