@@ -13,5 +13,16 @@ echo "== Rust tests"
 cargo test --workspace --release
 echo "== package the FMU and its FMI cross-check artefacts"
 cargo xtask crosscheck
+echo "== the packaged FMU through the fmi crate's FMI 2.0 importer (fmi-import/)"
+# fmi-sys runs bindgen at build time: it needs libclang (Debian: libclang-dev)
+if ! dpkg -s libclang-dev >/dev/null 2>&1; then
+    sudo=""
+    if [ "$(id -u)" -ne 0 ] && command -v sudo >/dev/null 2>&1; then sudo="sudo"; fi
+    $sudo apt-get update -qq
+    $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libclang-dev
+fi
+cargo fmt --manifest-path fmi-import/Cargo.toml -- --check
+cargo clippy --manifest-path fmi-import/Cargo.toml --release --all-targets --quiet -- -D warnings
+cargo test --release --manifest-path fmi-import/Cargo.toml
 echo "== fmpy suite"
 .venv/bin/python -m pytest fmpy-tests -q
