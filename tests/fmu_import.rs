@@ -8,11 +8,19 @@
 //! it is up to date), so it never runs against a stale archive and needs no
 //! particular order in the test command.
 //!
-//! Why not the `fmi` crate's FMI 2.0 importer: `fmi` 0.8 depends on `fmi-sys`,
-//! whose build script runs bindgen on the FMI headers and needs libclang,
-//! which a machine of this project does not have (only libclang-cpp); and it
-//! would add bindgen, clang-sys, its own zip and an XML stack to every
-//! `cargo test` of the physics crate. A small libloading host is used instead.
+//! The `fmi` crate's FMI 2.0 importer is a second host, in `fmi-import/`
+//! (rigid free rocking against the exact solution, FMU states, error
+//! messages). It is a package of its own, outside this workspace: `fmi` 0.8
+//! depends on `fmi-sys`, whose build script runs bindgen and needs libclang
+//! (`tools/test.sh` installs Debian's libclang-dev), and it would add bindgen,
+//! clang-sys, its own zip and an XML stack to every `cargo test` of the
+//! physics crate. This libloading host stays: it runs without libclang,
+//! checks that every FMI 2.0 co-simulation function is exported (the `fmi`
+//! crate's binding tolerates a missing symbol until it is called, and it
+//! wraps neither `fmi2SetRealInputDerivatives`, `fmi2GetRealOutputDerivatives`
+//! nor `fmi2GetIntegerStatus`), passes its own callbacks and a wrong GUID (the
+//! crate always passes its own logger and the parsed GUID), and compares the
+//! FMU with the engine run directly, bit for bit.
 
 use std::collections::HashMap;
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
