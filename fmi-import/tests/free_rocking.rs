@@ -6,10 +6,11 @@
 //! crate parsed it, not from this project's `model-description` crate.
 //!
 //! The case: a rigid solid block released from `theta0 = 0.8 alpha` at rest,
-//! Housner's restitution, stepped with `fmi2DoStep` at the model's default
-//! communication step; the first ten impacts are compared with the exact
-//! solution of `fmi_import::Housner` (elliptic integrals, this crate's
-//! `src/lib.rs`).
+//! Housner's restitution (the default), stepped with `fmi2DoStep` at the
+//! model's default communication step and at coarser ones; the first ten
+//! impacts are compared with the exact solution of `fmi_import::Housner`
+//! (elliptic integrals, this crate's `src/lib.rs`). Also: FMU states and
+//! error messages through the crate.
 //!
 //! The test packages the FMU first (`cargo xtask fmu` in the repository,
 //! a no-op when it is up to date).
