@@ -272,11 +272,39 @@ impl Simulator {
         self.run(state, t_end, input, true)
     }
 
+    /// Integrates in the call's own time `tau = t - t0` (`t0 = state.t` at
+    /// the call): a step's resolution is then that of `tau`, not that of the
+    /// absolute time, whose last bit at `t = 1e9 s` (1.2e-7 s) is longer
+    /// than a passage through the contact zone of a stiff interface.
     fn run(&self, st: &mut State, t_end: f64, input: GroundInput, stop_at_event: bool) -> Events {
-        let mut ev = Events::default();
         if st.overturned || t_end.is_nan() || t_end <= st.t {
-            return ev;
+            return Events::default();
         }
+        let t0 = st.t;
+        let tau_end = t_end - t0;
+        st.t = 0.0;
+        let mut ev = self.run_local(st, tau_end, input, stop_at_event);
+        let to_absolute = |tau: f64| {
+            if tau >= tau_end {
+                t_end
+            } else {
+                (t0 + tau).min(t_end)
+            }
+        };
+        st.t = to_absolute(st.t);
+        ev.overturned_at = ev.overturned_at.map(to_absolute);
+        ev
+    }
+
+    /// [`run`](Self::run) from `st.t = 0` to `t_end` (call-local times).
+    fn run_local(
+        &self,
+        st: &mut State,
+        t_end: f64,
+        input: GroundInput,
+        stop_at_event: bool,
+    ) -> Events {
+        let mut ev = Events::default();
         let eom = Eom::new(&self.model, st.t, input);
         let tol = self.tol();
         if st.theta == 0.0 && st.omega == 0.0 {
@@ -460,7 +488,14 @@ impl Simulator {
                 Kind::Explicit => P::ERR_EXP,
                 Kind::Rodas(_) => rodas::ERR_EXP,
             };
-            let min_step = 16.0 * f64::EPSILON * t.abs().max(hh);
+            // The smallest step, as the step t + m actually makes once
+            // rounded to a representable time: a step rejected down to it
+            // is then accepted (compared with the unrounded m, the rounded
+            // step could exceed it and be rejected for ever).
+            let min_step = {
+                let m = 16.0 * f64::EPSILON * t.abs().max(hh);
+                ((t + m) - t).max(m)
+            };
             let acceptable = out.err <= 1.0; // false for NaN
             if !acceptable && hh > min_step {
                 ev.stats.rejected += 1;

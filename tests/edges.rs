@@ -1,0 +1,85 @@
+//! The model at the edges of its parameter space, against independent
+//! references:
+//!
+//! - the absolute time does not matter: a run that starts at `t0 = 1e9 s`
+//!   is the run that starts at 0 (regression: at large `t0` the step
+//!   controller hung, or missed the passage through a stiff contact zone);
+
+use std::sync::mpsc;
+use std::thread;
+use std::time::Duration;
+
+use rocking::dynamics::{GroundInput, Simulator, State};
+use rocking::Params;
+
+/// Runs `f` in a thread and panics if it has not finished after `secs`
+/// (a stalled integrator must fail the test, not hang it).
+fn within<T: Send + 'static>(secs: u64, what: &str, f: impl FnOnce() -> T + Send + 'static) -> T {
+    let (tx, rx) = mpsc::channel();
+    thread::spawn(move || {
+        let _ = tx.send(f());
+    });
+    rx.recv_timeout(Duration::from_secs(secs))
+        .unwrap_or_else(|_| panic!("{what}: no answer after {secs} s (stalled)"))
+}
+
+/// Free rocking of the default block released at 0.1 rad, 100 calls of
+/// 0.02 s from `t0`.
+fn free_rocking_from(kn: f64, fm: f64, t0: f64) -> State {
+    let p = Params {
+        kn,
+        fm,
+        theta0: 0.1,
+        ..Params::default()
+    };
+    let sim = Simulator::new(p.build().unwrap(), 1e-9);
+    let mut s = sim.initial_state(p.theta0, 0.0);
+    s.t = t0;
+    for k in 1..=100 {
+        let ev = sim.advance(&mut s, t0 + 0.02 * k as f64, GroundInput::default());
+        assert!(
+            ev.overturned_at.is_none(),
+            "kn {kn:e} t0 {t0:e}: overturned"
+        );
+    }
+    s
+}
+
+/// Regression: the smallest step was compared unrounded with the rounded
+/// step `(t + h) - t`; at large `t` the rounded step stayed above it and the
+/// step was rejected for ever (fmi2DoStep never returned: default block,
+/// kn 5e9, fm 5 MPa at startTime 1e9 s; kn 1e15 at 1e4 s). Once that was
+/// fixed the passage through the contact zone (4e-10 s at kn 1e15) was
+/// shorter than one bit of the absolute time and impacts were missed; the
+/// integrator now works in the call's own time.
+#[test]
+fn the_start_time_does_not_change_the_motion() {
+    for (kn, fm) in [
+        (5e9, 5e6),
+        (1e13, 5e6),
+        (1e15, 5e6),
+        (1e15, f64::INFINITY),
+        (1e19, 5e6),
+    ] {
+        let reference = free_rocking_from(kn, fm, 0.0);
+        assert_eq!(reference.impacts, 2, "kn {kn:e}");
+        for t0 in [1e4, 1e6, 1e9, 1e10] {
+            let s = within(60, &format!("kn {kn:e} fm {fm:e} t0 {t0:e}"), move || {
+                free_rocking_from(kn, fm, t0)
+            });
+            assert_eq!(s.impacts, reference.impacts, "kn {kn:e} t0 {t0:e}");
+            assert_eq!(s.t, t0 + 2.0, "kn {kn:e} t0 {t0:e}");
+            // the same steps in the call's own time: the same motion up to
+            // the rounding of the call boundaries t0 + 0.02 k
+            let d = (s.theta - reference.theta).abs() + (s.omega - reference.omega).abs() * 0.1;
+            assert!(
+                d < 1e-9,
+                "kn {kn:e} fm {fm:e} t0 {t0:e}: theta {} omega {} vs {} {}",
+                s.theta,
+                s.omega,
+                reference.theta,
+                reference.omega
+            );
+        }
+    }
+}
