@@ -284,15 +284,15 @@ impl Simulator {
         let tau_end = t_end - t0;
         st.t = 0.0;
         let mut ev = self.run_local(st, tau_end, input, stop_at_event);
-        let to_absolute = |tau: f64| {
+        let to_absolute = move |tau: f64| -> f64 {
             if tau >= tau_end {
                 t_end
             } else {
                 (t0 + tau).min(t_end)
             }
         };
-        st.t = to_absolute(st.t);
         ev.overturned_at = ev.overturned_at.map(to_absolute);
+        st.t = to_absolute(st.t);
         ev
     }
 
