@@ -17,19 +17,35 @@
 //! measured growth in steady state is 0 KiB (`cargo bench -p fmu-rocking
 //! --bench memory` prints the table). `VmRSS` (which also counts pages of
 //! the binary) must grow by less than 1 MiB.
+//!
+//! Under valgrind (`tools/memcheck.sh`) resident memory says nothing (freed
+//! blocks are held back in memcheck's quarantine, shadow memory grows), so
+//! the bounds are not checked there and the record is 1e4 steps: memcheck's
+//! leak check does that job.
 
 mod chost;
 
 use chost::*;
 
 const CYCLES: usize = 10_000;
-const STEPS: usize = if cfg!(debug_assertions) {
-    100_000
-} else {
-    1_000_000
-};
 const ANON_BOUND_KIB: i64 = 256;
 const RSS_BOUND_KIB: i64 = 1024;
+
+/// Whether this process runs under valgrind (which preloads its libraries
+/// into the client through `LD_PRELOAD`).
+fn under_valgrind() -> bool {
+    std::env::var("LD_PRELOAD").is_ok_and(|p| p.contains("vgpreload"))
+}
+
+fn steps() -> usize {
+    if under_valgrind() {
+        10_000
+    } else if cfg!(debug_assertions) {
+        100_000
+    } else {
+        1_000_000
+    }
+}
 
 fn check(what: &str, from: Mem, to: Mem) {
     let anon = to.anon as i64 - from.anon as i64;
@@ -38,6 +54,10 @@ fn check(what: &str, from: Mem, to: Mem) {
         "{what}: RssAnon {anon:+} KiB, VmRSS {rss:+} KiB (VmHWM {} KiB)",
         to.hwm
     );
+    if under_valgrind() {
+        println!("under valgrind: resident memory not checked");
+        return;
+    }
     assert!(
         anon < ANON_BOUND_KIB,
         "{what}: RssAnon grew by {anon} KiB ({from:?} -> {to:?})"
@@ -61,24 +81,25 @@ fn memory_stays_flat_over_instance_lives_and_a_long_record() {
     }
     check("cycles 1 000 -> 10 000", at_1000, mem());
 
+    let steps = steps();
     let (case, _) = record_case();
     let fmu = Fmu::new("record", false);
     fmu.init(&case);
     let mut at_10pct = Mem::default();
-    let done = run(&fmu, &case, STEPS, |k, _| {
+    let done = run(&fmu, &case, steps, |k, _| {
         let n = k + 1;
         if n % 1000 == 0 {
             let mut st = fmu.get_state();
             assert!(!fmu.serialize(st).is_empty());
             fmu.free_state(&mut st);
         }
-        if n == STEPS / 10 {
+        if n == steps / 10 {
             at_10pct = mem();
         }
     });
-    assert_eq!(done, STEPS, "the block overturned");
+    assert_eq!(done, steps, "the block overturned");
     check(
-        &format!("record steps {} -> {STEPS}", STEPS / 10),
+        &format!("record steps {} -> {steps}", steps / 10),
         at_10pct,
         mem(),
     );
