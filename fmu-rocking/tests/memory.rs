@@ -18,10 +18,10 @@
 //! --bench memory` prints the table). `VmRSS` (which also counts pages of
 //! the binary) must grow by less than 1 MiB.
 //!
-//! Under valgrind (`tools/memcheck.sh`) resident memory says nothing (freed
-//! blocks are held back in memcheck's quarantine, shadow memory grows), so
-//! the bounds are not checked there and the record is 1e4 steps: memcheck's
-//! leak check does that job.
+//! Under valgrind or AddressSanitizer resident memory says nothing (freed
+//! blocks are held back in a quarantine, shadow memory grows), so the bounds
+//! are not checked there and the record is 1e4 steps: their leak checks do
+//! that job.
 
 mod chost;
 
@@ -31,14 +31,21 @@ const CYCLES: usize = 10_000;
 const ANON_BOUND_KIB: i64 = 256;
 const RSS_BOUND_KIB: i64 = 1024;
 
-/// Whether this process runs under valgrind (which preloads its libraries
-/// into the client through `LD_PRELOAD`).
-fn under_valgrind() -> bool {
-    std::env::var("LD_PRELOAD").is_ok_and(|p| p.contains("vgpreload"))
+/// The memory checker this process runs under, if any: valgrind (which
+/// preloads its libraries into the client through `LD_PRELOAD`) or
+/// AddressSanitizer (whose shadow gap is mapped at a fixed range on x86-64).
+fn memory_tool() -> Option<&'static str> {
+    if std::env::var("LD_PRELOAD").is_ok_and(|p| p.contains("vgpreload")) {
+        return Some("valgrind");
+    }
+    let maps = std::fs::read_to_string("/proc/self/maps").unwrap_or_default();
+    maps.lines()
+        .any(|l| l.starts_with("8fff7000-2008fff7000 "))
+        .then_some("AddressSanitizer")
 }
 
 fn steps() -> usize {
-    if under_valgrind() {
+    if memory_tool().is_some() {
         10_000
     } else if cfg!(debug_assertions) {
         100_000
@@ -54,8 +61,8 @@ fn check(what: &str, from: Mem, to: Mem) {
         "{what}: RssAnon {anon:+} KiB, VmRSS {rss:+} KiB (VmHWM {} KiB)",
         to.hwm
     );
-    if under_valgrind() {
-        println!("under valgrind: resident memory not checked");
+    if let Some(tool) = memory_tool() {
+        println!("under {tool}: resident memory not checked");
         return;
     }
     assert!(
