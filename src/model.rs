@@ -158,6 +158,9 @@ fn check(
     }
 }
 
+/// The smallest joint-opening rotation accepted for a flexible interface, rad.
+pub const MIN_THETA_JO: f64 = 1e-100;
+
 fn positive(variable: &'static str, value: f64) -> Result<(), ParamError> {
     check(
         value.is_finite() && value > 0.0,
@@ -241,14 +244,54 @@ impl Params {
                 }
             }
         };
-        let body = Body::new(&shape, mass_model, self.g);
-        // A prism's weight is derived: name what the user set.
-        let weight_name = if self.mass_model == MassKind::Prism {
-            "rho"
-        } else {
-            "W"
+        // Sizes that pass one by one can still overflow together.
+        let (area, is) = (shape.area(), shape.second_moment());
+        // overflow: the outer size; a vanishing hollow section: the wall
+        let (size_name, size) = match (self.shape, area.is_finite() && is.is_finite()) {
+            (ShapeKind::HollowRectangle, true) => ("t", self.t),
+            (ShapeKind::HollowCircle, true) => ("Ri", self.ri),
+            (ShapeKind::SolidRectangle | ShapeKind::HollowRectangle, _) => ("B", self.b),
+            (ShapeKind::SolidCircle | ShapeKind::HollowCircle, _) => ("Ro", self.ro),
         };
-        positive(weight_name, body.weight)?;
+        check(
+            area.is_finite() && is.is_finite() && area > 0.0 && is > 0.0,
+            size_name,
+            size,
+            format!("the section's area A = {area} m2 and second moment Is = {is} m4 must be finite and > 0"),
+        )?;
+        let body = Body::new(&shape, mass_model, self.g);
+        // A prism's weight is derived: name what the user set, with its value.
+        if self.mass_model == MassKind::Prism {
+            check(
+                body.weight.is_finite() && body.weight > 0.0,
+                "rho",
+                self.rho,
+                format!(
+                    "the weight W = rho*g*A*H = {} N must be finite and > 0",
+                    body.weight
+                ),
+            )?;
+        }
+        // Derived values of the body (MODEL.md §1) that overflow make the
+        // equations of motion meaningless: name the derived variable.
+        check(
+            body.mass.is_finite() && body.mass > 0.0,
+            "mass",
+            body.mass,
+            format!(
+                "the mass W/g must be finite and > 0 (W = {} N, g = {} m/s2)",
+                body.weight, self.g
+            ),
+        )?;
+        check(
+            body.io.is_finite() && body.io > 0.0,
+            "IO",
+            body.io,
+            format!(
+                "the inertia about the toe Ic + m*R0^2 must be finite and > 0 (Ic = {} kg m2, m = {} kg, R0 = {} m)",
+                body.ic, body.mass, body.r0
+            ),
+        )?;
         let law = match self.interface {
             LawKind::Rigid => Law::Rigid,
             LawKind::Elastic => {
@@ -315,6 +358,21 @@ impl Params {
             "must be finite",
         )?;
         let interface = Interface::new(shape, law, body.weight);
+        if law != Law::Rigid {
+            // Below this the integrator's scales (tolerances of order
+            // rtol thetaJo) leave the floating-point range; no physical
+            // interface comes near it (thetaJo = 2W/(kn A D)).
+            check(
+                interface.theta_jo() >= MIN_THETA_JO,
+                "kn",
+                self.kn,
+                format!(
+                    "the joint opens at thetaJo = {:e} rad, which must be >= {MIN_THETA_JO:e} rad: the interface is too stiff for the weight W = {:e} N",
+                    interface.theta_jo(),
+                    body.weight
+                ),
+            )?;
+        }
         let mut model = Model {
             body,
             interface,
@@ -323,6 +381,12 @@ impl Params {
             theta_ov: body.alpha,
         };
         model.theta_ov = model.find_theta_ov();
+        check(
+            model.theta_ov.is_finite() && model.theta_ov > 0.0,
+            "thetaOv",
+            model.theta_ov,
+            "the overturning rotation must be finite and > 0 (parameters out of floating-point range)",
+        )?;
         check(
             self.theta0.abs() < model.theta_ov,
             "theta",
