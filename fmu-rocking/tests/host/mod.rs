@@ -332,6 +332,13 @@ impl Host {
         self.free_now();
     }
 
+    /// Frees the instance and returns every message logged, including any
+    /// during `fmi2FreeInstance`.
+    pub fn free_and_take_log(mut self) -> Vec<Message> {
+        self.free_now();
+        self.take_messages()
+    }
+
     fn free_now(&mut self) {
         if !self.c.is_null() {
             // SAFETY: ours, freed once.
