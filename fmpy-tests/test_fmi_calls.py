@@ -465,12 +465,19 @@ def test_hundred_instances_in_one_process(fmu_path, unzipped):
         h.free()
 
 
+def run_and_free(h, theta):
+    try:
+        return run(h, theta)
+    finally:
+        h.free()
+
+
 def test_instances_in_threads(fmu_path, unzipped):
-    serial = run(Host(fmu_path, unzipped), 0.02)
+    serial = run_and_free(Host(fmu_path, unzipped), 0.02)
     results = {}
 
     def work(k):
-        results[k] = run(Host(fmu_path, unzipped, name=f"t{k}"), 0.02)
+        results[k] = run_and_free(Host(fmu_path, unzipped, name=f"t{k}"), 0.02)
 
     threads = [threading.Thread(target=work, args=(k,)) for k in range(8)]
     for t in threads:
