@@ -1150,7 +1150,8 @@ impl<S: Slave> Inner<S> {
     }
 }
 
-/// The envelope's own length, if the buffer is longer (zero padding).
+/// The envelope's own length, if the buffer is longer and the rest is zero
+/// padding (anything else after the envelope is refused).
 fn trim_padding(buf: &[u8]) -> Option<&[u8]> {
     let mut r = ByteReader::new(buf);
     r.u64("magic").ok()?;
@@ -1164,7 +1165,8 @@ fn trim_padding(buf: &[u8]) -> Option<&[u8]> {
         .checked_add(8)?
         .checked_add(n)?
         .checked_add(4)?;
-    (total <= buf.len()).then(|| &buf[..total])
+    let (envelope, rest) = buf.split_at_checked(total)?;
+    rest.iter().all(|&b| b == 0).then_some(envelope)
 }
 
 impl<S: Slave> Drop for Inner<S> {
