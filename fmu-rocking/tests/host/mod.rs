@@ -327,6 +327,34 @@ impl Host {
         unsafe { fmi2FreeFMUstate(self.c, &mut s) }
     }
 
+    /// `fmi2SerializedFMUstateSize` and `fmi2SerializeFMUstate`; panics
+    /// unless both return `fmi2OK`.
+    pub fn serialize(&self, s: fmi2FMUstate) -> Vec<u8> {
+        let mut n = 0usize;
+        // SAFETY: a live instance and room for the size.
+        let st = unsafe { fmi2SerializedFMUstateSize(self.c, s, &mut n) };
+        assert_eq!(st, fmi2OK, "{:?}", self.messages());
+        let mut buf = vec![0u8; n];
+        // SAFETY: n writable bytes.
+        let st = unsafe { fmi2SerializeFMUstate(self.c, s, buf.as_mut_ptr() as *mut fmi2Byte, n) };
+        assert_eq!(st, fmi2OK, "{:?}", self.messages());
+        buf
+    }
+
+    /// The payload of a new FMU state of the instance as it is now
+    /// (envelope checked and removed): its first byte is the state of the
+    /// FMI state machine (instantiated 0, initializationMode 1, stepComplete
+    /// 2, stepFailed 3, terminated 4, error 5), then the experiment, time,
+    /// stored values, input derivatives and the model's state.
+    pub fn snapshot_payload(&self) -> Vec<u8> {
+        let s = self.get_state();
+        let bytes = self.serialize(s);
+        assert_eq!(self.free_state(s), fmi2OK);
+        fmi2_export::bytes::unseal(GUID, &bytes)
+            .expect("a state of this FMU")
+            .to_vec()
+    }
+
     /// Frees the instance now (what `Drop` does), for tests of freeing.
     pub fn free(mut self) {
         self.free_now();
