@@ -90,11 +90,13 @@ fn reference() -> Vec<u64> {
     r
 }
 
+type Prepare = Box<dyn Fn(&Host)>;
+
 /// A bad call made after `BAD_AT` good steps.
 struct Bad {
     what: String,
     /// Good calls made first (part of the state the refusal must keep).
-    prepare: Option<Box<dyn Fn(&Host)>>,
+    prepare: Option<Prepare>,
     call: Box<dyn Fn(&Host) -> fmi2Status>,
     /// Pieces the one error message must contain.
     says: Vec<String>,
