@@ -1,41 +1,118 @@
 #!/usr/bin/env bash
-# Valgrind memcheck of the FMU's C API: builds fmu-rocking/examples/c_api_loop
-# (instantiate, simulate with impacts / a crushing interface / overturning,
-# get, set, serialize and deserialize FMU states, reset, free, and the error
-# paths, with debug logging) in the release profile (what the FMU ships) and
-# the dev profile (no optimisation, overflow checks; ~10x slower, so 1 round
-# of 400 steps), and runs each under memcheck. Fails on any memcheck error or
-# definite/indirect leak.
+# Memory checks of the FMU. Logs and reports go to target/memcheck/.
 #
-#   tools/memcheck.sh [ROUNDS [STEPS]]    (release: default 3 rounds of 1000 steps per case)
-#   DEV_ROUNDS=1 DEV_STEPS=400            (dev profile, the defaults)
-#
-# Logs: target/memcheck/c_api_loop.<profile>.log
+#   tools/memcheck.sh [ROUNDS [STEPS]]
+#       valgrind memcheck of fmu-rocking/examples/c_api_loop (instantiate,
+#       simulate with impacts / a crushing interface / overturning, get, set,
+#       serialize and deserialize FMU states, reset, free, and the error
+#       paths, with debug logging), built in the release profile (what the FMU
+#       ships; ROUNDS x STEPS, default 3 x 1000 steps per case) and in the dev
+#       profile (no optimisation, overflow checks; DEV_ROUNDS x DEV_STEPS,
+#       default 1 x 400). Fails on any memcheck error or definite/indirect
+#       leak. This is what tools/test.sh runs (about 1 minute).
+#   tools/memcheck.sh --suites
+#       every test binary of fmu-rocking and fmi2-export, and the root crate's
+#       tests/fmu_import.rs (which dlopens the packaged FMU), under memcheck
+#       (release profile, each in its package's directory; PROPTEST_CASES=16;
+#       about 6 minutes).
+#   tools/memcheck.sh --fmpy
+#       the fmpy tests that load the FMU under memcheck with PYTHONMALLOC=malloc;
+#       only errors and definite/indirect leaks with a frame of the FMU in a
+#       stack count (tools/memcheck_ours.py); CPython/numpy are tallied
+#       (about 7 minutes).
+#   tools/memcheck.sh --asan
+#       AddressSanitizer + LeakSanitizer build (stable toolchain,
+#       RUSTC_BOOTSTRAP=1 -Zsanitizer=address, target dir target/asan) of the
+#       tests of fmu-rocking and fmi2-export (PROPTEST_CASES=16) and of
+#       c_api_loop, run with LeakSanitizer's leak check at exit.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-rounds=${1:-3}
-steps=${2:-1000}
 target=${CARGO_TARGET_DIR:-target}
 mkdir -p "$target/memcheck"
-status=0
-for profile in release dev; do
-  dir=release
-  if [ "$profile" = dev ]; then
-    dir=debug rounds=${DEV_ROUNDS:-1} steps=${DEV_STEPS:-400}
-  fi
-  cargo build --quiet --profile "$profile" -p fmu-rocking --example c_api_loop
-  log="$target/memcheck/c_api_loop.$profile.log"
-  echo "-- memcheck: c_api_loop ($profile profile, $rounds rounds x $steps steps)"
-  if ! valgrind --error-exitcode=1 --leak-check=full \
-    --errors-for-leak-kinds=definite,indirect --show-leak-kinds=definite,indirect,possible \
-    --track-origins=yes --log-file="$log" \
-    "$target/$dir/examples/c_api_loop" "$rounds" "$steps" | tail -n 1; then
-    status=1
-  fi
-  grep -E "ERROR SUMMARY|definitely lost|indirectly lost|possibly lost|still reachable" "$log" \
+out=$(cd "$target/memcheck" && pwd)
+supp=tools/memcheck.supp
+vg=(valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect
+  --show-leak-kinds=definite,indirect,possible --track-origins=yes)
+
+summary() { # the leak and error summary lines of a valgrind log
+  grep -E "ERROR SUMMARY|definitely lost:|indirectly lost:|possibly lost:|still reachable:|suppressed:" "$1" \
     | sed 's/^==[0-9]*== */   /'
-done
+}
+
+# Test executables (JSON messages of cargo test --no-run) of the given packages.
+test_binaries() {
+  cargo test --release --no-run --message-format=json "$@" 2>/dev/null | python3 -c '
+import json, sys
+for line in sys.stdin:
+    try:
+        m = json.loads(line)
+    except ValueError:
+        continue
+    if m.get("reason") == "compiler-artifact" and m.get("executable") and m["profile"]["test"]:
+        print(m["target"]["name"], m["executable"], m["manifest_path"].rsplit("/", 1)[0])'
+}
+
+status=0
+case "${1:-}" in
+--suites)
+  cargo xtask fmu >/dev/null # tests/fmu_import.rs loads the packaged FMU
+  export PROPTEST_CASES=${PROPTEST_CASES:-16}
+  root=$PWD
+  while read -r name exe dir; do
+    log="$out/suite.$name.log"
+    start=$(date +%s)
+    # in the package's directory, as cargo test runs it
+    if (cd "$dir" && "${vg[@]}" --suppressions="$root/$supp" --log-file="$log" "$exe" >"$log.out" 2>&1); then
+      verdict=ok
+    else
+      verdict=FAILED status=1
+    fi
+    echo "-- $name: $verdict in $(($(date +%s) - start)) s ($(grep -h "test result" "$log.out" | head -1))"
+    summary "$log"
+  done < <(test_binaries -p fmu-rocking -p fmi2-export; test_binaries -p rocking --test fmu_import)
+  ;;
+--fmpy)
+  tools/venv.sh
+  cargo xtask fmu >/dev/null
+  xml="$out/fmpy.xml"
+  echo "-- memcheck: fmpy tests that load the FMU (PYTHONMALLOC=malloc)"
+  PYTHONMALLOC=malloc OPENBLAS_NUM_THREADS=1 valgrind --leak-check=full \
+    --show-leak-kinds=definite,indirect --track-origins=yes --num-callers=40 \
+    --xml=yes --xml-file="$xml" --log-file="$out/fmpy.log" \
+    .venv/bin/python -m pytest -p no:cacheprovider -q \
+    fmpy-tests/test_fmi_calls.py fmpy-tests/test_state.py fmpy-tests/test_simulation.py \
+    fmpy-tests/test_model_description.py fmpy-tests/test_crosscheck.py | tail -n 1 || status=1
+  python3 tools/memcheck_ours.py "$xml" | tee "$out/fmpy.report" | grep -v "^    " || status=1
+  ;;
+--asan)
+  export RUSTC_BOOTSTRAP=1 RUSTFLAGS="-Zsanitizer=address" CARGO_TARGET_DIR="$target/asan"
+  export ASAN_OPTIONS=fast_unwind_on_malloc=0:detect_stack_use_after_return=1
+  export LSAN_OPTIONS=suppressions=$PWD/tools/lsan.supp
+  asan=(--target x86_64-unknown-linux-gnu)
+  export PROPTEST_CASES=${PROPTEST_CASES:-16}
+  echo "-- AddressSanitizer + LeakSanitizer: tests of fmu-rocking and fmi2-export"
+  cargo test "${asan[@]}" -p fmu-rocking -p fmi2-export >"$out/asan.tests.out" 2>&1 || status=1
+  grep -E "Running|test result|Sanitizer|SUMMARY|leaked|Suppressions used" -A0 "$out/asan.tests.out" || true
+  echo "-- AddressSanitizer + LeakSanitizer: c_api_loop (release profile)"
+  cargo run --quiet --release "${asan[@]}" -p fmu-rocking --example c_api_loop -- 3 1000 2>&1 | tail -n 3 || status=1
+  ;;
+*)
+  rounds=${1:-3}
+  steps=${2:-1000}
+  for profile in release dev; do
+    dir=release
+    if [ "$profile" = dev ]; then
+      dir=debug rounds=${DEV_ROUNDS:-1} steps=${DEV_STEPS:-400}
+    fi
+    cargo build --quiet --profile "$profile" -p fmu-rocking --example c_api_loop
+    log="$out/c_api_loop.$profile.log"
+    echo "-- memcheck: c_api_loop ($profile profile, $rounds rounds x $steps steps)"
+    "${vg[@]}" --suppressions="$supp" --log-file="$log" "$target/$dir/examples/c_api_loop" "$rounds" "$steps" | tail -n 1 || status=1
+    summary "$log"
+  done
+  ;;
+esac
 if [ "$status" -ne 0 ]; then
-  echo "memcheck FAILED (see $target/memcheck/)" >&2
+  echo "memcheck FAILED (see $out/)" >&2
 fi
 exit "$status"
