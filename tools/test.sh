@@ -11,6 +11,8 @@ cargo fmt --all -- --check
 cargo clippy --workspace --all-targets --quiet -- -D warnings
 echo "== Rust tests"
 cargo test --workspace --release
+echo "== valgrind memcheck of an instance's whole life through the C API"
+tools/memcheck.sh
 echo "== package the FMU and its FMI cross-check artefacts"
 cargo xtask crosscheck
 echo "== the packaged FMU through the fmi crate's FMI 2.0 importer (fmi-import/)"
