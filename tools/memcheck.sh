@@ -14,7 +14,7 @@
 #       every test binary of fmu-rocking and fmi2-export, and the root crate's
 #       tests/fmu_import.rs (which dlopens the packaged FMU), under memcheck
 #       (release profile, each in its package's directory; PROPTEST_CASES=16;
-#       about 6 minutes).
+#       at most SUITE_TIMEOUT=1800 s each; about 6 minutes).
 #   tools/memcheck.sh --fmpy
 #       the fmpy tests that load the FMU under memcheck with PYTHONMALLOC=malloc;
 #       only errors and definite/indirect leaks with a frame of the FMU in a
@@ -62,7 +62,7 @@ case "${1:-}" in
     log="$out/suite.$name.log"
     start=$(date +%s)
     # in the package's directory, as cargo test runs it
-    if (cd "$dir" && "${vg[@]}" --suppressions="$root/$supp" --log-file="$log" "$exe" >"$log.out" 2>&1); then
+    if (cd "$dir" && timeout "${SUITE_TIMEOUT:-1800}" "${vg[@]}" --suppressions="$root/$supp" --log-file="$log" "$exe" >"$log.out" 2>&1); then
       verdict=ok
     else
       verdict=FAILED status=1
