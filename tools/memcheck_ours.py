@@ -53,7 +53,7 @@ def main(paths):
     for kind, w, fs in ours:
         print(f"\n{kind}: {w}")
         for o, fn, file, line in fs[:30]:
-            print(f"    {o.rsplit('/', 1)[-1]:<32} {fn} {file}:{line}")
+            print(f"      at {o.rsplit('/', 1)[-1]:<32} {fn} {file}:{line}")
     print(f"\nnot concerning the FMU (not counted): {sum(others.values())}")
     for (kind, top), n in sorted(others.items(), key=lambda x: -x[1]):
         print(f"  {n:5d}  {kind:<22} {top}")
