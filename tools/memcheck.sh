@@ -92,7 +92,7 @@ case "${1:-}" in
   export PROPTEST_CASES=${PROPTEST_CASES:-16}
   echo "-- AddressSanitizer + LeakSanitizer: tests of fmu-rocking and fmi2-export"
   cargo test "${asan[@]}" -p fmu-rocking -p fmi2-export >"$out/asan.tests.out" 2>&1 || status=1
-  grep -E "Running|test result|Sanitizer|SUMMARY|leaked|Suppressions used" -A0 "$out/asan.tests.out" || true
+  grep -E "Running|test result|Sanitizer|SUMMARY|leaked|Suppressions used|^ +[0-9]+ +[0-9]+ [a-z_:]+$" "$out/asan.tests.out" || true
   echo "-- AddressSanitizer + LeakSanitizer: c_api_loop (release profile)"
   cargo run --quiet --release "${asan[@]}" -p fmu-rocking --example c_api_loop -- 3 1000 2>&1 | tail -n 3 || status=1
   ;;
