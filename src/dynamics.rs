@@ -334,7 +334,11 @@ impl Simulator {
                         st.omega = 0.0;
                         st.h = 0.0;
                         ev.uplift = true;
-                        if stop_at_event {
+                        // An uplift at the call's start is not a stop: the
+                        // call after an uplift event starts there at rest
+                        // (theta = omega = 0) and would report it again,
+                        // for ever.
+                        if stop_at_event && tu > 0.0 {
                             return ev;
                         }
                     }

@@ -4,6 +4,7 @@
 //! - the absolute time does not matter: a run that starts at `t0 = 1e9 s`
 //!   is the run that starts at 0 (regression: at large `t0` the step
 //!   controller hung, or missed the passage through a stiff contact zone);
+//!   `advance_to_event` goes on after an uplift (regression: it stalled);
 
 use std::sync::mpsc;
 use std::thread;
@@ -82,4 +83,46 @@ fn the_start_time_does_not_change_the_motion() {
             );
         }
     }
+}
+
+/// Regression: `advance_to_event` after an uplift event started the next
+/// call at rest (theta = omega = 0) and reported the same uplift again, at
+/// the same time, for ever.
+#[test]
+fn events_after_an_uplift_make_progress() {
+    let p = Params {
+        interface: rocking::model::LawKind::Rigid,
+        ..Params::default()
+    };
+    let sim = Simulator::new(p.build().unwrap(), 1e-9);
+    let thr = sim.uplift_acceleration();
+    let (calls, st, uplifts) = within(60, "advance_to_event after an uplift", move || {
+        let mut st = sim.initial_state(0.0, 0.0);
+        let (mut calls, mut uplifts) = (0, Vec::new());
+        // a ramp crossing the threshold at 0.5 s, held for 1 s
+        while st.t < 1.0 && !st.overturned && calls < 10_000 {
+            let input = GroundInput {
+                ag: -2.0 * thr * st.t,
+                dag: -2.0 * thr,
+            };
+            let start = st.t;
+            let ev = sim.advance_to_event(&mut st, 1.0, input);
+            if ev.uplift {
+                uplifts.push((start, st.t));
+            }
+            calls += 1;
+        }
+        (calls, st, uplifts)
+    });
+    assert!(calls < 100, "{calls} calls: {st:?}");
+    // the uplift is returned at 0.5 s; the next call, which starts there
+    // (at rest, theta = omega = 0), carries the flag too and goes on
+    assert!((uplifts[0].1 - 0.5).abs() < 1e-15, "{uplifts:?}");
+    assert!(uplifts.len() <= 2, "{uplifts:?}");
+    if let Some(&(start, end)) = uplifts.get(1) {
+        assert_eq!(start, uplifts[0].1, "{uplifts:?}");
+        assert!(end > start, "{uplifts:?}");
+    }
+    assert!(st.t == 1.0 || st.overturned, "{st:?}");
+    assert!(st.theta > 0.0, "{st:?}");
 }
