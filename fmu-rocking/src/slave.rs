@@ -112,6 +112,14 @@ impl RockingSlave {
         }
     }
 
+    /// Why a computed value is not finite.
+    fn overflow(&self, x: f64, ag: f64) -> String {
+        format!(
+            "the value is {x} (floating-point overflow at theta = {} rad, omega = {} rad/s, ag = {ag} m/s2)",
+            self.state.theta, self.state.omega
+        )
+    }
+
     fn regime(&mut self, ag: f64) -> Regime {
         if self.state.overturned {
             Regime::Overturned
@@ -152,7 +160,7 @@ impl Slave for RockingSlave {
         let m = &self.sim.model;
         let b = &m.body;
         let ag = inputs.real(vr::AG);
-        Ok(match r {
+        let x = match r {
             vr::THETA => self.state.theta,
             vr::OMEGA => self.state.omega,
             vr::THETA_OVER_ALPHA => self.state.theta / b.alpha,
@@ -172,7 +180,14 @@ impl Slave for RockingSlave {
             vr::FX => self.outputs(ag).fx,
             vr::FZ => self.outputs(ag).fz,
             _ => return Err(format!("no computed Real with value reference {r}")),
-        })
+        };
+        // thetaC is +inf without crushing; anything else not finite is an
+        // overflow of a finite but absurd start value or input (omega = 1e300
+        // rad/s gave Fx = NaN with fmi2OK), refused rather than returned.
+        if !x.is_finite() && r != vr::THETA_C {
+            return Err(self.overflow(x, ag));
+        }
+        Ok(x)
     }
 
     fn get_integer(&mut self, r: u32, inputs: Inputs<'_>) -> Result<i32, String> {
@@ -193,13 +208,17 @@ impl Slave for RockingSlave {
     fn output_derivative(&mut self, r: u32, order: i32, inputs: Inputs<'_>) -> Result<f64, String> {
         let alpha = self.sim.model.body.alpha;
         let ag = inputs.real(vr::AG);
-        match (r, order) {
-            (vr::THETA, 1) => Ok(self.state.omega),
-            (vr::THETA, 2) | (vr::OMEGA, 1) => Ok(self.outputs(ag).theta_dd),
-            (vr::THETA_OVER_ALPHA, 1) => Ok(self.state.omega / alpha),
-            (vr::THETA_OVER_ALPHA, 2) => Ok(self.outputs(ag).theta_dd / alpha),
-            _ => Err("not provided: derivatives are available for theta (orders 1, 2), omega (order 1) and thetaOverAlpha (orders 1, 2)".into()),
+        let x = match (r, order) {
+            (vr::THETA, 1) => self.state.omega,
+            (vr::THETA, 2) | (vr::OMEGA, 1) => self.outputs(ag).theta_dd,
+            (vr::THETA_OVER_ALPHA, 1) => self.state.omega / alpha,
+            (vr::THETA_OVER_ALPHA, 2) => self.outputs(ag).theta_dd / alpha,
+            _ => return Err("not provided: derivatives are available for theta (orders 1, 2), omega (order 1) and thetaOverAlpha (orders 1, 2)".into()),
+        };
+        if !x.is_finite() {
+            return Err(self.overflow(x, ag));
         }
+        Ok(x)
     }
 
     fn do_step(
