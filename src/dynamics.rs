@@ -283,7 +283,7 @@ impl Simulator {
         let t0 = st.t;
         let tau_end = t_end - t0;
         st.t = 0.0;
-        let mut ev = self.run_local(st, tau_end, input, stop_at_event);
+        let mut ev = self.run_local(st, t0, tau_end, input, stop_at_event);
         let to_absolute = move |tau: f64| -> f64 {
             if tau >= tau_end {
                 t_end
@@ -296,10 +296,12 @@ impl Simulator {
         ev
     }
 
-    /// [`run`](Self::run) from `st.t = 0` to `t_end` (call-local times).
+    /// [`run`](Self::run) from `st.t = 0` to `t_end` (call-local times; the
+    /// call starts at the absolute time `t0`).
     fn run_local(
         &self,
         st: &mut State,
+        t0: f64,
         t_end: f64,
         input: GroundInput,
         stop_at_event: bool,
@@ -334,11 +336,11 @@ impl Simulator {
                         st.omega = 0.0;
                         st.h = 0.0;
                         ev.uplift = true;
-                        // An uplift at the call's start is not a stop: the
-                        // call after an uplift event starts there at rest
-                        // (theta = omega = 0) and would report it again,
-                        // for ever.
-                        if stop_at_event && tu > 0.0 {
+                        // An uplift at the call's start (in absolute time)
+                        // is not a stop: the call after an uplift event
+                        // starts there at rest (theta = omega = 0) and would
+                        // report it again, for ever.
+                        if stop_at_event && t0 + tu > t0 {
                             return ev;
                         }
                     }
