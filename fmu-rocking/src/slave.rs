@@ -9,6 +9,10 @@ use rocking::dynamics::{GroundInput, Outputs, Simulator, State};
 use rocking::model::{LawKind, MassKind, ShapeKind};
 use rocking::{Formulation, Params, Regime, Restitution};
 
+/// Largest |ag| a step accepts, m/s2 (far beyond any ground motion; the
+/// arithmetic of the equations of motion overflows around 1e200).
+pub const MAX_GROUND_ACCELERATION: f64 = 1e100;
+
 /// Layout version of the serialized [`State`] (inside the generic envelope).
 const STATE_VERSION: u32 = 2;
 
@@ -233,6 +237,15 @@ impl Slave for RockingSlave {
         if !(ag.is_finite() && dag.is_finite()) {
             return Err(format!(
                 "ag = {ag}, dag/dt = {dag}: the input must be finite"
+            ));
+        }
+        // Beyond this the equations of motion overflow on the way to
+        // overturning and the integrator never finished the step (ag =
+        // 1.8e308 m/s2 hung fmi2DoStep; 1e100 takes microseconds).
+        let a_end = ag + dag * h;
+        if ag.abs().max(a_end.abs()) > MAX_GROUND_ACCELERATION {
+            return Err(format!(
+                "ag = {ag} at the start of the step, {a_end} at its end: |ag| must be <= {MAX_GROUND_ACCELERATION:e} m/s2"
             ));
         }
         if self.state.overturned {

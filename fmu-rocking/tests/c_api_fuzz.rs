@@ -414,6 +414,43 @@ fn regression_overflowing_outputs_are_refused_not_returned() {
     assert!(stats.by_status[fmi2Error as usize] >= 2, "{stats:?}");
 }
 
+/// Found by `random_calls_on_a_running_instance` (PROPTEST_RNG_SEED=2: the
+/// 60 s watchdog fired): ag = 1.8e308 m/s2 is finite, so it was accepted,
+/// and fmi2DoStep never returned (the equations of motion overflow on the
+/// way to overturning; from about 1e200 m/s2). A step now refuses |ag| >
+/// 1e100 m/s2 at either end with fmi2Error, the state unchanged.
+#[test]
+fn regression_absurd_ground_acceleration_is_refused_not_hung() {
+    for (ag, dag) in [(f64::MAX, 0.0), (1e200, 0.0), (-1e101, 0.0), (0.0, 1e300)] {
+        let stats = run_bounded(vec![
+            plain_instance(0),
+            Op::Init(0),
+            Op::SetReal(0, vec![vr::AG], vec![ag]),
+            Op::SetInputDerivatives(0, vec![vr::AG], vec![1], vec![dag]),
+            Op::DoStep {
+                slot: 0,
+                point: Point::Matching,
+                h: 0.05,
+                no_prior: 0,
+            },
+            Op::Reset(0),
+            Op::Init(0),
+            Op::SetReal(0, vec![vr::AG], vec![1e100]),
+            Op::DoStep {
+                slot: 0,
+                point: Point::Matching,
+                h: 0.05,
+                no_prior: 0,
+            },
+        ]);
+        assert_eq!(
+            stats.steps_ok + stats.steps_discard,
+            1,
+            "ag {ag}: {stats:?}"
+        );
+    }
+}
+
 /// Not a regression test: the engine's known slow regime, run by hand
 /// (`cargo test --release -p fmu-rocking --test c_api_fuzz -- --ignored`).
 /// kn = 1e18 Pa/m under ag = 1 m/s2 (below uplift): one fmi2DoStep of
