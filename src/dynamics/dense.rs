@@ -197,8 +197,15 @@ fn refine(
             x = next;
             if r(x) >= 0.0 {
                 hi = x;
+                break;
             }
-            break;
+            // Converged from below without crossing: `hi` is still the far
+            // end of the bracket (returning it put a turning point, or an
+            // event, at the end of its piece). Go on from the middle of
+            // what is left: the bracket at least halves every round.
+            lo = x;
+            x = 0.5 * (lo + hi);
+            continue;
         }
         x = next;
     }
