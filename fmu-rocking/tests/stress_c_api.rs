@@ -44,6 +44,9 @@ struct Case {
     /// Give the input's slope with fmi2SetRealInputDerivatives.
     derivatives: bool,
     start: f64,
+    /// kn as a multiple of the stability limit W hG / Is (0: kn, raised to
+    /// 3x the limit where needed).
+    kn_factor: f64,
 }
 
 const RHO: f64 = 2000.0;
@@ -130,7 +133,12 @@ fn run(c: Case) -> Result<Outcome, String> {
         }
     }
     let w = RHO * G * area * c.size;
-    let kn = c.kn.max(3.0 * w * (c.size / 2.0) / is);
+    let kn_min = w * (c.size / 2.0) / is;
+    let kn = if c.kn_factor > 0.0 {
+        c.kn_factor * kn_min
+    } else {
+        c.kn.max(3.0 * kn_min)
+    };
     let mut reals = sizes;
     reals.extend([
         ("H", c.size),
@@ -280,6 +288,7 @@ const BASE: Case = Case {
     dt: 0.01,
     derivatives: true,
     start: 0.0,
+    kn_factor: 0.0,
 };
 
 /// A small linear congruential generator: the sweep is the same every run.
@@ -394,6 +403,33 @@ fn grid() -> Vec<(&'static str, Case)> {
             }
         }
     }
+    // at the validity limits: kn just above W hG / Is, fm just above W/A
+    for delta in [1e-2, 1e-4, 1e-6] {
+        for shape in [SOLID_RECTANGLE, HOLLOW_CIRCLE] {
+            for (law, fm_ratio) in [(ELASTIC, f64::INFINITY), (ELASTO_PLASTIC, 1.0 + delta)] {
+                v.push((
+                    "validity limits",
+                    Case {
+                        shape,
+                        law,
+                        fm_ratio,
+                        kn_factor: 1.0 + delta,
+                        shaking: 0.3,
+                        ..BASE
+                    },
+                ));
+            }
+            v.push((
+                "validity limits",
+                Case {
+                    shape,
+                    fm_ratio: 1.0 + delta,
+                    shaking: 0.3,
+                    ..BASE
+                },
+            ));
+        }
+    }
     // large start times (regression: fmi2DoStep hung at startTime 1e9 s)
     for (kn, start) in [(5e9, 1e9), (1e15, 1e4), (1e15, 1e9)] {
         v.push(("start time", Case { kn, start, ..BASE }));
@@ -435,6 +471,7 @@ fn grid() -> Vec<(&'static str, Case)> {
                 dt,
                 derivatives: r.next() < 0.5,
                 start: r.pick(&[0.0, 0.0, 100.0, 1e6]),
+                kn_factor: 0.0,
             },
         ));
     }
