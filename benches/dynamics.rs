@@ -10,7 +10,7 @@
 //!    or with `BENCH_NO_SCIPY=1`) on
 //!    (a) rigid free rocking against the exact solution (impact times and
 //!    amplitudes of the first 10 impacts);
-//!    (b) the Dharahara tower (MODEL.md §4) on a crushing interface under a
+//!    (b) the Dharahara tower (docs/model.md §4) on a crushing interface under a
 //!    one-cycle sine pulse (0.16 g, 4.5 s, sampled at 100 Hz): time of the
 //!    first impact, first peak, overturning time;
 //! 2. the cost of a 60 s record at 100 Hz (per record and per call), its
@@ -401,7 +401,7 @@ fn quantity_error(q: &[f64; 3], r: &[f64; 3]) -> f64 {
         )
 }
 
-/// `theta''` of MODEL.md §3 for the RK4 reference (contact and levers from
+/// `theta''` of docs/model.md §3 for the RK4 reference (contact and levers from
 /// the model).
 fn flexible_accel(m: &Model, ag: f64, theta: f64, omega: f64, side: f64) -> f64 {
     let s = if theta != 0.0 { theta.signum() } else { side };

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The rocking equations of MODEL.md §3 with scipy.integrate.solve_ivp.
+"""The rocking equations of docs/model.md §3 with scipy.integrate.solve_ivp.
 
 A reference written independently of the Rust code, for the dynamics bench
 (benches/dynamics.rs), which spawns it as
@@ -15,7 +15,7 @@ Cases:
 - "rigid": Housner's rigid block released from theta0 at rest, no ground
   motion; impacts at theta = 0 (solve_ivp event, terminal, then restart
   with omega <- eta omega). Returns the impact times and post-impact omegas.
-- "flexible": a hollow circular base on the Winkler bed of MODEL.md §2
+- "flexible": a hollow circular base on the Winkler bed of docs/model.md §2
   (kn, fm), lumped mass, shiftingPivot, under a piecewise-linear ground
   acceleration given by samples. The reaction position af(phi) is found
   here by brentq on the vertical equilibrium N(a) = W, the stress integrals

@@ -1,4 +1,4 @@
-"""The Dharahara Tower case study (the paper's section 6; MODEL.md §4): the main job.
+"""The Dharahara Tower case study (the paper's section 6; docs/model.md §4): the main job.
 
     .venv/bin/python examples/dharahara.py [--out DIR] [--record PATH] [--workers N]
 

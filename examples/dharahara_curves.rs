@@ -1,4 +1,4 @@
-//! Moment-rotation curves of the Dharahara Tower (MODEL.md §4; the paper's
+//! Moment-rotation curves of the Dharahara Tower (docs/model.md §4; the paper's
 //! Figs. 17 and 18): the hollow circular base Ro = 3.99 m, Ri = 2.12 m,
 //! W = 24003.94 kN, on the foundation and interface stiffnesses of the paper's
 //! Table 1 with fm = 2, 5, 15 MPa and without crushing, and on the rigid
@@ -18,7 +18,7 @@
 //!   overturning rotation, peak MR, overturning energy, their ratios to the
 //!   rigid interface, and the stability margin kn Is / (W hG);
 //!
-//! and prints the cases and the rest-stability check (MODEL.md §2) for the
+//! and prints the cases and the rest-stability check (docs/model.md §2) for the
 //! softest foundation, including what the model does when it fails.
 //! `examples/dharahara.py` runs it and plots the curves.
 
@@ -203,7 +203,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let alpha = body.alpha;
     let shape = rigid.interface.shape();
     let (area, is) = (shape.area(), shape.second_moment());
-    println!("Dharahara Tower (MODEL.md §4), lumped body on a hollow circle:");
+    println!("Dharahara Tower (docs/model.md §4), lumped body on a hollow circle:");
     println!(
         "  Ro = {RO} m, Ri = {RI} m, A = {area:.4} m², Is = {is:.3} m⁴, W = {:.2} kN, m = {:.6e} kg",
         body.weight / 1e3,
@@ -236,7 +236,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         body.eta_housner()
     );
 
-    // Rest stability (MODEL.md §2): kn Is > W hG.
+    // Rest stability (docs/model.md §2): kn Is > W hG.
     let kn_min = body.weight * body.hg / is;
     let soft = FOUNDATION_MPA[0] * 1e6;
     println!(

@@ -6,7 +6,7 @@ parallel processes (`rockingfmu.run_grid`), one table row per run.
 
 Cases are the Dharahara cases of `rockingfmu.cases.dharahara_cases()` (ids as in
 examples/dharahara_curves.rs: rigid, F<kn MPa/m>_<fm..>, I<kn GPa/m>_<fm..>).
-Records (the shared ground motions, see ../shared/ground-motions/README.md):
+Records (shipped with the repository, see data/ground-motions/README.md):
 
     katnp        KATNP N-S SYNTHETIC STAND-IN (not the real record), 80 s, 0.174 g
     lomaprieta   1989 Loma Prieta, USGS 1295 Shafter, 360 (public domain), 30 s, 0.106 g

@@ -1,6 +1,6 @@
 """The examples (Dharahara case study, Fig. 15 free rocking) against independent
 references: a quadrature of the interface stresses written here, an
-integration of MODEL.md §3 with scipy, the uplift condition of a rigid body,
+integration of docs/model.md §3 with scipy, the uplift condition of a rigid body,
 and the FMU's own calculated parameters."""
 
 import math
@@ -59,7 +59,7 @@ def test_curves_thetaOv_equals_fmu_calculated_thetaOv(fmu, mr_csv):
 
 
 def ring_width(x):
-    """w(x) of the hollow circle, x from the toe (MODEL.md §1)."""
+    """w(x) of the hollow circle, x from the toe (docs/model.md §1)."""
     u = x - RO
     outer = 2 * math.sqrt(max(RO * RO - u * u, 0.0))
     inner = 2 * math.sqrt(max(RI * RI - u * u, 0.0))
@@ -118,7 +118,7 @@ def test_rigid_tower_below_uplift_threshold_does_not_rock(fmu):
 
 def test_fig15_first_impact_matches_scipy_integration(fmu):
     """First impact of a solid block released at 0.9 alpha: the FMU's costa and
-    shiftingPivot against scipy on MODEL.md §3 with the solid rectangle's closed-form af."""
+    shiftingPivot against scipy on docs/model.md §3 with the solid rectangle's closed-form af."""
     kn, r0, rho, L = 340e6, 3.0, 1800.0, 1.0
     for alpha in (0.10, 0.35):
         B, H = 2 * r0 * math.sin(alpha), 2 * r0 * math.cos(alpha)

@@ -20,7 +20,7 @@ def host(fmu_path, unzipped):
 
 
 def section(shape, B=0.5, L=1.0, t=0.1, Ro=0.5, Ri=0.3):
-    """Area, second moment and depth from MODEL.md §1."""
+    """Area, second moment and depth from docs/model.md §1."""
     if shape == "solidRectangle":
         return B * L, L * B**3 / 12, B
     if shape == "hollowRectangle":

@@ -1,7 +1,7 @@
 """Tests of the `groundmotion` readers.
 
 Each check compares against something the reader code does not produce: the
-README table of the shared ground motions, the files' own header statements
+README table of the shipped ground motions, the files' own header statements
 (parsed here with simple regular expressions), or files these tests write with
 known values.
 """
@@ -20,7 +20,7 @@ sys.path.insert(0, str(REPO))
 import groundmotion as gm  # noqa: E402
 from groundmotion import GroundMotionFormatError  # noqa: E402
 
-DATA = Path(__file__).resolve().parents[1].parent / "shared" / "ground-motions"
+DATA = REPO / "data" / "ground-motions"
 G = 9.80665  # m/s² per g, written out here rather than taken from the package
 
 V2 = "csmip-coalinga-1983/ce36456p_CE36456.V2"
@@ -40,7 +40,7 @@ def text_of(rel):
 
 
 # --------------------------------------------------------------------------
-# The README table (copied from shared/ground-motions/README.md):
+# The README table (data/ground-motions/README.md):
 # file, component index, dt (s), points, PGA (g), PGV (cm/s).
 README_TABLE = [
     (KATNP, 0, 0.01, 8001, 0.174, 105.2),

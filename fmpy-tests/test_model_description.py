@@ -1,4 +1,4 @@
-"""modelDescription.xml: fmpy's validation, the FMI 2.0 schema, the interface of MODEL.md §5."""
+"""modelDescription.xml: fmpy's validation, the FMI 2.0 schema, the interface of docs/model.md §5."""
 
 import os
 import zipfile

@@ -20,7 +20,7 @@ from rockingfmu.cases import dharahara_cases, dharahara_tower  # noqa: E402
 
 ENUM = {"hollowCircle": 4, "lumped": 2, "rigid": 1, "elastic": 2, "elastoPlastic": 3,
         "costa": 1, "shiftingPivot": 2, "housner": 1}
-ALPHA = math.atan(3.99 / (30.44 * math.cos(0.125)))  # MODEL.md §4
+ALPHA = math.atan(3.99 / (30.44 * math.cos(0.125)))  # docs/model.md §4
 G = 9.81
 
 
@@ -35,7 +35,7 @@ def standin():
 
 
 def numeric(params):
-    """Start values with the enumerations as integers, written out here (MODEL.md §5 order)."""
+    """Start values with the enumerations as integers, written out here (docs/model.md §5 order)."""
     return {k: ENUM[v] if isinstance(v, str) else v for k, v in params.items()}
 
 

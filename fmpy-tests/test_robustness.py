@@ -1,5 +1,5 @@
 """Robustness of the packaged FMU, where test_fmi_calls.py does not reach:
-non-finite parameters, the conditions of MODEL.md section 5 on other shapes
+non-finite parameters, the conditions of docs/model.md section 5 on other shapes
 and laws, derived values that overflow, every enumeration, large start times
 and bad communication points (the state is kept; a saved state restarts the
 run). The full tables run in Rust through the C API

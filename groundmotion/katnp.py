@@ -11,8 +11,8 @@ from pathlib import Path
 
 from .detect import read_all, select
 
-#: The shared ground-motion folder, beside the repository (…/shared/ground-motions).
-DATA_DIR = Path(__file__).resolve().parents[1].parent / "shared" / "ground-motions"
+#: The ground-motion records shipped with the repository (data/ground-motions).
+DATA_DIR = Path(__file__).resolve().parents[1] / "data" / "ground-motions"
 #: The synthetic stand-in for the KATNP north-south record (CSV, m/s²).
 STANDIN_PATH = DATA_DIR / "katnp-standin" / "KATNP_NS_standin.csv"
 
@@ -20,7 +20,7 @@ STANDIN_NOTE = (
     "Synthetic stand-in for the KATNP north-south record of the 2015 Gorkha earthquake "
     "(NQ.KATNP, Kanti Path, Kathmandu), NOT the real record: a velocity pulse (period 5.24 s) "
     "plus band-limited noise, built to match the station's published PGA, PGV and spectral "
-    "accelerations (see the shared ground-motions README). Results that use it must say so."
+    "accelerations (see data/ground-motions/README.md). Results that use it must say so."
 )
 
 # Labels that mean north-south, after upper-casing and removing blanks.

@@ -8,7 +8,7 @@ and the parameter sets of the paper's examples.
 
 - `fmu`: `RockingFMU` (one extraction, enumeration names, `simulate` -> `Run`);
 - `parametric`: `run_grid` (cases x records x scales -> pandas DataFrame);
-- `cases`: the Dharahara Tower (MODEL.md §4) and the blocks of the paper's Fig. 15.
+- `cases`: the Dharahara Tower (docs/model.md §4) and the blocks of the paper's Fig. 15.
 """
 
 from .cases import dharahara_cases, dharahara_tower, fig15_block

@@ -1,6 +1,6 @@
-"""Parameter sets of the paper's examples, as FMU start values (MODEL.md §4, §5).
+"""Parameter sets of the paper's examples, as FMU start values (docs/model.md §4, §5).
 
-The Dharahara Tower (MODEL.md §4): hollow circular base Ro = 3.99 m,
+The Dharahara Tower (docs/model.md §4): hollow circular base Ro = 3.99 m,
 Ri = 2.12 m, W = 24003.94 kN. The paper gives R0 = 30.44 m and alpha = 0.125,
 which put the pivot R0 sin(alpha) = 3.80 m from G's vertical, not Ro = 3.99 m.
 This model needs G over the section centroid, so hG = R0 cos(alpha) = 30.20 m,
@@ -13,7 +13,7 @@ import math
 
 G = 9.81
 
-# --- Dharahara (MODEL.md §4, the paper's Table 1) ---------------------------
+# --- Dharahara (docs/model.md §4, the paper's Table 1) ---------------------------
 RO, RI, W = 3.99, 2.12, 24003.94e3
 R0_PAPER, ALPHA_PAPER = 30.44, 0.125
 HG = R0_PAPER * math.cos(ALPHA_PAPER)

@@ -9,7 +9,7 @@
 Enumeration parameters (shape, massModel, interface, formulation, restitution)
 may be given by item name ("hollowCircle") or by value; names are converted
 with the FMU's own modelDescription.xml. The start values of `theta` and
-`omega` are the initial conditions (MODEL.md §5).
+`omega` are the initial conditions (docs/model.md §5).
 
 The ground acceleration is passed as the record's samples at the
 communication points together with its slope (fmi2SetRealInputDerivatives,
@@ -43,7 +43,7 @@ DEFAULT_FMU = REPO / "target" / "fmu" / "RockingBlock.fmu"
 
 #: Outputs recorded by `simulate` unless told otherwise.
 DEFAULT_OUTPUTS = ("theta", "omega", "thetaOverAlpha", "MR", "af", "regime", "impacts", "overturned")
-#: Calculated parameters (MODEL.md §5), read once per run after initialization.
+#: Calculated parameters (docs/model.md §5), read once per run after initialization.
 CALCULATED = ("mass", "weight", "R0", "alpha", "IO", "etaHousner", "thetaJo", "thetaC", "thetaOv")
 
 _STATUS = ["OK", "WARNING", "DISCARD", "ERROR", "FATAL", "PENDING"]
@@ -81,7 +81,7 @@ class Run:
 
     result                 structured array: 'time' and the recorded outputs
     overturned             the body overturned (the FMU discarded the step and
-                           ended the run: MODEL.md §5)
+                           ended the run: docs/model.md §5)
     t_end                  time of the last row (the overturning time if overturned)
     t_overturn             t_end if overturned, else nan
     peak_theta_over_alpha  max |theta| / alpha over the recorded samples
@@ -198,7 +198,7 @@ class RockingFMU:
                  rtol=None, outputs=DEFAULT_OUTPUTS, ag=None):
         """Run one case and return a `Run`.
 
-        params           parameter and start values by name (MODEL.md §5)
+        params           parameter and start values by name (docs/model.md §5)
         record           a groundmotion Record (acc in m/s²) or None (no ground motion)
         scale            factor applied to the record's acceleration
         ag               instead of `record`: (time, acc) arrays in s and m/s², equally spaced
@@ -355,5 +355,5 @@ class RockingFMU:
         )
 
     def calculated(self, params):
-        """The calculated parameters (MODEL.md §5) after initialization, without stepping."""
+        """The calculated parameters (docs/model.md §5) after initialization, without stepping."""
         return self.simulate(params, stop_time=0.0, outputs=("theta",)).calculated

@@ -1,8 +1,8 @@
-//! The rigid body: mass models and derived values (MODEL.md §1, §3).
+//! The rigid body: mass models and derived values (docs/model.md §1, §3).
 
 use crate::shape::Shape;
 
-/// How the body's mass is described (MODEL.md §1).
+/// How the body's mass is described (docs/model.md §1).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum MassModel {
     /// The base section extruded to height `h` (m) with density `rho` (kg/m³).
@@ -12,7 +12,7 @@ pub enum MassModel {
     Lumped { w: f64, hg: f64, ic: f64 },
 }
 
-/// Derived rigid-body values (MODEL.md §1).
+/// Derived rigid-body values (docs/model.md §1).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Body {
     /// Gravity, m/s².
@@ -47,7 +47,7 @@ impl Body {
                 let a = shape.area();
                 let weight = rho * g * a * h;
                 let m = weight / g;
-                // MODEL.md §1: Ic = m (H²/12 + Is/A)
+                // docs/model.md §1: Ic = m (H²/12 + Is/A)
                 (
                     weight,
                     h / 2.0,
@@ -75,7 +75,7 @@ impl Body {
         }
     }
 
-    /// Housner's coefficient of restitution `eta = 1 - 2 m b² / IO` (MODEL.md §3).
+    /// Housner's coefficient of restitution `eta = 1 - 2 m b² / IO` (docs/model.md §3).
     pub fn eta_housner(&self) -> f64 {
         1.0 - 2.0 * self.mass * self.b * self.b / self.io
     }

@@ -1,7 +1,7 @@
-//! Equations of motion, impacts, rest and overturning (MODEL.md §3), and the
+//! Equations of motion, impacts, rest and overturning (docs/model.md §3), and the
 //! integrator that the FMU calls once per communication step.
 //!
-//! - Equation of motion (MODEL.md §3), `phi = |theta|`, `s = sgn theta`:
+//! - Equation of motion (docs/model.md §3), `phi = |theta|`, `s = sgn theta`:
 //!   `I(phi) theta'' + (1/2) s I'(phi) omega² = -s W hW(phi) - m ag hg(phi)`
 //!   (`shiftingPivot`; `costa` without the `omega²` term; rigid law: `af = 0`,
 //!   `I = IO`). See [`eom`].
@@ -14,7 +14,7 @@
 //!   the ground input is linear inside the call, so its kinks at call
 //!   boundaries are never stepped over.
 //! - Events: zero crossings of `theta` (impacts, `omega <- eta omega`, for every
-//!   law: MODEL.md applies the rule at each crossing) and `|theta| = thetaOv`
+//!   law: docs/model.md applies the rule at each crossing) and `|theta| = thetaOv`
 //!   (overturning, the run ends) are located on the step's dense output (a
 //!   quintic Hermite interpolant), the step is redone to end exactly at the
 //!   event and polished by Newton on the step itself.
@@ -111,7 +111,7 @@ pub struct Events {
     pub stats: Stats,
 }
 
-/// Output quantities at a state (MODEL.md §5).
+/// Output quantities at a state (docs/model.md §5).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Outputs {
     /// Angular acceleration, rad/s².

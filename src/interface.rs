@@ -1,4 +1,4 @@
-//! The flexible interface (MODEL.md §2): where the reaction acts.
+//! The flexible interface (docs/model.md §2): where the reaction acts.
 //!
 //! A Winkler bed of springs `kn` (Pa/m), no tension, plastic at `fm` (Pa).
 //! For a rotation `phi >= 0` the closure is `delta(x) = phi (a - x)`; the
@@ -6,11 +6,11 @@
 //! reaction acts at `af = M(a) / W` from the toe. One scheme serves every
 //! shape and regime: the stress profile is a plastic zone `[0, xp]` at `fm`
 //! followed by an elastic zone `[xp, x2]`, `x2 = min(a, D)`, whose force and
-//! moment come from the shape's cumulative moments `S_k` (MODEL.md §2).
+//! moment come from the shape's cumulative moments `S_k` (docs/model.md §2).
 
 use crate::shape::Shape;
 
-/// Interface law (MODEL.md §2).
+/// Interface law (docs/model.md §2).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Law {
     /// Rigid contact: the reaction acts at the toe (`af = 0` for `theta != 0`).
@@ -21,7 +21,7 @@ pub enum Law {
     ElastoPlastic { kn: f64, fm: f64 },
 }
 
-/// Contact regime (the FMU's `regime` output, MODEL.md §5).
+/// Contact regime (the FMU's `regime` output, docs/model.md §5).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[repr(i32)]
 pub enum Regime {
@@ -147,7 +147,7 @@ impl Interface {
         s1 / s0
     }
 
-    /// Thresholds `(thetaJo, thetaC)` (MODEL.md §2, "Regimes and thresholds").
+    /// Thresholds `(thetaJo, thetaC)` (docs/model.md §2, "Regimes and thresholds").
     fn thresholds(&self) -> (f64, f64) {
         let (w, kn, fm, a_sec, d) = (self.weight, self.kn, self.fm, self.area, self.d);
         // Heel opening while the toe is elastic: N(D) = kn theta A D / 2 = W.
@@ -263,7 +263,7 @@ impl Interface {
         let (w, d) = (self.weight, self.d);
         let k = self.kn * phi; // stress per unit length of closure, Pa/m
         if regime == Regime::FullContact {
-            // Closed form (MODEL.md §2): N = k (a A - A D/2) = W.
+            // Closed form (docs/model.md §2): N = k (a A - A D/2) = W.
             let a = w / (k * self.area) + d / 2.0;
             return Contact {
                 af: d / 2.0 - k * self.is / w,
@@ -322,7 +322,7 @@ impl Interface {
             a = next;
             r = self.resultants(k, a1, a);
         }
-        // MODEL.md §2: af = M/W; d af/d phi = -(kn/W) x (second moment of the
+        // docs/model.md §2: af = M/W; d af/d phi = -(kn/W) x (second moment of the
         // elastic zone about its own centroid), the plastic-boundary terms
         // cancelling as in dN/da.
         Contact {
@@ -338,7 +338,7 @@ impl Interface {
         }
     }
 
-    /// The solid-rectangle formulas of MODEL.md §2 for `a` in partial
+    /// The solid-rectangle formulas of docs/model.md §2 for `a` in partial
     /// contact, with the section's mean width `A/D`, and their derivative
     /// in `phi`: elastic `a = sqrt(2W/(kn phi wbar))`; crushing
     /// `a = a1 + a2 = alim + a1/2`, `alim = W/(fm wbar)`, `a1 = fm/(kn phi)`.
@@ -367,7 +367,7 @@ impl Interface {
 
     /// Force and moment of the stress profile with closure `k (a - x)`,
     /// capped at `fm`: plastic zone `[0, xp]`, `xp = a - a1`, elastic zone
-    /// `[xp, x2]` (MODEL.md §2). The elastic zone's integrals are taken
+    /// `[xp, x2]` (docs/model.md §2). The elastic zone's integrals are taken
     /// about its start `xp` so that no digits cancel when it is narrow.
     #[inline]
     fn resultants(&self, k: f64, a1: f64, a: f64) -> Resultants {

@@ -1,18 +1,18 @@
 //! Rocking of a rigid body on a flexible, no-tension interface that can crush.
 //!
-//! This crate is the physics of `../shared/MODEL.md` and knows nothing of FMI:
+//! This crate is the physics of the model of `docs/model.md` and knows nothing of FMI:
 //!
 //! - [`shape`]: base sections, their width function `w(x)` and closed-form
-//!   cumulative moments `S0, S1, S2` (MODEL.md §1, §2);
+//!   cumulative moments `S0, S1, S2` (docs/model.md §1, §2);
 //! - [`interface`]: the interface law and the contact solve that gives the
-//!   reaction position `af(theta)` and its derivative (MODEL.md §2);
+//!   reaction position `af(theta)` and its derivative (docs/model.md §2);
 //! - [`body`]: mass models and the derived body values `R0, alpha, IO, eta`
-//!   (MODEL.md §1, §3);
+//!   (docs/model.md §1, §3);
 //! - [`model`]: the full parameter set, its validation, and the assembled
 //!   model with `hW, hg, I(phi)`, thresholds and overturning rotation
-//!   (MODEL.md §2, §3, §5);
+//!   (docs/model.md §2, §3, §5);
 //! - [`dynamics`]: equations of motion, impacts, rest and overturning, and the
-//!   integrator (MODEL.md §3).
+//!   integrator (docs/model.md §3).
 //!
 //! Sign convention: `theta > 0` rotates the body about its `+x` toe; every
 //! function of the rotation that is even in theta takes `phi = |theta|`.

@@ -1,5 +1,5 @@
-//! The parameter set, its validation (MODEL.md §5) and the assembled model:
-//! body, interface, levers of the equations of motion (MODEL.md §3).
+//! The parameter set, its validation (docs/model.md §5) and the assembled model:
+//! body, interface, levers of the equations of motion (docs/model.md §3).
 
 use std::fmt;
 
@@ -7,7 +7,7 @@ use crate::body::{Body, MassModel};
 use crate::interface::{solve_increasing, Contact, Interface, Law};
 use crate::shape::Shape;
 
-/// Which equation of motion (MODEL.md §3).
+/// Which equation of motion (docs/model.md §3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Formulation {
     /// The paper's Eq. 1 (Costa 2012): no `dI/dphi` term.
@@ -16,7 +16,7 @@ pub enum Formulation {
     ShiftingPivot,
 }
 
-/// How the coefficient of restitution is chosen (MODEL.md §3).
+/// How the coefficient of restitution is chosen (docs/model.md §3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Restitution {
     /// `eta = 1 - 2 m b² / IO`.
@@ -49,7 +49,7 @@ pub enum LawKind {
     ElastoPlastic,
 }
 
-/// Every parameter of MODEL.md §5, by its public name. Fields that the
+/// Every parameter of docs/model.md §5, by its public name. Fields that the
 /// selected shape, mass model or law does not use are ignored.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
@@ -122,7 +122,7 @@ impl Default for Params {
     }
 }
 
-/// A parameter that violates a condition of MODEL.md §5.
+/// A parameter that violates a condition of docs/model.md §5.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ParamError {
     /// The public name of the offending variable.
@@ -171,7 +171,7 @@ fn positive(variable: &'static str, value: f64) -> Result<(), ParamError> {
 }
 
 impl Params {
-    /// Validate (MODEL.md §5) and assemble the model.
+    /// Validate (docs/model.md §5) and assemble the model.
     pub fn build(&self) -> Result<Model, ParamError> {
         positive("g", self.g)?;
         let shape = match self.shape {
@@ -272,7 +272,7 @@ impl Params {
                 ),
             )?;
         }
-        // Derived values of the body (MODEL.md §1) that overflow make the
+        // Derived values of the body (docs/model.md §1) that overflow make the
         // equations of motion meaningless: name the derived variable.
         check(
             body.mass.is_finite() && body.mass > 0.0,
@@ -400,7 +400,7 @@ impl Params {
     }
 }
 
-/// Levers and inertia of the equation of motion at one rotation (MODEL.md §3).
+/// Levers and inertia of the equation of motion at one rotation (docs/model.md §3).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Levers {
     /// Lever of the weight about the shifted pivot, `hW`, m.
@@ -426,7 +426,7 @@ pub struct Model {
 }
 
 impl Model {
-    /// `hW, hg, I, dI/dphi` at `phi = |theta|` for the contact `c` there (MODEL.md §3).
+    /// `hW, hg, I, dI/dphi` at `phi = |theta|` for the contact `c` there (docs/model.md §3).
     #[inline]
     pub fn levers(&self, phi: f64, c: &Contact) -> Levers {
         let b = &self.body;
@@ -445,7 +445,7 @@ impl Model {
     }
 
     /// Restoring moment `MR = W hW(phi)` and its derivative `dMR/dphi`, N m
-    /// and N m/rad (MODEL.md §3).
+    /// and N m/rad (docs/model.md §3).
     pub fn restoring_moment(&self, phi: f64) -> (f64, f64) {
         let c = self.interface.contact(phi);
         let b = &self.body;
@@ -456,7 +456,7 @@ impl Model {
         (b.weight * l.hw, b.weight * dhw)
     }
 
-    /// The first root of `hW(phi) = 0` for `phi > 0` (MODEL.md §3): alpha for
+    /// The first root of `hW(phi) = 0` for `phi > 0` (docs/model.md §3): alpha for
     /// the rigid law; otherwise a geometric scan from far below the first
     /// threshold up to alpha, where `hW = -af cos(alpha) < 0`, refined by bisection.
     fn find_theta_ov(&self) -> f64 {

@@ -1,5 +1,5 @@
-//! Base sections (MODEL.md §1) and the cumulative moments of their width
-//! function (MODEL.md §2).
+//! Base sections (docs/model.md §1) and the cumulative moments of their width
+//! function (docs/model.md §2).
 //!
 //! `x` is measured along the rocking direction from the toe (`x = 0`) to the
 //! heel (`x = D`). Every interface computation goes through
@@ -9,7 +9,7 @@
 /// A base section, symmetric about its centroid. All lengths in metres.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shape {
-    /// Depth `b` (along the rocking direction, `B` in MODEL.md) and width `l` (`L`).
+    /// Depth `b` (along the rocking direction, `B` in docs/model.md) and width `l` (`L`).
     SolidRectangle { b: f64, l: f64 },
     /// Box section: outer depth `b`, outer width `l`, wall thickness `t`.
     HollowRectangle { b: f64, l: f64, t: f64 },
@@ -28,7 +28,7 @@ impl Shape {
         }
     }
 
-    /// Section area `A`, m² (MODEL.md §1).
+    /// Section area `A`, m² (docs/model.md §1).
     pub fn area(&self) -> f64 {
         match *self {
             Shape::SolidRectangle { b, l } => b * l,
@@ -39,7 +39,7 @@ impl Shape {
     }
 
     /// Second moment `Is = ∫ (x - D/2)² w dx` about the centroidal axis
-    /// parallel to the rocking axis, m⁴ (MODEL.md §1).
+    /// parallel to the rocking axis, m⁴ (docs/model.md §1).
     pub fn second_moment(&self) -> f64 {
         match *self {
             Shape::SolidRectangle { b, l } => l * b.powi(3) / 12.0,
@@ -53,7 +53,7 @@ impl Shape {
         }
     }
 
-    /// Width `w(x)` perpendicular to the rocking plane at `x` (MODEL.md §1), m.
+    /// Width `w(x)` perpendicular to the rocking plane at `x` (docs/model.md §1), m.
     /// Zero outside `[0, D]`.
     pub fn width(&self, x: f64) -> f64 {
         let d = self.depth();
@@ -120,7 +120,7 @@ impl Shape {
     }
 
     /// Cumulative moments `[S0, S1, S2](x) = ∫_0^x s^k w(s) ds` about the toe
-    /// (MODEL.md §2), with `x` clipped to `[0, D]`. Units m², m³, m⁴.
+    /// (docs/model.md §2), with `x` clipped to `[0, D]`. Units m², m³, m⁴.
     #[inline]
     pub fn moments(&self, x: f64) -> [f64; 3] {
         let d = self.depth();
@@ -185,7 +185,7 @@ fn band(c: f64, p: f64, q: f64) -> [f64; 3] {
 ///
 /// With `y = s - e = r (1 - cos φ)` the width is `2 r sin φ` and
 /// `∫ y^k w ds = 2 r^(k+2) G_k(β)`, `G_k(β) = ∫_0^β (1 - cos φ)^k sin²φ dφ`,
-/// where `β = 2 asin(sqrt(y/2r))`. This is MODEL.md §2's circle formula in
+/// where `β = 2 asin(sqrt(y/2r))`. This is docs/model.md §2's circle formula in
 /// the variable `φ`, which keeps full relative precision for thin segments
 /// (large rotations): the `u Q + R² asin(u/R) + π R²/2` form loses digits to
 /// cancellation there. Moments about `s = 0` follow by the binomial shift

@@ -1,4 +1,4 @@
-//! Rigid free rocking (Housner) against its exact solution (MODEL.md §3).
+//! Rigid free rocking (Housner) against its exact solution (docs/model.md §3).
 //!
 //! Between impacts the energy `E = IO omega²/2 + V(phi)`,
 //! `V(phi) = W R0 (cos(alpha - phi) - cos(alpha))`, is conserved; each impact

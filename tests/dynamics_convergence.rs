@@ -6,7 +6,7 @@
 //!   falls in proportion to `rtol`, and against the work at the order of the
 //!   method (8 for DOP853, 5 for DP5) within the spread of the events.
 //! - Against a second integrator written here: fixed-step classical RK4 on
-//!   the equation of motion of MODEL.md §3 (from `contact` and `levers`),
+//!   the equation of motion of docs/model.md §3 (from `contact` and `levers`),
 //!   impacts located by bisection on the RK4 step, Richardson-checked.
 
 use rocking::dynamics::{GroundInput, Method, Simulator, State};
@@ -56,7 +56,7 @@ fn run(m: &Model, rtol: f64, method: Method) -> (State, u32) {
     (st, evals)
 }
 
-/// `theta''` of MODEL.md §3, written out here.
+/// `theta''` of docs/model.md §3, written out here.
 fn accel(m: &Model, theta: f64, omega: f64, ag: f64, side: f64) -> f64 {
     let s = if theta != 0.0 { theta.signum() } else { side };
     let phi = theta.abs();

@@ -1,4 +1,4 @@
-//! Energy (MODEL.md §3): with `ag = 0` and `eta = 1` the `shiftingPivot`
+//! Energy (docs/model.md §3): with `ag = 0` and `eta = 1` the `shiftingPivot`
 //! equation conserves `E = I(phi) omega²/2 + V(phi)`,
 //! `V(phi) = ∫_0^phi W hW`; `costa` does not.
 //!

@@ -1,4 +1,4 @@
-//! The outputs (MODEL.md §5) against the trajectory itself: `theta''`, and
+//! The outputs (docs/model.md §5) against the trajectory itself: `theta''`, and
 //! the support forces `Fx = m (ag + xG'')`, `Fz = m (g + zG'')` against
 //! 5-point central differences (error O(dt^4)) of `xG = s (b - R0 sin(alpha - phi))`,
 //! `zG = R0 cos(alpha - phi)` sampled along the motion; for the rigid law

@@ -64,7 +64,7 @@ fn build(c: &Case) -> Model {
             p.ri = 0.3 * depth;
         }
     }
-    // kn Is > W hG (MODEL.md §2): raise kn where needed
+    // kn Is > W hG (docs/model.md §2): raise kn where needed
     if c.law != LawKind::Rigid {
         let rigid = Params {
             interface: LawKind::Rigid,

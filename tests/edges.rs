@@ -288,7 +288,7 @@ fn block(law: LawKind, kn: f64, fm: f64) -> Params {
 
 /// The rigid block that a rigid-plastic interface (kn -> inf at finite fm)
 /// makes of `p`: for phi > 0 the reaction acts at `c = af_limit` from the
-/// toe (MODEL.md §2: the weight carried at fm over [0, alim], af = alim/2),
+/// toe (docs/model.md §2: the weight carried at fm over [0, alim], af = alim/2),
 /// so the body rocks rigidly about a pivot at c: half-width `b - c`, the
 /// same `hG`, `Ic` and weight, `I = Ic + m ((b - c)² + hG²)` constant; the
 /// restitution stays that of the real block.
@@ -465,7 +465,7 @@ fn stiff_interfaces_tend_to_rigid_solutions() {
 
 /// `af(phi)` of a solid rectangle (depth D, width L) under weight W on an
 /// elasto-plastic bed (kn, fm) with `W/A < fm < 2 W/A` (crushing starts in
-/// full contact), in closed form from MODEL.md §2, written with
+/// full contact), in closed form from docs/model.md §2, written with
 /// `q = W/L` (load per unit width) and `k = kn phi`:
 /// - full contact, elastic (`phi <= thetaC = 2 (fm - W/A)/(kn D)`):
 ///   `af = D/2 - kn phi Is / W`, `Is = L D³/12`;
@@ -476,7 +476,7 @@ fn stiff_interfaces_tend_to_rigid_solutions() {
 ///   missing triangle (area `k u²/2`, centroid `D - u/3`):
 ///   `af = [fm D²/2 - (fm D - q)(D - u/3)] / q`; the heel opens when
 ///   `k u = fm`: `thetaJo = fm² / (2 kn D (fm - W/A))`;
-/// - partial contact with crushing (`phi > thetaJo`): MODEL.md's
+/// - partial contact with crushing (`phi > thetaJo`): docs/model.md's
 ///   `a1 = fm/k`, `alim = q/fm`, `a2 = alim - a1/2`,
 ///   `af = [a2²/2 + (a1/2)(a2 + a1/3)] / (a2 + a1/2) = alim/2 + a1²/(24 alim)`.
 struct CrushingRectangle {

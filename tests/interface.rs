@@ -1,4 +1,4 @@
-//! Interface mechanics (MODEL.md §2) against independent references:
+//! Interface mechanics (docs/model.md §2) against independent references:
 //! quadrature of the width function, the solid-rectangle closed forms
 //! derived by hand, a brute-force fibre model, and invariants.
 
@@ -7,7 +7,7 @@ mod common;
 use common::integrate_pieces;
 use rocking::{Interface, Law, Regime, Shape};
 
-/// Width function of MODEL.md §1, written again here from the table.
+/// Width function of docs/model.md §1, written again here from the table.
 fn width(shape: &Shape, x: f64) -> f64 {
     // chord of a circle spanning [lo, hi] along x, from the distances to
     // its two ends (no cancellation near the edges)
@@ -95,7 +95,7 @@ fn cumulative_moments_match_quadrature() {
     }
 }
 
-/// Solid rectangle, derived by hand (MODEL.md §2 and, for crushing in full
+/// Solid rectangle, derived by hand (docs/model.md §2 and, for crushing in full
 /// contact, the same equilibrium with a trapezoidal elastic zone):
 /// returns (af, a, regime).
 fn solid_rectangle_exact(bd: f64, l: f64, w: f64, kn: f64, fm: f64, th: f64) -> (f64, f64, Regime) {

@@ -1,4 +1,4 @@
-//! Property tests over random valid geometries and materials (MODEL.md §2):
+//! Property tests over random valid geometries and materials (docs/model.md §2):
 //! no NaN, no panic, af within [0, D/2], af non-increasing, af' <= 0,
 //! af' consistent with af, and equilibrium by an independent midpoint sum.
 

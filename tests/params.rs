@@ -1,4 +1,4 @@
-//! Parameter validation (MODEL.md §5) and the derived body values (§1, §3)
+//! Parameter validation (docs/model.md §5) and the derived body values (§1, §3)
 //! against closed forms.
 
 use rocking::model::{LawKind, MassKind, ShapeKind};
@@ -274,7 +274,7 @@ fn restoring_moment_derivative_matches_differences() {
 
 #[test]
 fn lumped_body_values_match_closed_forms() {
-    // The Dharahara tower of MODEL.md §4 as a lumped body on a hollow circle.
+    // The Dharahara tower of docs/model.md §4 as a lumped body on a hollow circle.
     let (ro, ri, w, hg, g) = (3.99, 2.12, 24003.94e3, 30.20, 9.81);
     let m_ = w / g;
     let ic = m_ * ((2.0 * hg) * (2.0 * hg) / 12.0 + (ro * ro + ri * ri) / 4.0);
@@ -297,7 +297,7 @@ fn lumped_body_values_match_closed_forms() {
     assert!((m.body.alpha - (ro / hg).atan()).abs() < 1e-15);
     assert!((m.body.io / (ic + m_ * r0 * r0) - 1.0).abs() < 1e-15);
     assert!((m.eta - (1.0 - 2.0 * m_ * ro * ro / (ic + m_ * r0 * r0))).abs() < 1e-15);
-    // MODEL.md §4: alpha = atan(3.99/30.20) = 0.131
+    // docs/model.md §4: alpha = atan(3.99/30.20) = 0.131
     assert!((m.body.alpha - 0.131).abs() < 5e-4);
     // hollow circle section
     let a = std::f64::consts::PI * (ro * ro - ri * ri);

@@ -10,7 +10,7 @@
 //! e = omega²/2 + V(phi)/IO,   V(phi)/IO = p² (cos(alpha - phi) - cos(alpha)),   p² = W R0 / IO,
 //! ```
 //!
-//! with `phi = |theta|`, is conserved (MODEL.md §3); each impact (theta
+//! with `phi = |theta|`, is conserved (docs/model.md §3); each impact (theta
 //! crossing zero) multiplies `omega` by `eta`, so `e` by `eta²`. The time to
 //! fall from a peak `Phi` to `psi` is `∫ dpsi / |omega|`; with
 //! `s = sin((alpha - psi)/2)` and `k = sin((alpha - Phi)/2)` it is

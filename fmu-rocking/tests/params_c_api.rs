@@ -1,4 +1,4 @@
-//! Invalid parameters through the C API (MODEL.md §5), table-driven: every
+//! Invalid parameters through the C API (docs/model.md §5), table-driven: every
 //! condition, on every shape, mass model and law it applies to, including
 //! the combinations (`W >= fm*A`, `kn*Is <= W*hG`, hollow sections with the
 //! inner size at or beyond the outer one), non-finite values, zero and
@@ -67,7 +67,7 @@ const H: f64 = 2.5;
 const RHO: f64 = 1800.0;
 const G: f64 = 9.81;
 
-/// Area and second moment of the default section of `shape` (MODEL.md §1).
+/// Area and second moment of the default section of `shape` (docs/model.md §1).
 fn section(shape: i32) -> (f64, f64) {
     use std::f64::consts::PI;
     match shape {

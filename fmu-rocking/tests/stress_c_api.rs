@@ -55,7 +55,7 @@ const G: f64 = 9.81;
 use enums::*;
 
 /// Depth D = H tan(alpha) and the shape's sizes; area and second moment
-/// (MODEL.md §1) for the stability limit.
+/// (docs/model.md §1) for the stability limit.
 fn geometry(c: &Case) -> (Vec<(&'static str, f64)>, f64, f64) {
     let d = c.size * c.alpha.tan();
     match c.shape {

@@ -2,7 +2,7 @@
 //!
 //! - [`schema`]: FMI 2.0 model-description data (generic: variables, units,
 //!   enumeration types, capabilities, default experiment);
-//! - [`rocking_block`]: the RockingBlock FMU's description (MODEL.md §5) and
+//! - [`rocking_block`]: the RockingBlock FMU's description (docs/model.md §5) and
 //!   its value references [`rocking_block::vr`];
 //! - `xml` (feature `xml`): `modelDescription.xml` through serde + quick-xml,
 //!   and the GUID derived from its content;

@@ -1,4 +1,4 @@
-//! The RockingBlock FMU: the one definition of its variables (MODEL.md §5),
+//! The RockingBlock FMU: the one definition of its variables (docs/model.md §5),
 //! units, enumeration types, capabilities and default experiment.
 //!
 //! The value references the binary uses ([`vr`]), the `modelDescription.xml`

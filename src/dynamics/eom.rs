@@ -1,4 +1,4 @@
-//! The right-hand side of the equation of motion (MODEL.md §3).
+//! The right-hand side of the equation of motion (docs/model.md §3).
 //!
 //! `I(phi) theta'' + (1/2) s I'(phi) omega^2 = -s W hW(phi) - m ag hg(phi)`
 //! (`shiftingPivot`; `costa` drops the `omega^2` term; the rigid law has

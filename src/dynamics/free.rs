@@ -2,7 +2,7 @@
 //!
 //! Without ground motion the rigid law conserves `E = IO omega²/2 + V(phi)`,
 //! `V(phi) = W R0 (cos(alpha - phi) - cos(alpha)) = 2 W R0 sin(phi/2) sin(alpha - phi/2)`,
-//! between impacts (MODEL.md §3). A body leaving `theta = 0` with `omega`
+//! between impacts (docs/model.md §3). A body leaving `theta = 0` with `omega`
 //! rises to the peak `V(phi) = IO omega²/2` and is back at `theta = 0` with
 //! `-omega` after `2 T(phi)`, `T(phi) = ∫_0^phi dpsi / omega(psi)`. With
 //! `psi = phi sin(u)` and `v = pi/4 - u/2` the integrand is analytic on

@@ -427,25 +427,21 @@ pub fn overturning_case(crushing: bool) -> Case {
     c
 }
 
-/// The shared ground-motion folder beside the repository.
+/// The ground-motion records shipped with the repository.
 pub fn ground_motions() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../shared/ground-motions")
-        .canonicalize()
-        .unwrap_or_else(|_| PathBuf::from("/work/shared/ground-motions"))
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../data/ground-motions")
 }
 
-/// The KATNP stand-in record (synthetic, 100 Hz, m/s²), if present.
-pub fn katnp_standin() -> Option<Vec<f64>> {
+/// The KATNP stand-in record (synthetic, 100 Hz, m/s²).
+pub fn katnp_standin() -> Vec<f64> {
     let p = ground_motions().join("katnp-standin/KATNP_NS_standin.csv");
-    let text = std::fs::read_to_string(p).ok()?;
-    let a: Vec<f64> = text
-        .lines()
+    let text = std::fs::read_to_string(&p)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", p.display()));
+    text.lines()
         .filter(|l| !l.starts_with('#'))
         .skip(1)
         .map(|l| l.split(',').nth(1).unwrap().trim().parse().unwrap())
-        .collect();
-    Some(a)
+        .collect()
 }
 
 /// Runs `case` for `steps` steps on a fresh, already initialised `fmu`,
@@ -512,20 +508,10 @@ pub fn instance_cycle(case: &Case, steps: usize) {
 /// and repeated, on a flexible interface that crushes (kn = 1e9 Pa/m,
 /// fm = 0.3 MPa): the block rocks to about 0.2 alpha with about 50 impacts
 /// per 1000 steps and partial crushing, and does not overturn; the input's
-/// slope is passed every step. Without the shared record: the sine bursts
-/// of `bursts` instead.
+/// slope is passed every step.
 pub fn record_case() -> (Case, &'static str) {
-    let (ground, what) = match katnp_standin() {
-        Some(r) => (
-            r.iter().map(|a| 1.2 * a).collect(),
-            "KATNP stand-in x1.2, repeated",
-        ),
-        None => (
-            // tan(alpha) = B/H = 0.2
-            bursts(1.2 * 9.81 * 0.2, 1.2, 8001),
-            "synthetic bursts (shared record not found)",
-        ),
-    };
+    let ground: Vec<f64> = katnp_standin().iter().map(|a| 1.2 * a).collect();
+    let what = "KATNP stand-in x1.2, repeated";
     let mut c = crushing_case(1.0, 3e5, 0.0);
     for (r, x) in &mut c.reals {
         if *r == vr::KN {
