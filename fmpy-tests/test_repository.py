@@ -153,3 +153,22 @@ def test_markdown_links_point_to_tracked_files(tracked):
                 broken.append(f"{page}:{lineno}: {target}: {why}")
     assert checked > 10, f"only {checked} relative links found in {pages}"
     assert not broken, "broken relative links:\n" + "\n".join(broken)
+
+
+def test_every_fmu_variable_is_documented_in_the_model_page():
+    """Every variable of the FMU's one definition (model-description) has a row
+    in docs/model.md §5, so the page cannot silently fall behind the FMU."""
+    source = (ROOT / "model-description" / "src" / "rocking_block.rs").read_text(encoding="utf-8")
+    block = source.split("variables! {", 1)[1].split("\n}\n", 1)[0]
+    defined = set(re.findall(r'^\s*name:\s*"([^"]+)"', block, flags=re.M))
+    assert {"theta", "ag", "Fx", "thetaOv"} <= defined, sorted(defined)
+
+    page = (ROOT / "docs" / "model.md").read_text(encoding="utf-8")
+    section = page.split("\n## 5.", 1)[1]
+    documented = set()
+    for line in section.splitlines():
+        if line.startswith("| `"):
+            first_cell = line.split("|")[1]
+            documented |= set(re.findall(r"`([A-Za-z][A-Za-z0-9]*)`", first_cell))
+    missing = sorted(defined - documented)
+    assert not missing, f"FMU variables without a row in docs/model.md §5: {missing}"
