@@ -227,6 +227,13 @@ def test_win64_imports_only_windows_system_dlls(win64_dll):
     assert "fmi2DoStep" in out  # the export table
 
 
+def test_win64_binary_carries_no_link_time(win64_dll):
+    """The archive is reproducible: GNU ld's PE time stamp is off (xtask)."""
+    out = subprocess.run([MINGW_OBJDUMP, "-p", win64_dll], capture_output=True, text=True, check=True).stdout
+    stamp = re.search(r"^Time/Date\s+(.*)$", out, re.M)
+    assert stamp and stamp.group(1).strip() == "Thu Jan  1 00:00:00 1970", stamp and stamp.group(0)
+
+
 def test_win64_crosscheck_artefacts_pass_the_vendor_repository_validation(win64_dll):
     from fmpy.cross_check.validate_vendor_repo import validate_test_fmu
 

@@ -258,6 +258,12 @@ fn build_win64() -> Res<Result<PathBuf, String>> {
         )));
     }
     let mut cmd = cargo();
+    // GNU ld writes the link time into the PE header unless told not to:
+    // without it, the archive would differ at every build
+    cmd.env(
+        "CARGO_TARGET_X86_64_PC_WINDOWS_GNU_RUSTFLAGS",
+        "-C link-arg=-Wl,--no-insert-timestamp",
+    );
     cmd.args([
         "build",
         "--release",
