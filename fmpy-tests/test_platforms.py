@@ -165,7 +165,7 @@ def _windows_toolchain_missing():
     if not os.path.isdir(os.path.join(sysroot.stdout.strip(), "lib", "rustlib", WIN64_TARGET)):
         return f"the Rust target {WIN64_TARGET} is not installed (rustup target add {WIN64_TARGET})"
     if shutil.which(MINGW_GCC) is None:
-        return f"{MINGW_GCC} not found (Debian: mingw-w64)"
+        return f"{MINGW_GCC} not found (Debian: gcc-mingw-w64-x86-64)"
     return None
 
 

@@ -254,7 +254,7 @@ fn build_win64() -> Res<Result<PathBuf, String>> {
     }
     if !runs(Path::new(MINGW_GCC)) {
         return Ok(Err(format!(
-            "{MINGW_GCC} not found (Debian: mingw-w64; tools/cross-deps.sh installs it)"
+            "{MINGW_GCC} not found (Debian: gcc-mingw-w64-x86-64; tools/cross-deps.sh installs it)"
         )));
     }
     let mut cmd = cargo();
