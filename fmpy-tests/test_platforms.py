@@ -263,8 +263,7 @@ def case(model_description):
     rigid = {i.name: i.value for i in var["interface"].declaredType.items}["rigid"]
     hb = _block(*(float(var[n].start) for n in ("B", "H", "g")))
     theta0 = THETA0_OVER_ALPHA * hb.alpha
-    h = md.defaultExperiment.stepSize
-    h = float(h)
+    h = float(md.defaultExperiment.stepSize)
     exact = hb.impacts(theta0, N_IMPACTS)
     steps = math.ceil(exact[-1][0] / h) + 2
     args = [

@@ -6,8 +6,8 @@
 //! checked against the XML's.
 //!
 //! The binaries, each built in a target directory of its own under
-//! `target/platforms/` (their linkers differ, so sharing one would rebuild the
-//! build scripts at every switch):
+//! `target/platforms/`, so that no build's linker or C compiler settings
+//! reach another's artefacts:
 //! - `binaries/linux64/RockingBlock.so`: `cargo zigbuild` for
 //!   `x86_64-unknown-linux-gnu.2.17`, linked by zig against glibc 2.17 (the
 //!   manylinux2014 baseline: RHEL 7 and every later distribution).
