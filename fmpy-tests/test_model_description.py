@@ -42,7 +42,8 @@ def test_archive_layout_is_reproducible(fmu_path):
         infos = z.infolist()
     names = [i.filename for i in infos]
     assert names == sorted(names)
-    assert names == [
+    # win64 where the machine has the Windows toolchain (test_platforms.py says when not)
+    assert [n for n in names if n != "binaries/win64/RockingBlock.dll"] == [
         "binaries/linux64/RockingBlock.so",
         "documentation/index.html",
         "modelDescription.xml",

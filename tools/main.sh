@@ -4,5 +4,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/venv.sh
+tools/cross-deps.sh
 cargo xtask fmu
 .venv/bin/python examples/dharahara.py "$@"

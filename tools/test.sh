@@ -4,8 +4,9 @@
 # in requirements.txt, installed into .venv).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-echo "== venv"
+echo "== venv, and the toolchains of the FMU's linux64 and win64 binaries"
 tools/venv.sh
+tools/cross-deps.sh --test
 echo "== format and lints"
 cargo fmt --all -- --check
 cargo clippy --workspace --all-targets --quiet -- -D warnings
@@ -13,7 +14,7 @@ echo "== Rust tests"
 cargo test --workspace --release
 echo "== valgrind memcheck of an instance's whole life through the C API"
 tools/memcheck.sh
-echo "== package the FMU and its FMI cross-check artefacts"
+echo "== package the FMU (linux64 against glibc 2.17, win64) and its FMI cross-check artefacts"
 cargo xtask crosscheck
 echo "== the packaged FMU through the fmi crate's FMI 2.0 importer (fmi-import/)"
 # fmi-sys runs bindgen at build time: it needs libclang (Debian: libclang-dev)
@@ -27,4 +28,4 @@ cargo fmt --manifest-path fmi-import/Cargo.toml -- --check
 cargo clippy --manifest-path fmi-import/Cargo.toml --release --all-targets --quiet -- -D warnings
 cargo test --release --manifest-path fmi-import/Cargo.toml
 echo "== fmpy suite"
-.venv/bin/python -m pytest fmpy-tests -q
+.venv/bin/python -m pytest fmpy-tests -q -rs

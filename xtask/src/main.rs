@@ -1,18 +1,32 @@
 //! `cargo xtask fmu`: builds the release cdylib and writes
-//! `target/fmu/RockingBlock.fmu` (modelDescription.xml,
-//! binaries/linux64/RockingBlock.so, documentation/index.html), reproducibly:
-//! fixed timestamps and permissions, sorted entries. The XML and the page are
-//! the very files `fmu-rocking/build.rs` generated for the binary, whose
-//! embedded GUID is checked against the XML's.
+//! `target/fmu/RockingBlock.fmu` (modelDescription.xml, the binaries,
+//! documentation/index.html), reproducibly: fixed timestamps and permissions,
+//! sorted entries. The XML and the page are the very files
+//! `fmu-rocking/build.rs` generated for the binary, whose embedded GUID is
+//! checked against the XML's.
 //!
-//! The same build also makes the `run_direct` example (the Rust engine run
-//! directly, for the fmpy tests' comparisons).
+//! The binaries, each built in a target directory of its own under
+//! `target/platforms/`, so that no build's linker or C compiler settings
+//! reach another's artefacts:
+//! - `binaries/linux64/RockingBlock.so`: `cargo zigbuild` for
+//!   `x86_64-unknown-linux-gnu.2.17`, linked by zig against glibc 2.17 (the
+//!   manylinux2014 baseline: RHEL 7 and every later distribution).
+//!   cargo-zigbuild and zig come from the pinned wheels in `.venv`
+//!   (`tools/cross-deps.sh`); without them the native build is packaged and
+//!   a line says so.
+//! - `binaries/win64/RockingBlock.dll`: `x86_64-pc-windows-gnu`, linked by
+//!   mingw-w64. Without that Rust target or `x86_64-w64-mingw32-gcc` the FMU
+//!   has no win64 folder and a line says so.
+//!
+//! The native build (`target/release`) also makes the `run_direct` example
+//! (the Rust engine run directly, for the fmpy tests' comparisons).
 
 use std::env;
 use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
+use std::time::Instant;
 
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, DateTime, ZipWriter};
@@ -45,11 +59,11 @@ fn usage() {
     eprintln!(
         "usage: cargo xtask <task>\n\n\
          tasks:\n  \
-         fmu          build the release library and write target/fmu/{MODEL_IDENTIFIER}.fmu\n               \
-         (and target/release/examples/run_direct)\n  \
+         fmu          build the release library for linux64 (glibc 2.17) and win64 and write\n               \
+         target/fmu/{MODEL_IDENTIFIER}.fmu (and target/release/examples/run_direct)\n  \
          crosscheck   the FMU, then FMI cross-check artefacts (FMU, input, reference\n               \
          results from the engine run directly, options, README) under\n               \
-         target/cross-check/fmus/2.0/cs/linux64/..."
+         target/cross-check/fmus/2.0/cs/{{linux64,win64}}/..."
     );
 }
 
@@ -88,65 +102,183 @@ fn package_dir(id: &str) -> Option<PathBuf> {
     Some(PathBuf::from(path))
 }
 
-fn build() -> Res<Built> {
-    let cargo = env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let output = Command::new(cargo)
+/// Runs a cargo build (`--message-format=json-render-diagnostics`) and
+/// returns its JSON messages about the fmu-rocking package.
+fn cargo_messages(mut cmd: Command) -> Res<Vec<serde_json::Value>> {
+    let output = cmd
         .current_dir(root())
-        .args([
-            "build",
-            "--release",
-            "--package",
-            "fmu-rocking",
-            "--lib",
-            "--example",
-            "run_direct",
-            "--message-format=json-render-diagnostics",
-        ])
+        .arg("--message-format=json-render-diagnostics")
         .stdout(Stdio::piped())
         .stderr(Stdio::inherit())
         .output()
-        .map_err(|e| format!("cannot run cargo: {e}"))?;
+        .map_err(|e| format!("cannot run {:?}: {e}", cmd.get_program()))?;
     if !output.status.success() {
-        return Err(format!("cargo build failed ({})", output.status));
+        return Err(format!(
+            "{:?} build failed ({})",
+            cmd.get_program(),
+            output.status
+        ));
     }
     let fmu_dir = root().join("fmu-rocking");
-    let (mut library, mut out_dir, mut run_direct) = (None, None, None);
-    for line in String::from_utf8_lossy(&output.stdout).lines() {
-        let Ok(v) = serde_json::from_str::<serde_json::Value>(line) else {
-            continue;
-        };
-        let id = v["package_id"].as_str().unwrap_or("");
-        let ours = package_dir(id).is_some_and(|d| d == fmu_dir);
-        match v["reason"].as_str() {
-            Some("build-script-executed") if ours => {
-                out_dir = v["out_dir"].as_str().map(PathBuf::from);
-            }
-            Some("compiler-artifact") if ours => {
-                let name = v["target"]["name"].as_str().unwrap_or("");
-                let kinds: Vec<&str> = v["target"]["kind"]
-                    .as_array()
-                    .map(|a| a.iter().filter_map(|k| k.as_str()).collect())
-                    .unwrap_or_default();
-                if name == "fmu_rocking" && kinds.contains(&"cdylib") {
-                    library = v["filenames"].as_array().and_then(|f| {
-                        f.iter()
-                            .filter_map(|x| x.as_str())
-                            .find(|x| x.ends_with(".so"))
-                            .map(PathBuf::from)
-                    });
-                }
-                if name == "run_direct" {
-                    run_direct = v["executable"].as_str().map(PathBuf::from);
-                }
-            }
-            _ => {}
+    Ok(String::from_utf8_lossy(&output.stdout)
+        .lines()
+        .filter_map(|line| serde_json::from_str::<serde_json::Value>(line).ok())
+        .filter(|v| {
+            package_dir(v["package_id"].as_str().unwrap_or("")).is_some_and(|d| d == fmu_dir)
+        })
+        .collect())
+}
+
+/// The fmu_rocking cdylib among the messages, the file ending in `suffix`.
+fn cdylib(messages: &[serde_json::Value], suffix: &str) -> Option<PathBuf> {
+    messages.iter().find_map(|v| {
+        let kinds = v["target"]["kind"].as_array()?;
+        if v["reason"] != "compiler-artifact"
+            || v["target"]["name"] != "fmu_rocking"
+            || !kinds.iter().any(|k| k == "cdylib")
+        {
+            return None;
         }
-    }
+        v["filenames"]
+            .as_array()?
+            .iter()
+            .filter_map(|x| x.as_str())
+            .find(|x| x.ends_with(suffix))
+            .map(PathBuf::from)
+    })
+}
+
+fn cargo() -> Command {
+    Command::new(env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
+}
+
+/// The native release build: the library the tests load from
+/// `target/release`, the XML and page of its build script, and `run_direct`.
+fn build() -> Res<Built> {
+    let mut cmd = cargo();
+    cmd.args([
+        "build",
+        "--release",
+        "--package",
+        "fmu-rocking",
+        "--lib",
+        "--example",
+        "run_direct",
+    ]);
+    let messages = cargo_messages(cmd)?;
+    let out_dir = messages
+        .iter()
+        .filter(|v| v["reason"] == "build-script-executed")
+        .find_map(|v| v["out_dir"].as_str().map(PathBuf::from));
+    let run_direct = messages
+        .iter()
+        .filter(|v| v["reason"] == "compiler-artifact" && v["target"]["name"] == "run_direct")
+        .find_map(|v| v["executable"].as_str().map(PathBuf::from));
     Ok(Built {
-        library: library.ok_or("cargo reported no fmu_rocking cdylib")?,
+        library: cdylib(&messages, ".so").ok_or("cargo reported no fmu_rocking cdylib")?,
         out_dir: out_dir.ok_or("cargo reported no build-script output for fmu-rocking")?,
         run_direct,
     })
+}
+
+/// Whether `program --version` runs.
+fn runs(program: &Path) -> bool {
+    Command::new(program)
+        .arg("--version")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success())
+}
+
+/// The glibc baseline of the linux64 binary (manylinux2014).
+const LINUX64_TARGET: &str = "x86_64-unknown-linux-gnu.2.17";
+const WIN64_TARGET: &str = "x86_64-pc-windows-gnu";
+const MINGW_GCC: &str = "x86_64-w64-mingw32-gcc";
+
+/// The linux64 library linked against glibc 2.17 by cargo-zigbuild, or
+/// `Err(why not)` when cargo-zigbuild is missing.
+fn build_linux64() -> Res<Result<PathBuf, String>> {
+    let venv_bin = root().join(".venv/bin");
+    let zigbuild = [venv_bin.join("cargo-zigbuild"), "cargo-zigbuild".into()]
+        .into_iter()
+        .find(|p| runs(p));
+    let Some(zigbuild) = zigbuild else {
+        return Ok(Err(
+            "cargo-zigbuild not found in .venv or on PATH (tools/cross-deps.sh installs it)".into(),
+        ));
+    };
+    let mut cmd = Command::new(zigbuild);
+    // cargo-zigbuild finds zig as CARGO_ZIGBUILD_ZIG_PATH, `zig` on PATH or
+    // `python3 -m ziglang`: point it at the ziglang wheel of .venv
+    let python_zig = venv_bin.join("python-zig");
+    if env::var_os("CARGO_ZIGBUILD_ZIG_PATH").is_none() && python_zig.is_file() {
+        cmd.env("CARGO_ZIGBUILD_ZIG_PATH", &python_zig);
+    }
+    let path = env::var_os("PATH").unwrap_or_default();
+    let mut paths = vec![venv_bin];
+    paths.extend(env::split_paths(&path));
+    cmd.env(
+        "PATH",
+        env::join_paths(paths).map_err(|e| format!("PATH: {e}"))?,
+    );
+    cmd.args([
+        "build",
+        "--release",
+        "--package",
+        "fmu-rocking",
+        "--lib",
+        "--target",
+        LINUX64_TARGET,
+        "--target-dir",
+    ]);
+    cmd.arg(target_dir().join("platforms/linux64"));
+    let messages = cargo_messages(cmd)?;
+    Ok(Ok(
+        cdylib(&messages, ".so").ok_or("cargo zigbuild reported no fmu_rocking cdylib")?
+    ))
+}
+
+/// The win64 DLL, or `Err(why not)` when the Rust target or mingw-w64 is missing.
+fn build_win64() -> Res<Result<PathBuf, String>> {
+    let sysroot = Command::new(env::var("RUSTC").unwrap_or_else(|_| "rustc".into()))
+        .args(["--print", "sysroot"])
+        .output()
+        .map_err(|e| format!("rustc --print sysroot: {e}"))?;
+    let sysroot = PathBuf::from(String::from_utf8_lossy(&sysroot.stdout).trim());
+    if !sysroot.join("lib/rustlib").join(WIN64_TARGET).is_dir() {
+        return Ok(Err(format!(
+            "the Rust target {WIN64_TARGET} is not installed \
+             (rustup target add {WIN64_TARGET}; tools/cross-deps.sh does it)"
+        )));
+    }
+    if !runs(Path::new(MINGW_GCC)) {
+        return Ok(Err(format!(
+            "{MINGW_GCC} not found (Debian: gcc-mingw-w64-x86-64; tools/cross-deps.sh installs it)"
+        )));
+    }
+    let mut cmd = cargo();
+    // GNU ld writes the link time into the PE header unless told not to:
+    // without it, the archive would differ at every build
+    cmd.env(
+        "CARGO_TARGET_X86_64_PC_WINDOWS_GNU_RUSTFLAGS",
+        "-C link-arg=-Wl,--no-insert-timestamp",
+    );
+    cmd.args([
+        "build",
+        "--release",
+        "--package",
+        "fmu-rocking",
+        "--lib",
+        "--target",
+        WIN64_TARGET,
+        "--target-dir",
+    ]);
+    cmd.arg(target_dir().join("platforms/win64"));
+    let messages = cargo_messages(cmd)?;
+    Ok(Ok(
+        cdylib(&messages, ".dll").ok_or("cargo reported no fmu_rocking DLL")?
+    ))
 }
 
 fn read(p: &Path) -> Res<Vec<u8>> {
@@ -182,44 +314,68 @@ fn fmu() -> Res<PathBuf> {
     Ok(package()?.0)
 }
 
-/// Builds and packages; returns the archive and the build's products.
-fn package() -> Res<(PathBuf, Built)> {
+/// Builds and packages; returns the archive, the native build's products
+/// and the platforms the archive has binaries for.
+fn package() -> Res<(PathBuf, Built, Vec<&'static str>)> {
     let built = build()?;
     let xml = read(&built.out_dir.join("modelDescription.xml"))?;
     let guid = String::from_utf8(read(&built.out_dir.join("guid.txt"))?)
         .map_err(|e| format!("guid.txt: {e}"))?;
     let html = read(&built.out_dir.join("index.html"))?;
-    let library = read(&built.library)?;
     if !contains(&xml, format!("guid=\"{guid}\"").as_bytes()) {
         return Err(format!(
             "modelDescription.xml does not carry the GUID {guid}"
         ));
     }
-    if !contains(&library, guid.as_bytes()) {
-        return Err(format!(
-            "{} does not embed the GUID {guid} of the generated modelDescription.xml",
-            built.library.display()
-        ));
+    let mut entries = vec![
+        ("modelDescription.xml".to_string(), xml, 0o644),
+        ("documentation/index.html".to_string(), html, 0o644),
+    ];
+    let mut platforms = Vec::new();
+    let mut add = |platform: &'static str, library: &Path, seconds: f64| -> Res<()> {
+        let data = read(library)?;
+        if !contains(&data, guid.as_bytes()) {
+            return Err(format!(
+                "{} does not embed the GUID {guid} of the generated modelDescription.xml",
+                library.display()
+            ));
+        }
+        let ext = library.extension().and_then(|e| e.to_str()).unwrap_or("");
+        let name = format!("binaries/{platform}/{MODEL_IDENTIFIER}.{ext}");
+        println!(
+            "{name}: {} bytes, built in {seconds:.1} s ({})",
+            data.len(),
+            library.display()
+        );
+        entries.push((name, data, 0o755));
+        platforms.push(platform);
+        Ok(())
+    };
+    let start = Instant::now();
+    match build_linux64()? {
+        Ok(so) => add("linux64", &so, start.elapsed().as_secs_f64())?,
+        Err(why) => {
+            println!(
+                "linux64: {why}: packaging the native build, linked against this machine's glibc"
+            );
+            add("linux64", &built.library, 0.0)?;
+        }
+    }
+    let start = Instant::now();
+    match build_win64()? {
+        Ok(dll) => add("win64", &dll, start.elapsed().as_secs_f64())?,
+        Err(why) => println!("win64: skipped: {why}"),
     }
     let dir = target_dir().join("fmu");
     fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let path = dir.join(format!("{MODEL_IDENTIFIER}.fmu"));
-    let mut entries = vec![
-        ("modelDescription.xml".to_string(), xml, 0o644),
-        (
-            format!("binaries/linux64/{MODEL_IDENTIFIER}.so"),
-            library,
-            0o755,
-        ),
-        ("documentation/index.html".to_string(), html, 0o644),
-    ];
     write_fmu(&path, &mut entries)?;
     let size = fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
     println!("{} ({size} bytes, GUID {guid})", path.display());
     if let Some(r) = &built.run_direct {
         println!("{}", r.display());
     }
-    Ok((path, built))
+    Ok((path, built, platforms))
 }
 
 /// The cross-check case: the default block on its crushing joint under a
@@ -234,7 +390,7 @@ fn cc_ground_motion(t: f64) -> f64 {
 
 /// `cargo xtask crosscheck`: FMI cross-check artefacts for the FMU.
 fn crosscheck() -> Res<()> {
-    let (fmu_path, built) = package()?;
+    let (fmu_path, built, platforms) = package()?;
     let run_direct = built
         .run_direct
         .ok_or("cargo reported no run_direct executable")?;
@@ -314,5 +470,22 @@ fn crosscheck() -> Res<()> {
     )
     .map_err(|e| format!("README.md: {e}"))?;
     println!("{}", dir.display());
+    // the same artefacts for every other platform of the archive: the
+    // reference is the engine's, whatever the platform
+    for platform in platforms.iter().filter(|&&p| p != "linux64") {
+        let other = target_dir()
+            .join("cross-check/fmus/2.0/cs")
+            .join(platform)
+            .join(MODEL_IDENTIFIER)
+            .join(version)
+            .join(MODEL_IDENTIFIER);
+        fs::create_dir_all(&other).map_err(|e| format!("{}: {e}", other.display()))?;
+        for entry in fs::read_dir(&dir).map_err(|e| format!("{}: {e}", dir.display()))? {
+            let from = entry.map_err(|e| format!("{}: {e}", dir.display()))?.path();
+            let to = other.join(from.file_name().unwrap_or_default());
+            fs::copy(&from, &to).map_err(|e| format!("{}: {e}", to.display()))?;
+        }
+        println!("{}", other.display());
+    }
     Ok(())
 }

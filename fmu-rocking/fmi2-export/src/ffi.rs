@@ -125,8 +125,18 @@ pub fn decode_file_uri(uri: &str) -> Option<PathBuf> {
             i += 1;
         }
     }
-    use std::os::unix::ffi::OsStringExt;
-    Some(PathBuf::from(std::ffi::OsString::from_vec(bytes)))
+    #[cfg(unix)]
+    {
+        use std::os::unix::ffi::OsStringExt;
+        Some(PathBuf::from(std::ffi::OsString::from_vec(bytes)))
+    }
+    #[cfg(not(unix))]
+    {
+        // Windows: the URI's path is UTF-8, and `/C:/dir` is the drive path `C:/dir`
+        let path = String::from_utf8(bytes).ok()?;
+        let drive = matches!(path.as_bytes(), [b'/', d, b':', ..] if d.is_ascii_alphabetic());
+        Some(PathBuf::from(if drive { &path[1..] } else { &path[..] }))
+    }
 }
 
 pub fn get_types_platform() -> *const c_char {
