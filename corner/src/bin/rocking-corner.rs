@@ -307,7 +307,7 @@ fn main() -> ExitCode {
     match run(&cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eout!("rocking-corner: {e}");
+            eprintln!("rocking-corner: {e}");
             ExitCode::from(2)
         }
     }
