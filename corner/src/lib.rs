@@ -139,7 +139,10 @@ impl Specimen {
         if self.courses < 2 {
             return Err(err(
                 "courses",
-                format!("must be >= 2 (a hinge needs a course below and above it), got {}", self.courses),
+                format!(
+                    "must be >= 2 (a hinge needs a course below and above it), got {}",
+                    self.courses
+                ),
             ));
         }
         for (name, blocks, length) in [
@@ -277,7 +280,10 @@ impl Mechanism {
         match m {
             0 => Ok(Mechanism::RockingSliding),
             1 => Ok(Mechanism::Flexural),
-            _ => Err(err("m", format!("must be 0 (rocking-sliding) or 1 (flexural), got {m}"))),
+            _ => Err(err(
+                "m",
+                format!("must be 0 (rocking-sliding) or 1 (flexural), got {m}"),
+            )),
         }
     }
 
@@ -408,10 +414,16 @@ impl Geometry {
                 return Err(err(names.1, "red width must be >= 0 (> 0 for m = 1)"));
             }
             if wall.green + wall.red > len + tol {
-                return Err(err(names.0, "the macroblock passes the clamped end of the wall"));
+                return Err(err(
+                    names.0,
+                    "the macroblock passes the clamped end of the wall",
+                ));
             }
             if wall.green + wall.red - wall.base > d * sp.tan_alpha_b() + tol {
-                return Err(err(names.1, "outer crack flatter than the running-bond step alpha_b"));
+                return Err(err(
+                    names.1,
+                    "outer crack flatter than the running-bond step alpha_b",
+                ));
             }
         }
         Ok(())
@@ -651,7 +663,10 @@ impl CornerModel {
 
 fn check_alpha(alpha: f64) -> Result<(), CornerError> {
     if !(alpha.is_finite() && (-1e-12..=FRAC_PI_2 + 1e-12).contains(&alpha)) {
-        return Err(err("alpha", format!("must be in [0, pi/2] rad, got {alpha}")));
+        return Err(err(
+            "alpha",
+            format!("must be in [0, pi/2] rad, got {alpha}"),
+        ));
     }
     Ok(())
 }
@@ -914,7 +929,11 @@ fn inertia(model: &CornerModel, x: &Geometry, dir: Direction) -> f64 {
     // Out-of-plane green part: rho * integral of (t z'^2 + t^3/3): rotation about the outer edge.
     let y0 = model.oop_start();
     let flexural = model.mechanism == Mechanism::Flexural;
-    let top = if flexural { oop.green } else { oop.green + oop.red } - y0;
+    let top = if flexural {
+        oop.green
+    } else {
+        oop.green + oop.red
+    } - y0;
     let base = oop.base - y0;
     let area = 0.5 * d * (top + base);
     let i_green =

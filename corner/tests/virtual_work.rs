@@ -85,8 +85,18 @@ fn brute_force(model: &CornerModel, x: &Geometry, dir: Direction) -> Sums {
     let d = hh - z1;
     // (green top, red width, base, wall length) of the in-plane and the out-of-plane wall.
     let (ip, oop, len_ip, len_oop) = match dir {
-        Direction::X => ((x.x1, x.x2, x.x3), (x.y2, x.y1, x.y3), sp.length_x(), sp.length_y()),
-        Direction::Y => ((x.y2, x.y1, x.y3), (x.x1, x.x2, x.x3), sp.length_y(), sp.length_x()),
+        Direction::X => (
+            (x.x1, x.x2, x.x3),
+            (x.y2, x.y1, x.y3),
+            sp.length_x(),
+            sp.length_y(),
+        ),
+        Direction::Y => (
+            (x.y2, x.y1, x.y3),
+            (x.x1, x.x2, x.x3),
+            sp.length_y(),
+            sp.length_x(),
+        ),
     };
     let flexural = model.mechanism == Mechanism::Flexural;
     let ip_top = if flexural && model.options.in_plane_wedge == InPlaneWedge::Green {
@@ -94,7 +104,11 @@ fn brute_force(model: &CornerModel, x: &Geometry, dir: Direction) -> Sums {
     } else {
         ip.0 + ip.1
     };
-    let y0 = if model.options.corner_column == CornerColumn::Once { t } else { 0.0 };
+    let y0 = if model.options.corner_column == CornerColumn::Once {
+        t
+    } else {
+        0.0
+    };
     let oop_green_top = if flexural { oop.0 } else { oop.0 + oop.1 };
     let wedge = [(0.0, z1), (ip.2, z1), (ip_top, hh), (0.0, hh)];
     let green = [(y0, z1), (oop.2, z1), (oop_green_top, hh), (y0, hh)];
@@ -123,8 +137,7 @@ fn brute_force(model: &CornerModel, x: &Geometry, dir: Direction) -> Sums {
             s.weight += gt * area;
             s.stabilising += gt * area * t / 2.0;
             s.overturning += gt * area * (zc - z1);
-            s.inertia += rho
-                * integrate(&piece, &|p| t * (p.1 - z1).powi(2) + t.powi(3) / 3.0);
+            s.inertia += rho * integrate(&piece, &|p| t * (p.1 - z1).powi(2) + t.powi(3) / 3.0);
         }
         if flexural {
             // The red triangle turns about its outer line O'A' at omega = d / red: a point moves
@@ -150,29 +163,63 @@ fn geometries(model: &CornerModel) -> Vec<Geometry> {
     let h = model.specimen.h;
     let mut seed = 99u64;
     let mut next = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (seed >> 33) as f64 / f64::from(1u32 << 31)
     };
     let mut out = vec![
         // The paper's optima at pi/4 and pi/2 on the joint grid.
-        Geometry { x1: 5.0 * v, x2: 4.0 * v, x3: v, y1: 4.0 * v, y2: 5.0 * v, y3: v, z1: h },
-        Geometry { x1: 10.0 * v, x2: 4.0 * v, x3: 10.0 * v, y1: v, y2: 5.0 * v, y3: v, z1: h },
+        Geometry {
+            x1: 5.0 * v,
+            x2: 4.0 * v,
+            x3: v,
+            y1: 4.0 * v,
+            y2: 5.0 * v,
+            y3: v,
+            z1: h,
+        },
+        Geometry {
+            x1: 10.0 * v,
+            x2: 4.0 * v,
+            x3: 10.0 * v,
+            y1: v,
+            y2: 5.0 * v,
+            y3: v,
+            z1: h,
+        },
     ];
     while out.len() < 40 {
         // Half joint-aligned, half arbitrary continuous values.
         let snap = out.len() % 2 == 0;
         let q = |r: f64, lo: f64, hi: f64| {
             let x = lo + r * (hi - lo);
-            if snap { (x / v).round() * v } else { x }
+            if snap {
+                (x / v).round() * v
+            } else {
+                x
+            }
         };
-        let z1 = if snap { h * (1.0 + (7.0 * next()).floor()) } else { h * (1.0 + 7.0 * next()) };
+        let z1 = if snap {
+            h * (1.0 + (7.0 * next()).floor())
+        } else {
+            h * (1.0 + 7.0 * next())
+        };
         let x3 = q(next(), v, 8.0 * v);
         let x1 = q(next(), x3, 12.0 * v);
         let x2 = q(next(), v, 5.0 * v);
         let y3 = q(next(), v, 8.0 * v);
         let y2 = q(next(), y3, 12.0 * v);
         let y1 = q(next(), v, 5.0 * v);
-        let g = Geometry { x1, x2, x3, y1, y2, y3, z1 };
+        let g = Geometry {
+            x1,
+            x2,
+            x3,
+            y1,
+            y2,
+            y3,
+            z1,
+        };
         if g.check(model, 0.0).is_ok() {
             out.push(g);
         }
@@ -186,7 +233,11 @@ fn closed_forms_equal_the_block_by_block_sums() {
     for m in [0, 1] {
         for wedge in [InPlaneWedge::Green, InPlaneWedge::Outer] {
             for column in [CornerColumn::Both, CornerColumn::Once] {
-                let o = Options { in_plane_wedge: wedge, corner_column: column, ..Options::default() };
+                let o = Options {
+                    in_plane_wedge: wedge,
+                    corner_column: column,
+                    ..Options::default()
+                };
                 let model = CornerModel::new(Specimen::paper(), m, 0.3, o).unwrap();
                 for x in geometries(&model) {
                     for dir in [Direction::X, Direction::Y] {

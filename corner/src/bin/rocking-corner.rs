@@ -206,7 +206,18 @@ fn json_of(r: &CornerResult) -> Value {
 fn table(rs: &[CornerResult]) {
     out!(
         "{:>8} {:>8} {:>9} {:>9} {:>9} {:>9} | {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6}",
-        "alpha", "deg", "lambda", "lam_X", "lam_Y", "lam_NM", "X1", "X2", "X3", "Y1", "Y2", "Y3",
+        "alpha",
+        "deg",
+        "lambda",
+        "lam_X",
+        "lam_Y",
+        "lam_NM",
+        "X1",
+        "X2",
+        "X3",
+        "Y1",
+        "Y2",
+        "Y3",
         "Z1"
     );
     for r in rs {
@@ -269,7 +280,9 @@ fn run(cli: &Cli) -> Result<(), String> {
         table(&results);
     }
     if let Some(path) = &cli.body {
-        let alpha = cli.body_alpha.unwrap_or(*alphas.last().expect("at least one"));
+        let alpha = cli
+            .body_alpha
+            .unwrap_or(*alphas.last().expect("at least one"));
         let r = corner_multiplier(&model, alpha).map_err(|e| e.to_string())?;
         let dir = body_direction(alpha);
         let body = rocking_body(&model, &r.grid.geometry, dir).map_err(|e| e.to_string())?;
