@@ -15,8 +15,8 @@ macro_rules! out {
 use clap::{Parser, ValueEnum};
 use corner::{
     body_direction, corner_multiplier, rocking_body, BodyKind, CornerColumn, CornerModel,
-    CornerResult, CrackRatio, FrictionJoints, FrictionLever, InPlaneWedge, Options, Preset,
-    Specimen,
+    CornerResult, CrackRatio, FrictionJoints, FrictionLever, Geometry, InPlaneWedge, Options,
+    Preset, Specimen,
 };
 use serde_json::{json, Map, Value};
 
@@ -87,6 +87,9 @@ struct Cli {
     /// Joints counted in Fmax: eq9 (n(n+1)/2) or inner (n(n-1)/2).
     #[arg(long, value_enum)]
     friction_joints: Option<JointsArg>,
+    /// Evaluate this macroblock instead of searching: X1,X2,X3,Y1,Y2,Y3,Z1 (m).
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    geometry: Option<Vec<f64>>,
     /// Skip the Nelder-Mead refinement (grid only).
     #[arg(long)]
     no_refine: bool,
@@ -268,9 +271,42 @@ fn run(cli: &Cli) -> Result<(), String> {
     } else {
         cli.alpha.clone()
     };
+    if let Some(g) = &cli.geometry {
+        if g.len() != 7 {
+            return Err(format!(
+                "invalid geometry: 7 comma-separated values X1,X2,X3,Y1,Y2,Y3,Z1 needed, got {}",
+                g.len()
+            ));
+        }
+    }
+    let given = cli.geometry.as_ref().map(|g| Geometry {
+        x1: g[0],
+        x2: g[1],
+        x3: g[2],
+        y1: g[3],
+        y2: g[4],
+        y3: g[5],
+        z1: g[6],
+    });
+    let solve = |a: f64| -> Result<CornerResult, String> {
+        match &given {
+            None => corner_multiplier(&model, a).map_err(|e| e.to_string()),
+            Some(x) => {
+                let e = model.evaluate(x, a).map_err(|e| e.to_string())?;
+                Ok(CornerResult {
+                    alpha: a,
+                    m: model.mechanism.m(),
+                    k: model.k,
+                    grid: e,
+                    candidates: 1,
+                    refined: None,
+                })
+            }
+        }
+    };
     let mut results = Vec::new();
     for &a in &alphas {
-        results.push(corner_multiplier(&model, a).map_err(|e| e.to_string())?);
+        results.push(solve(a)?);
     }
     if cli.json {
         for r in &results {
@@ -283,7 +319,7 @@ fn run(cli: &Cli) -> Result<(), String> {
         let alpha = cli
             .body_alpha
             .unwrap_or(*alphas.last().expect("at least one"));
-        let r = corner_multiplier(&model, alpha).map_err(|e| e.to_string())?;
+        let r = solve(alpha)?;
         let dir = body_direction(alpha);
         let body = rocking_body(&model, &r.grid.geometry, dir).map_err(|e| e.to_string())?;
         let kind = match cli.body_kind {
@@ -294,22 +330,24 @@ fn run(cli: &Cli) -> Result<(), String> {
         for (name, value) in body.fmu_parameters(kind, model.specimen.g) {
             map.insert(name.into(), serde_json::to_value(value).expect("number"));
         }
-        let doc = json!({
-            "parameters": Value::Object(map),
-            "source": {
-                "alpha": alpha,
-                "direction": dir,
-                "body": kind,
-                "lambda": body.lambda,
-                "lambda_rock": body.lambda_rock,
-                "theta_u": body.theta_u,
-                "b": body.b,
-                "b_eq": body.b_eq,
-                "IO": body.i_o,
-                "geometry": r.grid.geometry,
-            }
-        });
-        let text = serde_json::to_string_pretty(&doc).expect("plain values");
+        // The file holds FMU parameters only (name -> value, enumerations by item name), so a
+        // host can pass every entry to the FMU; where the body comes from goes to stderr.
+        let text = serde_json::to_string_pretty(&Value::Object(map)).expect("plain values");
+        eprintln!(
+            "rocking-corner: {} body of alpha = {alpha} (direction {dir:?}): lambda = {:.4}, \
+             lambda_rock = {:.4}, b = {:.4} m, b_eq = {:.4} m, hG = {:.4} m, theta_u = {:.4} rad -> {}",
+            match kind {
+                BodyKind::Geometric => "geometric",
+                BodyKind::Threshold => "threshold-matched",
+            },
+            body.lambda,
+            body.lambda_rock,
+            body.b,
+            body.b_eq,
+            body.h_g,
+            body.theta_u,
+            path.display()
+        );
         std::fs::write(path, text + "\n").map_err(|e| format!("{}: {e}", path.display()))?;
     }
     Ok(())
