@@ -699,8 +699,10 @@ pub struct CornerResult {
     /// The joint-aligned optimum (exact on the grid): the reported multiplier.
     #[serde(flatten)]
     pub grid: Evaluation,
-    /// Joint-aligned candidate geometries evaluated.
+    /// Admissible joint-aligned geometries (the search is exhaustive over these).
     pub candidates: u64,
+    /// Of those, the ones evaluated pair by pair; the rest were excluded by a lower bound.
+    pub evaluated: u64,
     /// The continuous Nelder-Mead refinement from the grid optimum, when asked for.
     pub refined: Option<Evaluation>,
 }
@@ -730,7 +732,7 @@ fn wall_triples(
 /// `options.refine`; `alpha` in rad from the x axis, in [0, pi/2].
 pub fn corner_multiplier(model: &CornerModel, alpha: f64) -> Result<CornerResult, CornerError> {
     check_alpha(alpha)?;
-    let (grid, candidates) = grid_search(model, alpha);
+    let (grid, counts) = grid_search(model, alpha);
     let refined = if model.options.refine {
         Some(refine::nelder_mead(model, &grid.geometry, alpha))
     } else {
@@ -741,7 +743,8 @@ pub fn corner_multiplier(model: &CornerModel, alpha: f64) -> Result<CornerResult
         m: model.mechanism.m(),
         k: model.k,
         grid,
-        candidates,
+        candidates: counts.candidates,
+        evaluated: counts.evaluated,
         refined,
     })
 }
@@ -750,7 +753,7 @@ pub fn corner_multiplier(model: &CornerModel, alpha: f64) -> Result<CornerResult
 /// length a multiple of v, cracks no flatter than the running-bond step. Each wall's triples
 /// are reduced once per hinge level to four partial sums (in-plane and out-of-plane numerator
 /// and denominator), so a candidate pair costs two divisions.
-fn grid_search(model: &CornerModel, alpha: f64) -> (Evaluation, u64) {
+fn grid_search(model: &CornerModel, alpha: f64) -> (Evaluation, Counts) {
     let sp = &model.specimen;
     let v = sp.v();
     let (s, c) = alpha.sin_cos();
@@ -765,6 +768,7 @@ fn grid_search(model: &CornerModel, alpha: f64) -> (Evaluation, u64) {
     let step_units = 1;
     let mut best: Option<(f64, Geometry)> = None;
     let mut candidates = 0u64;
+    let mut evaluated = 0u64;
     for j in 1..sp.courses {
         let z1 = f64::from(j) * sp.h;
         let d = sp.height() - z1;
@@ -802,20 +806,69 @@ fn grid_search(model: &CornerModel, alpha: f64) -> (Evaluation, u64) {
         let sx = sums(&px);
         let sy = sums(&py);
         candidates += (sx.len() * sy.len()) as u64;
-        let mut level_best = (f64::INFINITY, 0usize, 0usize);
-        for (ix, a) in sx.iter().enumerate() {
-            for (iy, b) in sy.iter().enumerate() {
-                let mut lx = (a[0] + b[2]) / (a[1] + b[3]);
-                let mut ly = (b[0] + a[2]) / (b[1] + a[3]);
-                // The torsion clamp [A7] is rare: redo that direction exactly when it binds.
-                if 0.5 * lx * b[4] > b[5] || 0.5 * ly * a[4] > a[5] {
-                    let x = geometry_of(&tx[ix], &ty[iy], v, z1);
-                    lx = model.direction_terms(&x, Direction::X).lambda;
-                    ly = model.direction_terms(&x, Direction::Y).lambda;
+        // Branch and bound. For a WX triple and a set of WY triples, the numerators are
+        // smallest and the denominators largest at the set's extremes, so no pair can go below
+        //   c2 (a0 + min b2)/(a1 + max b3) + s2 (min b0 + a2)/(max b1 + a3).
+        // The formula without the torsion clamp is itself a lower bound (the clamp only raises
+        // lambda), and correctly rounded + and / are monotone, so the bound holds in floating
+        // point. Rows (WX triples) are visited by increasing bound over all of WY, the WY list in
+        // chunks of neighbours (similar triples) with their own bounds; ties are broken by the
+        // listing order, so the result is the one the plain double loop gives.
+        let extremes = |ys: &[[f64; 6]]| {
+            ys.iter()
+                .fold([f64::INFINITY, 0.0, f64::INFINITY, 0.0], |e, b| {
+                    [
+                        e[0].min(b[0]),
+                        e[1].max(b[1]),
+                        e[2].min(b[2]),
+                        e[3].max(b[3]),
+                    ]
+                })
+        };
+        let bound = |a: &[f64; 6], e: &[f64; 4]| {
+            c2 * ((a[0] + e[2]) / (a[1] + e[3])) + s2 * ((e[0] + a[2]) / (e[1] + a[3]))
+        };
+        const CHUNK: usize = 16;
+        let chunks: Vec<[f64; 4]> = sy.chunks(CHUNK).map(extremes).collect();
+        let all = extremes(&sy);
+        let mut rows: Vec<(f64, usize)> = sx
+            .iter()
+            .enumerate()
+            .map(|(i, a)| (bound(a, &all), i))
+            .collect();
+        rows.sort_by(|p, q| p.0.total_cmp(&q.0).then(p.1.cmp(&q.1)));
+        let global = best.map_or(f64::INFINITY, |b| b.0);
+        // Can a candidate of lower bound `lb` still win? Within the level a tie may win on
+        // order; against an earlier level it must be strictly lower.
+        let open = |lb: f64, level: f64| lb <= level && lb < global;
+        let mut level_best = (f64::INFINITY, usize::MAX, usize::MAX);
+        for &(row_bound, ix) in &rows {
+            if !open(row_bound, level_best.0) {
+                break;
+            }
+            let a = &sx[ix];
+            for (ci, e) in chunks.iter().enumerate() {
+                if !open(bound(a, e), level_best.0) {
+                    continue;
                 }
-                let l = c2 * lx + s2 * ly;
-                if l < level_best.0 {
-                    level_best = (l, ix, iy);
+                let start = ci * CHUNK;
+                let end = (start + CHUNK).min(sy.len());
+                evaluated += (end - start) as u64;
+                for (iy, b) in sy.iter().enumerate().take(end).skip(start) {
+                    let mut lx = (a[0] + b[2]) / (a[1] + b[3]);
+                    let mut ly = (b[0] + a[2]) / (b[1] + a[3]);
+                    // The torsion clamp [A7] is rare: redo that direction exactly when it binds.
+                    if 0.5 * lx * b[4] > b[5] || 0.5 * ly * a[4] > a[5] {
+                        let x = geometry_of(&tx[ix], &ty[iy], v, z1);
+                        lx = model.direction_terms(&x, Direction::X).lambda;
+                        ly = model.direction_terms(&x, Direction::Y).lambda;
+                    }
+                    let l = c2 * lx + s2 * ly;
+                    if l < level_best.0
+                        || (l == level_best.0 && (ix, iy) < (level_best.1, level_best.2))
+                    {
+                        level_best = (l, ix, iy);
+                    }
                 }
             }
         }
@@ -825,7 +878,21 @@ fn grid_search(model: &CornerModel, alpha: f64) -> (Evaluation, u64) {
         }
     }
     let (_, x) = best.expect("a course has at least one admissible geometry");
-    (model.evaluate_unchecked(&x, alpha), candidates)
+    (
+        model.evaluate_unchecked(&x, alpha),
+        Counts {
+            candidates,
+            evaluated,
+        },
+    )
+}
+
+/// Candidate geometries of a grid search: all admissible ones, and those evaluated after the
+/// row bound.
+#[derive(Debug, Clone, Copy)]
+struct Counts {
+    candidates: u64,
+    evaluated: u64,
 }
 
 fn geometry_of(tx: &(u32, u32, u32), ty: &(u32, u32, u32), v: f64, z1: f64) -> Geometry {

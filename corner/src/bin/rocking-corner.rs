@@ -299,6 +299,7 @@ fn run(cli: &Cli) -> Result<(), String> {
                     k: model.k,
                     grid: e,
                     candidates: 1,
+                    evaluated: 1,
                     refined: None,
                 })
             }
