@@ -13,9 +13,9 @@ links of the chain agree.
 
 import json
 import math
-import os
 import pathlib
 import subprocess
+import sys
 
 import pytest
 
@@ -92,3 +92,30 @@ def test_pi_2_optimum_bodies_start_at_their_thresholds(fmu_path, unzipped, tmp_p
     if kind == "geometric":
         assert lam < 0.7 * la
     check_onset(fmu_path, unzipped, params, lam)
+
+
+def run_example(name, *args):
+    cmd = [sys.executable, str(ROOT / "examples" / name), *args]
+    return subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True, text=True).stdout
+
+
+def test_corner_study_example_draws_its_figures(tmp_path):
+    out = run_example("corner_study.py", "--out", str(tmp_path), "--beyond")
+    rows = [line.split() for line in out.splitlines()[1:6]]
+    # The paper's five orientations, the multiplier falling from pi/4 to pi/2.
+    lam = [float(r[1]) for r in rows]
+    assert len(lam) == 5 and all(b < a for a, b in zip(lam, lam[1:])), out
+    for png in ("corner_lambda_alpha.png", "corner_macroblocks.png", "corner_unequal_walls.png"):
+        assert (tmp_path / png).stat().st_size > 10_000
+
+
+def test_corner_rocking_example_overturns_above_the_uplift_threshold(tmp_path):
+    out = run_example("corner_rocking.py", "--out", str(tmp_path))
+    rows = {line.split()[0]: [float(x) for x in line.split()[1:]]
+            for line in out.splitlines() if line.strip().startswith(("geometric", "threshold"))}
+    assert set(rows) == {"geometric", "threshold"}, out
+    for kind, (uplift, below, above) in rows.items():
+        # A rigid block cannot even leave its base before |ag| reaches its threshold, so no
+        # record with a smaller peak can overturn it.
+        assert below < above and above >= uplift, (kind, uplift, below, above)
+    assert rows["geometric"][0] < rows["threshold"][0]
