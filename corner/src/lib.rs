@@ -309,6 +309,24 @@ impl CornerModel {
     pub fn new(specimen: Specimen, m: u32, k: f64, options: Options) -> Result<Self, CornerError> {
         specimen.validate()?;
         let mechanism = Mechanism::from_m(m)?;
+        // Each wall must hold at least one joint-aligned part: a base of whole half blocks
+        // reaching t, plus one half block of red width under flexure.
+        let base_units = (specimen.t / specimen.v() - 1e-9).ceil().max(1.0);
+        let least = (base_units + f64::from(mechanism.m())) * specimen.v();
+        for (name, length) in [
+            ("blocks_x", specimen.length_x()),
+            ("blocks_y", specimen.length_y()),
+        ] {
+            if length < least - 1e-12 {
+                return Err(err(
+                    name,
+                    format!(
+                        "the wall ({length} m) cannot hold a macroblock of m = {}: it needs {least} m",
+                        mechanism.m()
+                    ),
+                ));
+            }
+        }
         if !(k.is_finite() && (0.0..=1.0).contains(&k)) {
             return Err(err("k", format!("must be in [0, 1], got {k}")));
         }

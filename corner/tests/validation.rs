@@ -332,6 +332,14 @@ fn invalid_input_is_refused_by_name() {
         "blocks_y"
     );
     assert_eq!(named(CornerModel::new(sp, 2, 0.3, o)), "m");
+    // A wall of one block cannot hold a base of two half blocks (t > v) plus a red triangle.
+    let thick = Specimen {
+        t: 0.1,
+        blocks_x: 1,
+        ..sp
+    };
+    assert_eq!(named(CornerModel::new(thick, 1, 0.3, o)), "blocks_x");
+    assert!(CornerModel::new(thick, 0, 0.3, o).is_ok());
     assert_eq!(named(CornerModel::new(sp, 1, 1.5, o)), "k");
     assert_eq!(named(CornerModel::new(sp, 1, -0.1, o)), "k");
     let model = CornerModel::paper(1, 0.3).unwrap();
@@ -416,4 +424,52 @@ fn bounded_search_finds_what_the_plain_double_loop_finds() {
             }
         }
     }
+}
+
+#[test]
+fn any_valid_corner_gives_an_admissible_optimum() {
+    // Random corners (sizes, courses, blocks, m, k, alpha): either refused by name or solved,
+    // with an admissible joint-aligned optimum and a refinement no worse than it.
+    let mut seed = 7u64;
+    let mut next = || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 33) as f64 / f64::from(1u32 << 31)
+    };
+    let mut solved = 0;
+    for _ in 0..60 {
+        let sp = Specimen {
+            t: 0.03 + 0.3 * next(),
+            l: 0.05 + 0.4 * next(),
+            h: 0.03 + 0.3 * next(),
+            rho: 1500.0 + 1000.0 * next(),
+            mu: 0.3 + 0.6 * next(),
+            courses: 2 + (9.0 * next()) as u32,
+            blocks_x: 1 + (7.0 * next()) as u32,
+            blocks_y: 1 + (7.0 * next()) as u32,
+            g: 9.81,
+        };
+        let m = u32::from(next() < 0.5);
+        let k = next();
+        let alpha = FRAC_PI_2 * next();
+        let model = match CornerModel::new(sp, m, k, Options::default()) {
+            Ok(model) => model,
+            Err(e) => {
+                assert!(["blocks_x", "blocks_y"].contains(&e.parameter), "{e}");
+                continue;
+            }
+        };
+        let r = corner_multiplier(&model, alpha).unwrap();
+        assert!(
+            r.grid.lambda_alpha.is_finite() && r.grid.lambda_alpha > 0.0,
+            "{sp:?}"
+        );
+        r.grid.geometry.check(&model, 1e-9).unwrap();
+        let nm = r.refined.unwrap();
+        assert!(nm.lambda_alpha <= r.grid.lambda_alpha);
+        nm.geometry.check(&model, 1e-9).unwrap();
+        solved += 1;
+    }
+    assert!(solved > 30, "{solved}");
 }
