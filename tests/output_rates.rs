@@ -19,7 +19,7 @@
 //! Errors are relative to the largest magnitude of the same derivative
 //! along the run; the tables print the measured worst cases.
 
-use rocking::dynamics::{GroundInput, OutputRates, Simulator, State};
+use rocking::dynamics::{GroundInput, Jet, OutputRates, Simulator, State};
 use rocking::interface::Interface;
 use rocking::{Formulation, Law, Params, Regime, Shape};
 
@@ -212,7 +212,10 @@ fn values(sim: &Simulator, st: &State, ag: f64) -> [f64; 8] {
     ]
 }
 
-fn jets(r: &OutputRates) -> [[f64; 3]; 8] {
+/// `[order 1, order 2]` of every output.
+type Orders12 = [[f64; 2]; 8];
+
+fn jets(r: &OutputRates) -> [Jet; 8] {
     [
         r.theta,
         r.omega,
@@ -248,7 +251,8 @@ fn run_case(c: &Case) -> ([[f64; 2]; 8], usize, [usize; 4]) {
     let mut scale = [[0.0f64; 2]; 8];
     let mut regimes = [0; 4];
     let mut vmax = [0.0f64; 8];
-    let mut diffs: Vec<([[f64; 2]; 8], [[f64; 3]; 8])> = Vec::new();
+    // (differences, analytic jets) per sample
+    let mut diffs: Vec<(Orders12, [Jet; 8])> = Vec::new();
     let centres = 40;
     for k in 1..=centres {
         let tc = c.t_end * k as f64 / (centres + 1) as f64;
