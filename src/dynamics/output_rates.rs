@@ -34,7 +34,7 @@
 use crate::interface::{Law, Regime};
 use crate::model::Formulation;
 
-use super::eom::side_of;
+use super::eom::{side_of, Eom};
 use super::{GroundInput, Simulator, State};
 
 /// `[x, dx/dt, d²x/dt²]` of one output, in its unit per s^order.
@@ -179,10 +179,13 @@ impl Simulator {
             }
             jet_div(n, compose(&g.inertia, p))
         };
-        let mut th = [state.theta, state.omega, 0.0, 0.0, 0.0];
-        // each pass gives one more derivative (the k-th of theta'' needs
-        // theta up to order k + 1): theta'', then theta''', then theta''''
-        th[2] = accel(&th)[0];
+        // theta'' itself as `Simulator::outputs` has it, to the bit; then
+        // one more derivative per pass (the k-th of theta'' needs theta up
+        // to order k + 1): theta''', then theta''''
+        let eom = Eom::new(m, state.t, GroundInput { ag, dag: 0.0 });
+        let mut hint = state.a;
+        let theta_dd = eom.accel(state.t, state.theta, state.omega, s, &mut hint);
+        let mut th = [state.theta, state.omega, theta_dd, 0.0, 0.0];
         th[3] = accel(&th)[1];
         th[4] = accel(&th)[2];
 
