@@ -276,3 +276,54 @@ impl Simulator {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::LawKind;
+    use crate::Params;
+
+    /// `af'''` (central, and one-sided next to a kink) against the closed
+    /// forms of a solid rectangle (docs/model.md §2): elastic partial contact
+    /// `af = a/3`, `a = sqrt(2W/(kn phi L))`, so `af''' = -(15/8) af/phi³`;
+    /// partial crushing `af = alim/2 + fm L a1²/(24 W)`, `a1 = fm/(kn phi)`,
+    /// so `af''' = -fm L a1²/(W phi³)`.
+    #[test]
+    fn third_derivative_of_af_matches_the_rectangle() {
+        let elastic = Params {
+            interface: LawKind::Elastic,
+            ..Params::default()
+        };
+        let crushing = Params {
+            fm: 1e6,
+            ..Params::default()
+        };
+        let mut worst: f64 = 0.0;
+        for p in [elastic, crushing] {
+            let sim = Simulator::new(p.build().unwrap(), 1e-9);
+            let it = &sim.model.interface;
+            let w = sim.model.body.weight;
+            let start = if p.interface == LawKind::Elastic {
+                it.theta_jo()
+            } else {
+                it.theta_c()
+            };
+            // from just past the kink (one-sided) to 20 times it (central)
+            for f in [1.0 + 1e-5, 1.0 + 1e-3, 1.5, 3.0, 20.0] {
+                let phi = start * f;
+                let c = it.contact(phi);
+                let exact = if p.interface == LawKind::Elastic {
+                    -15.0 / 8.0 * c.af / phi.powi(3)
+                } else {
+                    let a1 = p.fm / (p.kn * phi);
+                    -p.fm * p.l * a1 * a1 / (w * phi.powi(3))
+                };
+                let e = (sim.af_third(phi, c.regime) - exact).abs() / exact.abs();
+                println!("{:?} phi/kink = {f}: {e:.1e}", p.interface);
+                worst = worst.max(e);
+                assert!(e < 1e-6, "{:?} phi = {phi}: error {e:e}", p.interface);
+            }
+        }
+        println!("af''' worst relative error {worst:.1e}");
+    }
+}
