@@ -321,6 +321,9 @@ def test_directional_derivatives_are_not_provided(host):
     assert st == ERROR and "providesDirectionalDerivative" in host.errors()[-1]
 
 
+REAL_OUTPUTS = ["theta", "omega", "thetaOverAlpha", "angularAcceleration", "af", "contactLength", "MR", "Fx", "Fz"]
+
+
 def test_output_derivatives(host):
     host.init(theta=0.05, interface="rigid")
     host.fmu.doStep(0.0, 0.05)
@@ -334,8 +337,36 @@ def test_output_derivatives(host):
     assert "order 3" in host.errors()[-1]
     host.fmu.reset()
     host.init()
-    assert host.raw("fmi2GetRealOutputDerivatives", (c_uint * 1)(vr["Fx"]), 1, (c_int * 1)(1), (c_double * 1)()) == ERROR
-    assert "Fx" in host.errors()[-1]
+    for name in ["ag", "B"]:
+        assert host.raw("fmi2GetRealOutputDerivatives", (c_uint * 1)(vr[name]), 1, (c_int * 1)(1), (c_double * 1)()) == ERROR
+        assert f"{name} is no output" in host.errors()[-1]
+        host.fmu.reset()
+        host.init()
+
+
+@pytest.mark.parametrize("formulation", ["shiftingPivot", "costa"])
+@pytest.mark.parametrize("interface", ["rigid", "elastic", "elastoPlastic"])
+def test_every_real_output_has_derivatives_of_orders_1_and_2(host, interface, formulation):
+    """maxOutputDerivativeOrder = 2 holds for every Real output: after a few
+    steps under a ground acceleration with a slope (fmi2SetRealInputDerivatives),
+    both orders of all nine are fmi2OK and finite, also at rest."""
+    vrs = [host.vr[n] for n in REAL_OUTPUTS]
+    for theta in [0.04, 0.0]:
+        host.init(theta=theta, interface=interface, formulation=formulation, fm=1e6, ag=0.2)
+        host.fmu.setRealInputDerivatives([host.vr["ag"]], [1], [-0.3])
+        for k in range(5):
+            host.fmu.doStep(k * 0.01, 0.01)
+            d1 = host.fmu.getRealOutputDerivatives(vrs, [1] * len(vrs))
+            d2 = host.fmu.getRealOutputDerivatives(vrs, [2] * len(vrs))
+            assert all(math.isfinite(x) for x in d1 + d2), (d1, d2)
+            assert d1[0] == host.get("omega") and d2[0] == d1[1] == host.get("angularAcceleration")
+            assert d1[3] == d2[1]
+        if theta == 0.0 and interface == "rigid":
+            # at rest: every output constant but Fx = m ag, whose slope is m dag/dt
+            assert d1[:7] == [0.0] * 7 and d2 == [0.0] * 9
+            assert d1[7] == pytest.approx(-0.3 * host.get("mass"), rel=1e-15)
+            assert d1[8] == 0.0
+        host.fmu.reset()
 
 
 def test_higher_input_derivatives_are_ignored_with_a_warning(host):

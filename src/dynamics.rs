@@ -29,7 +29,10 @@ mod dense;
 mod eom;
 mod erk;
 mod free;
+mod output_rates;
 mod rodas;
+
+pub use output_rates::{Jet, OutputRates};
 
 use crate::interface::{Law, Regime};
 use crate::model::Model;

@@ -338,6 +338,58 @@ impl Interface {
         }
     }
 
+    /// Second derivatives in `phi` of a solved contact `c`:
+    /// `(d²af/dphi², d²a/dphi²)`, m/rad², for the output derivatives
+    /// (docs/dynamics.md, "Output derivatives"). Inside a regime, from the
+    /// elastic zone `[xp, x2]` of docs/model.md §2 (moments `L_k` about `xp`,
+    /// centroid `xp + c`, `F = ∫ (a - x) w`): `af' = -(kn/W) Jc` with `Jc`
+    /// the zone's central second moment, so `af'' = -(kn/W) dJc/dphi`,
+    /// `dJc/dphi = w(x2) (x2 - xp - c)² x2' - w(xp) c² xp'`; `a' = -F/(phi L0)`,
+    /// so `a'' = -F'/(phi L0) - a' (1/phi + L0'/L0)` with
+    /// `F' = a' L0 - (a - xp) w(xp) xp'`, `L0' = w(x2) x2' - w(xp) xp'`,
+    /// `x2' = a'` while `a < D` (else 0), `xp' = a' + a1/phi` while the toe
+    /// crushes (`a1 = fm/(kn phi)`, else 0). Both are 0 in full contact (af
+    /// is linear in `phi` there, `a` is not an output) and for the rigid law.
+    pub fn second_derivatives(&self, c: &Contact) -> (f64, f64) {
+        let phi = c.phi;
+        if self.law == Law::Rigid || phi == 0.0 || c.regime == Regime::FullContact {
+            return (0.0, 0.0);
+        }
+        let (d, a) = (self.d, c.a);
+        let a1 = self.fm / (self.kn * phi);
+        let x2 = a.min(d);
+        let xp = (a - a1).clamp(0.0, x2);
+        let l = if xp == 0.0 && a >= d {
+            self.s_full
+        } else {
+            self.shape.zone_moments(xp, x2)
+        };
+        if l[0] <= 0.0 {
+            return (0.0, 0.0);
+        }
+        let e = a - xp;
+        let f = e * l[0] - l[1];
+        let da = -f / (phi * l[0]);
+        let (grow, dx2) = if a < d {
+            (self.shape.width(x2), da)
+        } else {
+            (0.0, 0.0)
+        };
+        let (lose, dxp) = if xp > 0.0 {
+            (self.shape.width(xp), da + a1 / phi)
+        } else {
+            (0.0, 0.0)
+        };
+        let cz = l[1] / l[0];
+        let e2 = x2 - xp;
+        let djc = grow * (e2 - cz) * (e2 - cz) * dx2 - lose * cz * cz * dxp;
+        let d2af = -self.kn * djc / self.weight;
+        let df = da * l[0] - e * lose * dxp;
+        let dl0 = grow * dx2 - lose * dxp;
+        let d2a = -df / (phi * l[0]) - da * (1.0 / phi + dl0 / l[0]);
+        (d2af, d2a)
+    }
+
     /// The solid-rectangle formulas of docs/model.md §2 for `a` in partial
     /// contact, with the section's mean width `A/D`, and their derivative
     /// in `phi`: elastic `a = sqrt(2W/(kn phi wbar))`; crushing

@@ -5,7 +5,7 @@ use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
 use fmi2_export::model_description::rocking_block::{enums, vr, ROCKING_BLOCK};
 use fmi2_export::model_description::ModelDescription;
 use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Values};
-use rocking::dynamics::{GroundInput, Outputs, Simulator, State};
+use rocking::dynamics::{GroundInput, OutputRates, Outputs, Simulator, State};
 use rocking::model::{LawKind, MassKind, ShapeKind};
 use rocking::{Formulation, Params, Regime, Restitution};
 
@@ -21,6 +21,9 @@ pub struct RockingSlave {
     state: State,
     /// Outputs at `state` for the ground acceleration with these bits.
     cache: Option<(u64, Outputs)>,
+    /// Output derivatives at `state` for the ground input `(ag, dag/dt)`
+    /// with these bits.
+    rates: Option<(u64, u64, OutputRates)>,
 }
 
 fn enum_value<T>(name: &str, x: i32, table: &[(i32, T)]) -> Result<T, String>
@@ -116,6 +119,18 @@ impl RockingSlave {
         }
     }
 
+    fn rates(&mut self, input: GroundInput) -> OutputRates {
+        let key = (input.ag.to_bits(), input.dag.to_bits());
+        match self.rates {
+            Some((a, d, r)) if (a, d) == key => r,
+            _ => {
+                let r = self.sim.output_rates(&self.state, input);
+                self.rates = Some((key.0, key.1, r));
+                r
+            }
+        }
+    }
+
     /// Why a computed value is not finite.
     fn overflow(&self, x: f64, ag: f64) -> String {
         format!(
@@ -157,6 +172,7 @@ impl Slave for RockingSlave {
             sim,
             state,
             cache: None,
+            rates: None,
         })
     }
 
@@ -210,14 +226,28 @@ impl Slave for RockingSlave {
     }
 
     fn output_derivative(&mut self, r: u32, order: i32, inputs: Inputs<'_>) -> Result<f64, String> {
-        let alpha = self.sim.model.body.alpha;
         let ag = inputs.real(vr::AG);
-        let x = match (r, order) {
-            (vr::THETA, 1) => self.state.omega,
-            (vr::THETA, 2) | (vr::OMEGA, 1) => self.outputs(ag).theta_dd,
-            (vr::THETA_OVER_ALPHA, 1) => self.state.omega / alpha,
-            (vr::THETA_OVER_ALPHA, 2) => self.outputs(ag).theta_dd / alpha,
-            _ => return Err("not provided: derivatives are available for theta (orders 1, 2), omega (order 1) and thetaOverAlpha (orders 1, 2)".into()),
+        let input = GroundInput {
+            ag,
+            dag: inputs.derivative(vr::AG),
+        };
+        // the FMI layer has checked 1 <= order <= maxOutputDerivativeOrder
+        let k = match order {
+            1 | 2 => order as usize,
+            _ => return Err(format!("derivative order {order} is not 1 or 2")),
+        };
+        let rates = self.rates(input);
+        let x = match r {
+            vr::THETA => rates.theta[k],
+            vr::OMEGA => rates.omega[k],
+            vr::THETA_OVER_ALPHA => rates.theta[k] / self.sim.model.body.alpha,
+            vr::ANGULAR_ACCELERATION => rates.theta_dd[k],
+            vr::AF => rates.af[k],
+            vr::CONTACT_LENGTH => rates.contact_length[k],
+            vr::MR => rates.mr[k],
+            vr::FX => rates.fx[k],
+            vr::FZ => rates.fz[k],
+            _ => return Err(format!("no Real output with value reference {r}")),
         };
         if !x.is_finite() {
             return Err(self.overflow(x, ag));
@@ -265,6 +295,7 @@ impl Slave for RockingSlave {
         }
         self.state = s;
         self.cache = None;
+        self.rates = None;
         if log.enabled() {
             if ev.uplift {
                 log.event(format!(
@@ -321,6 +352,7 @@ impl Slave for RockingSlave {
     fn set_state(&mut self, state: State) {
         self.state = state;
         self.cache = None;
+        self.rates = None;
     }
 
     fn write_state(s: &State, w: &mut ByteWriter) {
