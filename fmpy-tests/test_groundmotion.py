@@ -1,4 +1,4 @@
-"""Tests of the `groundmotion` readers.
+"""Tests of the `rocking.groundmotion` readers.
 
 Each check compares against something the reader code does not produce: the
 README table of the shipped ground motions, the files' own header statements
@@ -7,18 +7,16 @@ known values.
 """
 
 import re
-import sys
 from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
+from rocking import groundmotion as gm
+from rocking.groundmotion import GroundMotionFormatError
 
-import groundmotion as gm  # noqa: E402
-from groundmotion import GroundMotionFormatError  # noqa: E402
+REPO = Path(__file__).resolve().parents[1]
 
 DATA = REPO / "data" / "ground-motions"
 G = 9.80665  # m/s² per g, written out here rather than taken from the package
