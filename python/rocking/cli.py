@@ -336,7 +336,7 @@ def plot_simulation(path, table, s, regimes, rec, args):
     g = 9.80665
     t = table["time"].to_numpy()
     fig, axes = plt.subplots(4, 1, sharex=True, figsize=(10, 9), height_ratios=(1.1, 1.6, 1.1, 0.8))
-    title = s["preset"] or "RockingBlock"
+    title = s["preset"] or f"RockingBlock ({s['parameters'].get('shape', 'default shape')})"
     if rec is not None:
         comp = f" [{rec.component}]" if rec.component else ""
         title += f" under {rec.name or Path(args.record).name}{comp} x {args.scale:g}"
