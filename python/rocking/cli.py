@@ -225,13 +225,13 @@ def cmd_simulate(args, params_given):
         params = {}
         if args.preset:
             try:
-                params.update(presets_module.preset(args.preset))
+                preset_values = presets_module.preset(args.preset)
             except KeyError as exc:
                 raise CLIError(f"--preset: {exc.args[0]}") from None
+            for name, value in preset_values.items():
+                params[name] = check_parameter(fmu, name, value, f"preset {args.preset}: {name}")
         for name, value in params_given:
             params[name] = check_parameter(fmu, name, value, f"--{name}")
-        for name, value in list(params.items()):
-            params[name] = check_parameter(fmu, name, value, f"preset {args.preset}: {name}")
 
         rec = fmt = None
         if args.record:
