@@ -179,8 +179,14 @@ def test_info_lists_every_variable_of_the_model_description(fmu_path):
         assert name in rows, name
         assert rows[name][1] == sv.get("causality", "local"), name
     presets = ok("info", "--presets").stdout
-    assert "dharahara-F170-fm5" in presets and "fig15-alpha0.20-costa" in presets
+    # 1 rigid + (6 foundation + 6 interface stiffnesses) x 4 crushing strengths + 6 blocks x 2 formulations
     assert re.search(r"^61 presets", presets, re.M)
+    names = re.findall(r"^  (\S+)  ", presets, re.M)
+    assert len(names) == len(set(names)) == 61
+    assert {"dharahara-rigid", "dharahara-F170-fm5", "dharahara-I1500-elastic", "fig15-alpha0.20-costa",
+            "fig15-alpha0.35-shiftingPivot"} <= set(names)
+    help_text = " ".join(ok("simulate", "--help").stdout.split())
+    assert "dharahara-F{85,170,340,680,1350,13500}-{fm2,fm5,fm15,elastic}" in help_text
 
 
 def record_values(stdout):

@@ -671,10 +671,13 @@ def build_parser():
     p = sub.add_parser(
         "simulate", parents=[common], allow_abbrev=False,
         help="one run: time history CSV, summary, plot",
-        description="Run one case through the FMU and write DIR/timehistory.csv (time, ag and the outputs), "
-                    "DIR/summary.json (peak theta, overturning and its time, impacts, regimes, PGA) and "
-                    "DIR/plot.png. Any FMU parameter can be given by its name, e.g. --shape hollowCircle "
-                    "--Ro 3.99 --kn 2e9 (theta and omega set the initial conditions); they override the preset's.",
+        usage="rocking simulate [RECORD] [--scale S] [--component C] [--preset NAME] [--PARAM VALUE ...]\n"
+              "                        [--fmu PATH] [--stop-time S] [--output-interval S] [--rtol R] --out DIR",
+        description=textwrap.fill(
+            "Run one case through the FMU and write DIR/timehistory.csv (time, ag and the outputs), "
+            "DIR/summary.json (peak theta, overturning and its time, impacts, regimes, PGA) and "
+            "DIR/plot.png. Any FMU parameter can be given by its name, e.g. --shape hollowCircle "
+            "--Ro 3.99 --kn 2e9 (theta and omega set the initial conditions); they override the preset's.", 100),
         epilog=textwrap.fill(f"presets: {NAMING}. `rocking info --presets` lists them; `rocking info` lists "
                              "the parameters, their units and defaults.", 100),
         formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -692,9 +695,10 @@ def build_parser():
 
     p = sub.add_parser(
         "sweep", parents=[common], allow_abbrev=False, help="cases x records x scales in parallel -> parquet",
-        description="Every case of CASES.toml under every record component of --records, at every scale, "
-                    "in parallel processes; one row per run (case, parameters, record, scale, overturned, "
-                    "t_overturn, peak_theta_over_alpha, impacts, ..., error).",
+        description=textwrap.fill(
+            "Every case of CASES.toml under every record component of --records, at every scale, "
+            "in parallel processes; one row per run (case, parameters, record, scale, overturned, "
+            "t_overturn, peak_theta_over_alpha, impacts, ..., error).", 100),
         epilog="CASES.toml: an optional [defaults] table (parameters for every case), then one table per case, "
                "e.g.\n  [cases.soft]\n  preset = \"dharahara-F170-fm5\"\n  [cases.block]\n  shape = \"solidRectangle\"\n"
                "  B = 0.5\n  H = 2.5\n  interface = \"rigid\"\n"
