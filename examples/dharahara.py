@@ -8,11 +8,11 @@
    crate, no FMU), plotted here.
 2. Time histories through target/fmu/RockingBlock.fmu in fmpy (the paper's
    Fig. 20) for the same cases under the KATNP north-south record, stopped at
-   overturning, run in parallel by `rockingfmu.run_grid`; a summary table.
+   overturning, run in parallel by `rocking.run_grid`; a summary table.
 3. The paper's claims set against our numbers (printed and written).
 
 The KATNP record itself could not be obtained: by default the synthetic
-stand-in `groundmotion.katnp_standin()` is used, and every output says so.
+stand-in `rocking.groundmotion.katnp_standin()` is used, and every output says so.
 `--record PATH` takes the real file (e.g. the CESMD download) instead.
 
 Everything goes to one folder (default out/dharahara), named at the end.
@@ -26,7 +26,6 @@ import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
 
 import matplotlib  # noqa: E402
 
@@ -35,10 +34,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
-import groundmotion as gm  # noqa: E402
-from rockingfmu import RockingFMU, run_grid  # noqa: E402
-from rockingfmu.cases import (FM_MPA, FOUNDATION_KN_MPA, HG, INTERFACE_KN_GPA,  # noqa: E402
-                              case_info, dharahara_cases, dharahara_tower)
+from rocking import groundmotion as gm  # noqa: E402
+from rocking import RockingFMU, run_grid  # noqa: E402
+from rocking.cases import (FM_MPA, FOUNDATION_KN_MPA, HG, INTERFACE_KN_GPA,  # noqa: E402
+                           case_info, dharahara_cases, dharahara_tower)
 
 STANDIN_LABEL = "KATNP N-S SYNTHETIC STAND-IN, not the real record"
 FM_COLORS = {2: "C3", 5: "C1", 15: "C2", math.inf: "C0"}

@@ -29,12 +29,10 @@ out/fig15).
 
 import argparse
 import math
-import sys
 import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
 
 import matplotlib  # noqa: E402
 
@@ -43,8 +41,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
-from rockingfmu import RockingFMU, run_grid  # noqa: E402
-from rockingfmu.cases import FIG15_ALPHAS, FIG15_KN, FIG15_R0, fig15_block  # noqa: E402
+from rocking import RockingFMU, run_grid  # noqa: E402
+from rocking.cases import FIG15_ALPHAS, FIG15_KN, FIG15_R0, fig15_block  # noqa: E402
 
 N_IMPACTS = 6
 THRESHOLD = 0.25

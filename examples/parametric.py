@@ -1,10 +1,10 @@
 """Parametric runs through RockingBlock.fmu: cases x records x scale factors in
-parallel processes (`rockingfmu.run_grid`), one table row per run.
+parallel processes (`rocking.run_grid`), one table row per run.
 
     .venv/bin/python examples/parametric.py [--cases rigid,I5_fm5,...] [--records katnp,lomaprieta]
         [--scales 0.5,1,2] [--workers 2] [--out DIR] [--bench]
 
-Cases are the Dharahara cases of `rockingfmu.cases.dharahara_cases()` (ids as in
+Cases are the Dharahara cases of `rocking.cases.dharahara_cases()` (ids as in
 examples/dharahara_curves.rs: rigid, F<kn MPa/m>_<fm..>, I<kn GPa/m>_<fm..>).
 Records (shipped with the repository, see data/ground-motions/README.md):
 
@@ -13,14 +13,14 @@ Records (shipped with the repository, see data/ground-motions/README.md):
     coalinga     1983 Coalinga, CSMIP 36456, 90 (CGS/CESMD), 65 s, 0.273 g
     darfield     2010 Darfield, GeoNet DFHS, 000 (CC BY 3.0 NZ), 98.5 s, 0.445 g
     kaikoura     2016 Kaikoura, GeoNet WTMC, N28W (CC BY 3.0 NZ), 164 s, 0.992 g
-    or a path to any file groundmotion reads (its first component)
+    or a path to any file rocking.groundmotion reads (its first component)
 
 Writes DIR/parametric.csv (default out/parametric). `--bench` runs the grid
 with 1 and then 2 workers and prints the throughput (runs per second).
 
 Use from Python:
 
-    from rockingfmu import run_grid, dharahara_cases
+    from rocking import run_grid, dharahara_cases
     df = run_grid(dharahara_cases(), records=[gm.katnp_standin()], scales=[0.5, 1.0], workers=2)
 """
 
@@ -29,13 +29,12 @@ import sys
 import time
 from pathlib import Path
 
+import pandas as pd
+
 REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
 
-import pandas as pd  # noqa: E402
-
-import groundmotion as gm  # noqa: E402
-from rockingfmu import RockingFMU, dharahara_cases, run_grid  # noqa: E402
+from rocking import groundmotion as gm  # noqa: E402
+from rocking import RockingFMU, dharahara_cases, run_grid  # noqa: E402
 
 RECORDS = {
     "katnp": (None, None),

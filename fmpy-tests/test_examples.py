@@ -14,13 +14,11 @@ import pytest
 from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
-sys.path.insert(0, str(REPO / "examples"))
+from rocking import groundmotion as gm
+from rocking import RockingFMU
+from rocking.cases import dharahara_cases, dharahara_tower, fig15_block
 
-import groundmotion as gm  # noqa: E402
-from rockingfmu import RockingFMU  # noqa: E402
-from rockingfmu.cases import dharahara_cases, dharahara_tower, fig15_block  # noqa: E402
+REPO = Path(__file__).resolve().parents[1]
 
 RO, RI, W = 3.99, 2.12, 24003.94e3
 HG = 30.44 * math.cos(0.125)

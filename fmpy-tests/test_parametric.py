@@ -1,9 +1,8 @@
-"""The parametric runner (rockingfmu.run_grid) against direct fmpy runs of the
+"""The parametric runner (rocking.run_grid) against direct fmpy runs of the
 same FMU, serial against parallel, and physical limits (no ground motion, no
 motion)."""
 
 import math
-import sys
 from pathlib import Path
 
 import fmpy
@@ -11,12 +10,11 @@ import numpy as np
 import pandas as pd
 import pytest
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
+from rocking import groundmotion as gm
+from rocking import RockingFMU, run_grid
+from rocking.cases import dharahara_cases, dharahara_tower
 
-import groundmotion as gm  # noqa: E402
-from rockingfmu import RockingFMU, run_grid  # noqa: E402
-from rockingfmu.cases import dharahara_cases, dharahara_tower  # noqa: E402
+REPO = Path(__file__).resolve().parents[1]
 
 ENUM = {"hollowCircle": 4, "lumped": 2, "rigid": 1, "elastic": 2, "elastoPlastic": 3,
         "costa": 1, "shiftingPivot": 2, "housner": 1}

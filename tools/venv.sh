@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
-# Create .venv with the pinned Python packages (idempotent, quiet when done).
+# Create .venv with the pinned Python packages and the `rocking` package installed
+# editable (idempotent, quiet when done: reruns when requirements.txt or
+# pyproject.toml change).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 stamp=.venv/.requirements.sha
-want=$(sha256sum requirements.txt | cut -d' ' -f1)
-if [ -x .venv/bin/python ] && [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ]; then
+want=$(cat requirements.txt pyproject.toml | sha256sum | cut -d' ' -f1)
+if [ -x .venv/bin/python ] && [ -x .venv/bin/rocking ] && [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ]; then
   exit 0
 fi
 python3 -m venv .venv
 .venv/bin/python -m pip install --quiet --disable-pip-version-check --upgrade pip
 .venv/bin/python -m pip install --quiet --disable-pip-version-check -r requirements.txt
+.venv/bin/python -m pip install --quiet --disable-pip-version-check -e .
 echo "$want" > "$stamp"

@@ -1,8 +1,8 @@
 """Parametric runs: a grid of cases x records x scale factors through the FMU,
 in parallel processes, one FMU extraction shared by all of them.
 
-    import groundmotion as gm
-    from rockingfmu import run_grid
+    from rocking import groundmotion as gm
+    from rocking import run_grid
     df = run_grid({"soft": {...params...}, "stiff": {...}},
                   records=[gm.katnp_standin()], scales=[0.5, 1.0], workers=2)
 

@@ -1,6 +1,6 @@
 """One RockingBlock.fmu, extracted once, run through fmpy's FMU2Slave.
 
-    from rockingfmu import RockingFMU
+    from rocking import RockingFMU
     with RockingFMU() as fmu:                       # target/fmu/RockingBlock.fmu
         run = fmu.simulate({"shape": "solidRectangle", "B": 0.5, "theta": 0.1},
                            stop_time=5.0)
@@ -37,9 +37,10 @@ from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFr
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2Discard,
                        fmi2LastSuccessfulTime, fmi2Terminated)
 
-REPO = Path(__file__).resolve().parents[1]
-#: Where `cargo xtask fmu` writes the FMU.
-DEFAULT_FMU = REPO / "target" / "fmu" / "RockingBlock.fmu"
+from . import paths
+
+#: Where `cargo xtask fmu` writes the FMU (None when the package is not in the repository).
+DEFAULT_FMU = paths.default_fmu() if paths.REPO is not None else None
 
 #: Outputs recorded by `simulate` unless told otherwise.
 DEFAULT_OUTPUTS = ("theta", "omega", "thetaOverAlpha", "MR", "af", "regime", "impacts", "overturned")
@@ -117,6 +118,8 @@ class RockingFMU:
             self._owned = False
         else:
             self.path = Path(path) if path else DEFAULT_FMU
+            if self.path is None:
+                raise FileNotFoundError("no FMU given and " + paths._NOT_IN_REPO)
             if not self.path.is_file():
                 raise FileNotFoundError(
                     f"{self.path} does not exist: build it with `cargo xtask fmu` (or tools/main.sh)")

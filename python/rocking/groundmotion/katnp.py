@@ -7,14 +7,15 @@ CESMD download) and otherwise the synthetic stand-in, whose `notes` say so.
 """
 
 import re
-from pathlib import Path
 
+from .. import paths
 from .detect import read_all, select
 
-#: The ground-motion records shipped with the repository (data/ground-motions).
-DATA_DIR = Path(__file__).resolve().parents[1] / "data" / "ground-motions"
+#: The ground-motion records shipped with the repository (data/ground-motions);
+#: None when the package is not installed from the repository (see rocking.paths).
+DATA_DIR = paths.REPO / "data" / "ground-motions" if paths.REPO is not None else None
 #: The synthetic stand-in for the KATNP north-south record (CSV, m/s²).
-STANDIN_PATH = DATA_DIR / "katnp-standin" / "KATNP_NS_standin.csv"
+STANDIN_PATH = DATA_DIR / "katnp-standin" / "KATNP_NS_standin.csv" if DATA_DIR is not None else None
 
 STANDIN_NOTE = (
     "Synthetic stand-in for the KATNP north-south record of the 2015 Gorkha earthquake "
@@ -32,7 +33,7 @@ def katnp_standin():
 
     Its `notes` say plainly that it is a synthetic stand-in, not the real record.
     """
-    record = read_all(STANDIN_PATH, fmt="csv")[0]
+    record = read_all(paths.data_dir() / "katnp-standin" / "KATNP_NS_standin.csv", fmt="csv")[0]
     record.name = "KATNP (synthetic stand-in), 2015 Gorkha earthquake"
     record.component = "NS"
     record.notes = STANDIN_NOTE + "\nFile comments:\n" + record.notes

@@ -1,6 +1,6 @@
 """Readers for strong-motion accelerogram files.
 
-    import groundmotion as gm
+    from rocking import groundmotion as gm
     rec = gm.read("…/ce36456p_CE36456.V2", component="UP")   # one Record, acc in m/s²
     recs = gm.read_all("…/20161113_110259_WTMC_20.V2A")       # every component, file order
     kat = gm.katnp()          # the KATNP stand-in (synthetic!) or gm.katnp("real file")

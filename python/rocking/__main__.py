@@ -1,0 +1,7 @@
+"""`python -m rocking ...`: the `rocking` command."""
+
+import sys
+
+from .cli import main
+
+sys.exit(main())
