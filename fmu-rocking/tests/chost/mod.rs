@@ -435,8 +435,8 @@ pub fn ground_motions() -> PathBuf {
 /// The KATNP stand-in record (synthetic, 100 Hz, m/s²).
 pub fn katnp_standin() -> Vec<f64> {
     let p = ground_motions().join("katnp-standin/KATNP_NS_standin.csv");
-    let text = std::fs::read_to_string(&p)
-        .unwrap_or_else(|e| panic!("cannot read {}: {e}", p.display()));
+    let text =
+        std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("cannot read {}: {e}", p.display()));
     text.lines()
         .filter(|l| !l.starts_with('#'))
         .skip(1)
