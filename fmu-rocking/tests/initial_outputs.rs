@@ -47,27 +47,17 @@ fn start(interface: i32, ag: impl Fn(&Host) -> f64) -> (f64, f64, f64, f64, Host
 fn angular_acceleration_at_start_is_the_limit_of_the_first_steps() {
     use enums::{ELASTIC, ELASTO_PLASTIC, RIGID};
     let uplift = |h: &Host| h.real("g") * h.real("alpha").tan();
-    let cases: [(&str, i32, Box<dyn Fn(&Host) -> f64>); 6] = [
-        ("elastic, ag = 1", ELASTIC, Box::new(|_| 1.0)),
-        ("elastic, ag = -1", ELASTIC, Box::new(|_| -1.0)),
-        ("elastoPlastic, ag = 1", ELASTO_PLASTIC, Box::new(|_| 1.0)),
-        (
-            "rigid below uplift",
-            RIGID,
-            Box::new(move |h| 0.9 * uplift(h)),
-        ),
-        (
-            "rigid above uplift",
-            RIGID,
-            Box::new(move |h| 1.1 * uplift(h)),
-        ),
-        (
-            "rigid above uplift, ag < 0",
-            RIGID,
-            Box::new(move |h| -1.1 * uplift(h)),
-        ),
+    // (case, interface, ag: a multiple of 1 m/s2 or of the uplift acceleration)
+    let cases = [
+        ("elastic, ag = 1", ELASTIC, 1.0, false),
+        ("elastic, ag = -1", ELASTIC, -1.0, false),
+        ("elastoPlastic, ag = 1", ELASTO_PLASTIC, 1.0, false),
+        ("rigid below uplift", RIGID, 0.9, true),
+        ("rigid above uplift", RIGID, 1.1, true),
+        ("rigid above uplift, ag < 0", RIGID, -1.1, true),
     ];
-    for (name, interface, ag) in cases {
+    for (name, interface, factor, of_uplift) in cases {
+        let ag = move |h: &Host| factor * if of_uplift { uplift(h) } else { 1.0 };
         let (dd, fd, fx, fz, h) = start(interface, ag);
         let a = h.real("ag");
         let (m, w, thr) = (h.real("mass"), h.real("weight"), uplift(&h));
