@@ -18,6 +18,9 @@
 //!   (overturning, the run ends) are located on the step's dense output (a
 //!   quintic Hermite interpolant), the step is redone to end exactly at the
 //!   event and polished by Newton on the step itself.
+//! - Counts: every crossing is a zero crossing; it is an impact (a return
+//!   after an uplift) if `|theta|` exceeded `thetaJo` since the previous one,
+//!   peaks inside a step included (turning points on the dense output).
 //! - Rest (rigid law): an impact after which the chattering that remains is
 //!   below the tolerance ends the motion ([`Simulator::rest_bound`]); a body at
 //!   rest costs O(1) per call until `|ag| > g tan(alpha)` (uplift, found in
@@ -289,7 +292,7 @@ impl Simulator {
         self.run(state, t_end, input, false)
     }
 
-    /// Like [`advance`](Self::advance) but return at the first event (impact,
+    /// Like [`advance`](Self::advance) but return at the first event (zero crossing,
     /// uplift, rest, overturning) with `state.t` the event's time, or at
     /// `t_end`. The input is `ag + dag (t - t0)` with `t0` the `state.t` of
     /// this call.
