@@ -905,8 +905,9 @@ impl Simulator {
     ///
     /// A body at rest that this `ag` sets moving (see
     /// [`held_at_rest`](Self::held_at_rest)) gets the equation of motion's
-    /// values at `theta = omega = 0` on the side `ag` pushes it to: the
-    /// motion starts there, and `theta''` is its start.
+    /// `theta''`, `Fx`, `Fz` at `theta = omega = 0` on the side `ag` pushes
+    /// it to (the motion starts there); its contact outputs stay those at
+    /// rest.
     ///
     /// The support forces (docs/model.md §5) follow from the velocity of G
     /// that the equation of motion implies, G turning about the interface
@@ -917,20 +918,39 @@ impl Simulator {
     /// the work of `Fx`; for the rigid law they are G turning rigidly about
     /// the toe.
     pub fn outputs(&self, state: &State, ag: f64) -> Outputs {
+        if !state.at_rest {
+            return self.outputs_in_motion(state, ag);
+        }
+        let b = &self.model.body;
+        // The contact of a body at rest is the whole base, whatever ag: the
+        // contact outputs do not depend on ag (docs/model.md §5 declares
+        // only angularAcceleration, Fx, Fz as depending on it).
+        let c = self.model.interface.contact(0.0);
+        let rest = Outputs {
+            theta_dd: 0.0,
+            af: c.af,
+            contact_length: c.contact_length,
+            mr: 0.0,
+            regime: c.regime,
+            fx: b.mass * ag,
+            fz: b.weight,
+        };
+        if self.held_at_rest(ag) {
+            return rest;
+        }
+        let start = self.outputs_in_motion(state, ag);
+        Outputs {
+            theta_dd: start.theta_dd,
+            fx: start.fx,
+            fz: start.fz,
+            ..rest
+        }
+    }
+
+    /// [`outputs`](Self::outputs) from the equation of motion at `state`.
+    fn outputs_in_motion(&self, state: &State, ag: f64) -> Outputs {
         let m = &self.model;
         let b = &m.body;
-        if state.at_rest && self.held_at_rest(ag) {
-            let c = m.interface.contact(0.0);
-            return Outputs {
-                theta_dd: 0.0,
-                af: c.af,
-                contact_length: c.contact_length,
-                mr: 0.0,
-                regime: c.regime,
-                fx: b.mass * ag,
-                fz: b.weight,
-            };
-        }
         let side = side_of(state.theta, state.omega, ag);
         let eom = Eom::new(
             m,
