@@ -1024,7 +1024,9 @@ fn count_crossing(st: &mut State, ev: &mut Events) {
 /// (a peak above `thetaJo` between two step ends below it, as in a stiff
 /// step, or between two ends cut exactly on the level).
 fn note_opening(st: &mut State, p: &Hermite, tau_end: f64, theta_jo: f64) {
-    if !st.opened && max_abs(p, tau_end) > theta_jo {
+    // the end first: the turning-point search only while the joint has not
+    // opened in this half-cycle
+    if !st.opened && (p.theta(tau_end).abs() > theta_jo || max_abs(p, tau_end) > theta_jo) {
         st.opened = true;
     }
 }
