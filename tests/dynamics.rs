@@ -387,3 +387,32 @@ fn rigid_free_rocking_counts_every_crossing_as_an_impact() {
     assert_eq!(st.impacts, 12);
     assert!(checked > 100);
 }
+
+#[test]
+fn rigid_forced_rocking_counts_every_crossing_as_an_impact() {
+    // Shaking just above uplift for 60 s: many short chattering excursions,
+    // some of which leave theta = 0 and return within one integration
+    // step (both step ends at 0); each is still an impact (thetaJo = 0).
+    let m = rigid_block(0.5, 2.5);
+    let sim = Simulator::new(m, DEFAULT_RTOL);
+    let thr = sim.uplift_acceleration();
+    let ag = |t: f64| {
+        1.05 * thr * (0.6 * (7.0 * t).sin() + 0.3 * (17.3 * t).sin() + 0.1 * (41.9 * t).sin())
+    };
+    let mut st = sim.initial_state(0.0, 0.0);
+    for k in 0..6000 {
+        let t = k as f64 * 0.01;
+        let input = GroundInput {
+            ag: ag(t),
+            dag: (ag(t + 0.01) - ag(t)) / 0.01,
+        };
+        sim.advance(&mut st, t + 0.01, input);
+        assert!(!st.overturned);
+    }
+    eprintln!(
+        "60 s: {} zero crossings, {} impacts",
+        st.zero_crossings, st.impacts
+    );
+    assert!(st.zero_crossings > 100);
+    assert_eq!(st.impacts, st.zero_crossings);
+}
