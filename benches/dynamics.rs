@@ -353,7 +353,8 @@ fn dharahara_quantities(sim: &Simulator, samples: &[f64], states: &[State]) -> [
     for (k, w) in states.windows(2).enumerate() {
         let (a, b) = (w[0], w[1]);
         let t1 = (k + 1) as f64 * DT;
-        if first_impact.is_nan() && b.impacts > a.impacts {
+        // the first zero crossing (advance_to_event stops at every one)
+        if first_impact.is_nan() && b.zero_crossings > a.zero_crossings {
             let mut s = a;
             sim.advance_to_event(&mut s, t1, input_at(samples, k));
             first_impact = s.t;
@@ -361,7 +362,7 @@ fn dharahara_quantities(sim: &Simulator, samples: &[f64], states: &[State]) -> [
         if first_peak.is_nan()
             && a.omega != 0.0
             && a.omega * b.omega < 0.0
-            && b.impacts == a.impacts
+            && b.zero_crossings == a.zero_crossings
         {
             // bisection on the time where omega changes sign
             let (mut lo, mut hi) = (a.t, t1);

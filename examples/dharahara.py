@@ -390,7 +390,8 @@ def write_markdown(out, mr, th, study, claim_rows, rec_label, standin):
         cap[c] = cap[c].map(lambda v: f"{v:.3f}")
     parts += ["## Moment-rotation curves: capacities relative to the rigid interface\n", _md_table(cap), ""]
     if th is not None:
-        t = th[["case", "overturned", "t_overturn", "peak_theta_over_alpha", "impacts", "wall_s"]
+        t = th[["case", "overturned", "t_overturn", "peak_theta_over_alpha", "impacts", "zero_crossings",
+                "wall_s"]
                + (["robust_1pct"] if "robust_1pct" in th else [])].copy()
         if "robust_1pct" in t:
             t["robust_1pct"] = t["robust_1pct"].map(lambda v: "" if v is None else ("yes" if v else "NO"))
@@ -466,7 +467,7 @@ def main(argv=None):
                                    scales, args.hg, args.ic, args.rtol)
             th["robust_1pct"] = robustness(th, study)
         summary = th[["case", "group", "kn_Pa_per_m", "fm_Pa", "overturned", "t_overturn",
-                      "peak_theta_over_alpha", "impacts", "thetaOv", "wall_s", "error"]
+                      "peak_theta_over_alpha", "impacts", "zero_crossings", "thetaOv", "wall_s", "error"]
                      + (["robust_1pct"] if "robust_1pct" in th else [])].copy()
         summary.insert(4, "thetaOv_over_alpha", summary["thetaOv"] / mr["alpha"].iloc[0])
         summary = summary.drop(columns="thetaOv")

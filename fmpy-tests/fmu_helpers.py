@@ -155,7 +155,7 @@ def fmpy_steps(t, ag, start, stop, interval, derivatives):
 
 
 COLUMNS = ["theta", "omega", "angularAcceleration", "af", "contactLength", "MR",
-           "regime", "impacts", "overturned", "Fx", "Fz"]
+           "regime", "impacts", "zeroCrossings", "overturned", "Fx", "Fz"]
 
 
 def run_direct(path, params, steps, start=0.0, tolerance=None):

@@ -101,9 +101,19 @@ def test_outputs_at_rest(host):
     assert host.get("regime") == 0 and host.get("impacts") == 0 and host.get("overturned") is False
     host.fmu.reset()
     host.init(interface="rigid")
-    host.set(ag=2.0)  # direct feedthrough: at rest (below uplift) Fx = m ag, Fz = W
-    assert host.get("Fx") == pytest.approx(host.get("mass") * 2.0, rel=1e-12)
+    uplift = host.get("g") * math.tan(host.get("alpha"))  # 1.962 m/s2
+    host.set(ag=0.9 * uplift)  # direct feedthrough: at rest (below uplift) Fx = m ag, Fz = W
+    assert host.get("Fx") == pytest.approx(host.get("mass") * 0.9 * uplift, rel=1e-12)
     assert host.get("Fz") == pytest.approx(host.get("weight"), rel=1e-12)
+    assert host.get("angularAcceleration") == 0.0
+    # above uplift the body starts rocking on its toe (theta = omega = 0,
+    # side s = -sgn(ag)): xG'' = hG theta'', zG'' = s b theta'' (docs/model.md §5)
+    host.set(ag=1.1 * uplift)
+    dd = host.get("angularAcceleration")
+    m, b, hg = host.get("mass"), 0.25, 1.25
+    assert dd < 0.0
+    assert host.get("Fx") == pytest.approx(m * (1.1 * uplift + hg * dd), rel=1e-12)
+    assert host.get("Fz") == pytest.approx(host.get("weight") - m * b * dd, rel=1e-12)
 
 
 def test_start_values_are_initial_conditions(host):

@@ -13,7 +13,7 @@ PARAMETERS = [
 ]
 OUTPUTS = [
     "theta", "omega", "thetaOverAlpha", "af", "contactLength", "MR", "regime",
-    "impacts", "overturned", "Fx", "Fz",
+    "impacts", "zeroCrossings", "overturned", "Fx", "Fz",
 ]
 CALCULATED = ["mass", "weight", "R0", "alpha", "IO", "etaHousner", "thetaJo", "thetaC", "thetaOv"]
 
@@ -92,7 +92,7 @@ def test_every_public_variable_is_declared(model_description):
         assert v[n].causality == "output", n
     for n in ("theta", "omega"):
         assert v[n].initial == "exact" and v[n].variability == "continuous"
-    for n in ("regime", "impacts"):
+    for n in ("regime", "impacts", "zeroCrossings"):
         assert v[n].type == "Integer" and v[n].variability == "discrete"
     assert v["overturned"].type == "Boolean" and v["overturned"].variability == "discrete"
     for n in CALCULATED:
@@ -145,7 +145,8 @@ def test_model_structure_dependencies(model_description):
     assert set(outputs) == {v.name for v in md.modelVariables if v.causality == "output"}
     # direct feedthrough of ag only where the equation of motion enters
     assert outputs["Fx"] == outputs["Fz"] == outputs["angularAcceleration"] == {"ag"}
-    for n in ("theta", "omega", "af", "contactLength", "MR", "regime", "impacts", "overturned"):
+    for n in ("theta", "omega", "af", "contactLength", "MR", "regime", "impacts", "zeroCrossings",
+              "overturned"):
         assert outputs[n] == set(), n
     initial = {u.variable.name: {d.name for d in u.dependencies} for u in md.initialUnknowns}
     assert set(CALCULATED) <= set(initial)
@@ -153,7 +154,8 @@ def test_model_structure_dependencies(model_description):
     assert initial["alpha"] == {"shape", "B", "Ro", "massModel", "H", "hG"}
     assert "fm" in initial["thetaC"] and "hG" not in initial["thetaC"]
     assert "theta" in initial["af"]
-    assert initial["impacts"] == set()
+    assert initial["impacts"] == initial["zeroCrossings"] == set()
+    assert "ag" in initial["angularAcceleration"]
     order = [index[u.variable.name] for u in md.initialUnknowns]
     assert order == sorted(order)
 

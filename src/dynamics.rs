@@ -18,6 +18,9 @@
 //!   (overturning, the run ends) are located on the step's dense output (a
 //!   quintic Hermite interpolant), the step is redone to end exactly at the
 //!   event and polished by Newton on the step itself.
+//! - Counts: every crossing is a zero crossing; it is an impact (a return
+//!   after an uplift) if `|theta|` exceeded `thetaJo` since the previous one,
+//!   peaks inside a step included (turning points on the dense output).
 //! - Rest (rigid law): an impact after which the chattering that remains is
 //!   below the tolerance ends the motion ([`Simulator::rest_bound`]); a body at
 //!   rest costs O(1) per call until `|ag| > g tan(alpha)` (uplift, found in
@@ -38,7 +41,7 @@ use crate::interface::{Law, Regime};
 use crate::model::Model;
 use crate::shape::Shape;
 
-use dense::{first_event, Hermite, Hit};
+use dense::{first_event, max_abs, Hermite, Hit};
 use eom::{side_of, Eom};
 use erk::{Dop853, Dp5, Pair, StepOut, Tol};
 use free::FreeRigid;
@@ -62,8 +65,16 @@ pub struct State {
     pub theta: f64,
     /// Angular velocity, rad/s.
     pub omega: f64,
-    /// Impacts so far.
+    /// Impacts so far: returns to `theta = 0` after an uplift, the zero
+    /// crossings after which `|theta|` had exceeded `thetaJo` (the joint
+    /// had opened) since the previous crossing or the start. Rigid law
+    /// (`thetaJo = 0`): every zero crossing.
     pub impacts: u64,
+    /// Zero crossings of `theta` so far (each applies the restitution rule).
+    pub zero_crossings: u64,
+    /// `|theta|` has exceeded `thetaJo` since the last zero crossing (or the
+    /// start): the next crossing is an impact.
+    pub opened: bool,
     /// At rest on the base (rigid law): stays there until uplift.
     pub at_rest: bool,
     /// Overturned: |theta| reached thetaOv; the run is over.
@@ -105,7 +116,10 @@ pub struct Stats {
 /// What happened during one `advance`.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct Events {
+    /// Impacts (see [`State::impacts`]).
     pub impacts: u32,
+    /// Zero crossings of `theta` (see [`State::zero_crossings`]).
+    pub zero_crossings: u32,
     pub uplift: bool,
     pub came_to_rest: bool,
     /// Time of overturning, s, if it happened in this step.
@@ -188,6 +202,8 @@ impl Simulator {
             theta: theta0,
             omega: omega0,
             impacts: 0,
+            zero_crossings: 0,
+            opened: theta0.abs() > self.model.interface.theta_jo(),
             at_rest: theta0 == 0.0 && omega0 == 0.0,
             overturned: false,
             h: 0.0,
@@ -244,6 +260,18 @@ impl Simulator {
         }
     }
 
+    /// Whether a body at rest (`theta = omega = 0`) stays at rest under the
+    /// ground acceleration `ag` (m/s²): for the flexible laws only without
+    /// ground motion (any `ag` moves the body: `theta'' = -m ag hG / I(0)`);
+    /// for the rigid law while `|ag| <= g tan(alpha)` (no uplift).
+    pub fn held_at_rest(&self, ag: f64) -> bool {
+        if self.model.interface.law() == Law::Rigid {
+            ag.abs() <= self.uplift_acceleration()
+        } else {
+            ag == 0.0
+        }
+    }
+
     /// The rest criterion (rigid law). After an impact at ground acceleration
     /// `ag` with post-impact velocity `omega`, the exact motion is a sequence
     /// of ever smaller excursions (each one a parabola to first order: the
@@ -267,7 +295,7 @@ impl Simulator {
         self.run(state, t_end, input, false)
     }
 
-    /// Like [`advance`](Self::advance) but return at the first event (impact,
+    /// Like [`advance`](Self::advance) but return at the first event (zero crossing,
     /// uplift, rest, overturning) with `state.t` the event's time, or at
     /// `t_end`. The input is `ag + dag (t - t0)` with `t0` the `state.t` of
     /// this call.
@@ -319,7 +347,7 @@ impl Simulator {
             if st.at_rest && !eom.rigid {
                 // flexible law: theta = omega = 0 is an equilibrium as long
                 // as there is no ground motion
-                if eom.ag(st.t) == 0.0 && eom.dag() == 0.0 {
+                if self.held_at_rest(eom.ag(st.t)) && eom.dag() == 0.0 {
                     st.t = t_end;
                     return ev;
                 }
@@ -366,7 +394,7 @@ impl Simulator {
     fn uplift_time(&self, eom: &Eom, t: f64, t_end: f64) -> Option<f64> {
         let thr = self.uplift_acceleration();
         let ag = eom.ag(t);
-        if ag.abs() > thr {
+        if !self.held_at_rest(ag) {
             return Some(t);
         }
         let dag = eom.dag();
@@ -582,6 +610,7 @@ impl Simulator {
             let step_kinks = if st.stiff { &[][..] } else { kinks };
             match first_event(&herm, side, theta_ov, step_kinks) {
                 None => {
+                    note_opening(st, &herm, 1.0, theta_jo);
                     st.t = t_new;
                     st.theta = out.y[0];
                     st.omega = out.y[1];
@@ -620,6 +649,7 @@ impl Simulator {
                     if status == EventStatus::Spurious {
                         // no event after all (see step_to_event): the
                         // accepted step stands
+                        note_opening(st, &herm, 1.0, theta_jo);
                         st.t = t_new;
                         st.theta = out.y[0];
                         st.omega = out.y[1];
@@ -650,6 +680,9 @@ impl Simulator {
                         y: [level, y_ev.y[1] + y_ev.accel * shift],
                         ..y_ev
                     };
+                    // the part of the step up to the event (on one side of
+                    // theta = 0: the event is the step's first)
+                    note_opening(st, &herm, ((t_ev - t) / hh).clamp(0.0, 1.0), theta_jo);
                     let t_ev = t_ev + shift;
                     st.t = t_ev;
                     match hit {
@@ -674,8 +707,7 @@ impl Simulator {
                         Hit::Impact => {
                             st.theta = 0.0;
                             st.omega = self.model.eta * y_ev.y[1];
-                            st.impacts += 1;
-                            ev.impacts += 1;
+                            count_crossing(st, ev);
                             let ag = eom.ag(t_ev);
                             let quiet = ag == 0.0 && eom.dag() == 0.0;
                             let mut rest = if eom.rigid {
@@ -758,8 +790,9 @@ impl Simulator {
             }
             st.t = t_next;
             st.omega *= -self.model.eta;
-            st.impacts += 1;
-            ev.impacts += 1;
+            // the half-cycle rose to phi > 0 = thetaJo: an impact
+            st.opened = true;
+            count_crossing(st, ev);
             if self.comes_to_rest(st.omega, 0.0) {
                 return true;
             }
@@ -872,21 +905,55 @@ impl Simulator {
     }
 
     /// Outputs at `state` under ground acceleration `ag` (m/s²).
+    ///
+    /// A body at rest that this `ag` sets moving (see
+    /// [`held_at_rest`](Self::held_at_rest)) gets the equation of motion's
+    /// `theta''`, `Fx`, `Fz` at `theta = omega = 0` on the side `ag` pushes
+    /// it to (the motion starts there); its contact outputs stay those at
+    /// rest.
+    ///
+    /// The support forces (docs/model.md §5) follow from the velocity of G
+    /// that the equation of motion implies, G turning about the interface
+    /// resultant: `xG' = hg omega`, `zG' = s hW omega`, so
+    /// `xG'' = hg theta'' + s hg' omega²`, `zG'' = s hW theta'' + hW' omega²`,
+    /// `Fx = m (ag + xG'')`, `Fz = m (g + zG'')`. With `I = Ic + m (hg² +
+    /// hW²)` these make the energy of a block on a moving support balance
+    /// the work of `Fx`; for the rigid law they are G turning rigidly about
+    /// the toe.
     pub fn outputs(&self, state: &State, ag: f64) -> Outputs {
+        if !state.at_rest {
+            return self.outputs_in_motion(state, ag);
+        }
+        let b = &self.model.body;
+        // The contact of a body at rest is the whole base, whatever ag: the
+        // contact outputs do not depend on ag (docs/model.md §5 declares
+        // only angularAcceleration, Fx, Fz as depending on it).
+        let c = self.model.interface.contact(0.0);
+        let rest = Outputs {
+            theta_dd: 0.0,
+            af: c.af,
+            contact_length: c.contact_length,
+            mr: 0.0,
+            regime: c.regime,
+            fx: b.mass * ag,
+            fz: b.weight,
+        };
+        if self.held_at_rest(ag) {
+            return rest;
+        }
+        let start = self.outputs_in_motion(state, ag);
+        Outputs {
+            theta_dd: start.theta_dd,
+            fx: start.fx,
+            fz: start.fz,
+            ..rest
+        }
+    }
+
+    /// [`outputs`](Self::outputs) from the equation of motion at `state`.
+    fn outputs_in_motion(&self, state: &State, ag: f64) -> Outputs {
         let m = &self.model;
         let b = &m.body;
-        if state.at_rest {
-            let c = m.interface.contact(0.0);
-            return Outputs {
-                theta_dd: 0.0,
-                af: c.af,
-                contact_length: c.contact_length,
-                mr: 0.0,
-                regime: c.regime,
-                fx: b.mass * ag,
-                fz: b.weight,
-            };
-        }
         let side = side_of(state.theta, state.omega, ag);
         let eom = Eom::new(
             m,
@@ -906,14 +973,9 @@ impl Simulator {
             m.interface.contact_near(phi, state.a)
         };
         let l = m.levers(phi, &c);
-        // G as a rigid rotation about the active toe:
-        // xG = s (b - R0 sin(alpha - phi)), zG = R0 cos(alpha - phi)
-        let (sp, cp) = phi.sin_cos();
-        let sin_u = b.sin_alpha * cp - b.cos_alpha * sp;
-        let cos_u = b.cos_alpha * cp + b.sin_alpha * sp;
         let w2 = state.omega * state.omega;
-        let xg_dd = b.r0 * (cos_u * theta_dd + side * sin_u * w2);
-        let zg_dd = b.r0 * (side * sin_u * theta_dd - cos_u * w2);
+        let xg_dd = l.hg * theta_dd + side * l.dhg * w2;
+        let zg_dd = side * l.hw * theta_dd + l.dhw * w2;
         Outputs {
             theta_dd,
             af: c.af,
@@ -946,6 +1008,30 @@ fn slow_state(j: &Jac, y0: [f64; 2], a0: f64, floor: f64) -> Option<(f64, f64)> 
     let fast = (th - y0[0]).hypot((om - y0[1]) / rho);
     let same_side = th * y0[0] > 0.0;
     (fast <= floor && same_side && th.is_finite() && om.is_finite()).then_some((th, om))
+}
+
+/// A zero crossing of `theta`: an impact too if the joint had opened since
+/// the previous one (see [`State::impacts`]).
+fn count_crossing(st: &mut State, ev: &mut Events) {
+    st.zero_crossings += 1;
+    ev.zero_crossings += 1;
+    if st.opened {
+        st.impacts += 1;
+        ev.impacts += 1;
+    }
+    st.opened = false;
+}
+
+/// Marks `st.opened` if `|theta|` exceeds `theta_jo` on `[0, tau_end]` of
+/// the step interpolated by `p`: the ends, and the turning points inside
+/// (a peak above `thetaJo` between two step ends below it, as in a stiff
+/// step, or between two ends cut exactly on the level).
+fn note_opening(st: &mut State, p: &Hermite, tau_end: f64, theta_jo: f64) {
+    // the end first: the turning-point search only while the joint has not
+    // opened in this half-cycle
+    if !st.opened && (p.theta(tau_end).abs() > theta_jo || max_abs(p, tau_end) > theta_jo) {
+        st.opened = true;
+    }
 }
 
 /// One step attempt with the current kind of method.

@@ -411,6 +411,10 @@ pub struct Levers {
     pub inertia: f64,
     /// `dI/dphi`, kg m²/rad.
     pub dinertia: f64,
+    /// `dhW/dphi = -hg - af' cos(phi)`, m/rad.
+    pub dhw: f64,
+    /// `dhg/dphi = hW - af' sin(phi)`, m/rad.
+    pub dhg: f64,
 }
 
 /// A validated model: body, interface and the constants of the motion.
@@ -426,7 +430,8 @@ pub struct Model {
 }
 
 impl Model {
-    /// `hW, hg, I, dI/dphi` at `phi = |theta|` for the contact `c` there (docs/model.md §3).
+    /// `hW, hg, I, dI/dphi` and the derivatives of the levers at
+    /// `phi = |theta|` for the contact `c` there (docs/model.md §3).
     #[inline]
     pub fn levers(&self, phi: f64, c: &Contact) -> Levers {
         let b = &self.body;
@@ -436,11 +441,17 @@ impl Model {
         let cap = b.cos_alpha * co + b.sin_alpha * s;
         let af = c.af;
         let r2 = b.r0 * b.r0 + af * af - 2.0 * b.r0 * af * b.sin_alpha;
+        let hw = b.r0 * sap - af * co;
+        let hg = b.r0 * cap - af * s;
         Levers {
-            hw: b.r0 * sap - af * co,
-            hg: b.r0 * cap - af * s,
+            hw,
+            hg,
             inertia: b.ic + b.mass * r2,
             dinertia: -2.0 * b.mass * (b.r0 * b.sin_alpha - af) * c.daf,
+            // d/dphi of R0 sin(alpha - phi) - af cos(phi) and of
+            // R0 cos(alpha - phi) - af sin(phi)
+            dhw: -hg - c.daf * co,
+            dhg: hw - c.daf * s,
         }
     }
 
@@ -448,12 +459,8 @@ impl Model {
     /// and N m/rad (docs/model.md §3).
     pub fn restoring_moment(&self, phi: f64) -> (f64, f64) {
         let c = self.interface.contact(phi);
-        let b = &self.body;
         let l = self.levers(phi, &c);
-        let (s, co) = phi.sin_cos();
-        let cap = b.cos_alpha * co + b.sin_alpha * s;
-        let dhw = -b.r0 * cap - c.daf * co + c.af * s;
-        (b.weight * l.hw, b.weight * dhw)
+        (self.body.weight * l.hw, self.body.weight * l.dhw)
     }
 
     /// The first root of `hW(phi) = 0` for `phi > 0` (docs/model.md §3): alpha for

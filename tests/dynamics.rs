@@ -321,8 +321,12 @@ fn quiet_rigid_rocking_in_long_calls_matches_event_by_event() {
         while stepwise.t < t_end {
             sim.advance_to_event(&mut stepwise, t_end, GroundInput::default());
         }
+        // rigid: every zero crossing is an impact, in the closed-form
+        // half-cycles too
         assert_eq!(long.impacts, 11);
         assert_eq!(stepwise.impacts, 11);
+        assert_eq!(long.zero_crossings, 11);
+        assert_eq!(stepwise.zero_crossings, 11);
         assert!(ev.stats.evals < 200, "{:?}", ev.stats);
         let d = (long.theta - stepwise.theta).abs() / ex.alpha
             + (long.omega - stepwise.omega).abs() / (ex.alpha * (ex.w_r0 / ex.io).sqrt());
@@ -347,9 +351,68 @@ fn quiet_rigid_rocking_in_long_calls_matches_event_by_event() {
         }
     }
     assert_eq!(a.impacts, b.impacts);
+    assert_eq!(a.zero_crossings, a.impacts);
+    assert_eq!(b.zero_crossings, b.impacts);
     eprintln!(
         "rest after {} impacts at {t_rest}; one call: {:?}",
         a.impacts, ev.stats
     );
     assert!(ev.stats.evals < 300);
+}
+
+#[test]
+fn rigid_free_rocking_counts_every_crossing_as_an_impact() {
+    // In output steps of 0.01 s (shorter than a half-cycle: the integrator,
+    // not the closed form): at every output time both counts are the
+    // number of exact impact times before it.
+    let m = rigid_block(0.5, 2.5);
+    let ex = Exact::new(&m);
+    let theta0 = 0.6 * ex.alpha;
+    let exact = ex.impacts(theta0, 12);
+    let sim = Simulator::new(m, 1e-10);
+    let mut st = sim.initial_state(theta0, 0.0);
+    let mut checked = 0;
+    let mut k = 0;
+    while st.t < exact[11].0 {
+        k += 1;
+        sim.advance(&mut st, k as f64 * 0.01, GroundInput::default());
+        if exact.iter().any(|(ti, _)| (ti - st.t).abs() < 1e-6) {
+            continue;
+        }
+        let n = exact.iter().filter(|(ti, _)| *ti < st.t).count() as u64;
+        assert_eq!(st.impacts, n, "t = {}", st.t);
+        assert_eq!(st.zero_crossings, n, "t = {}", st.t);
+        checked += 1;
+    }
+    assert_eq!(st.impacts, 12);
+    assert!(checked > 100);
+}
+
+#[test]
+fn rigid_forced_rocking_counts_every_crossing_as_an_impact() {
+    // Shaking just above uplift for 60 s: many short chattering excursions,
+    // some of which leave theta = 0 and return within one integration
+    // step (both step ends at 0); each is still an impact (thetaJo = 0).
+    let m = rigid_block(0.5, 2.5);
+    let sim = Simulator::new(m, DEFAULT_RTOL);
+    let thr = sim.uplift_acceleration();
+    let ag = |t: f64| {
+        1.05 * thr * (0.6 * (7.0 * t).sin() + 0.3 * (17.3 * t).sin() + 0.1 * (41.9 * t).sin())
+    };
+    let mut st = sim.initial_state(0.0, 0.0);
+    for k in 0..6000 {
+        let t = k as f64 * 0.01;
+        let input = GroundInput {
+            ag: ag(t),
+            dag: (ag(t + 0.01) - ag(t)) / 0.01,
+        };
+        sim.advance(&mut st, t + 0.01, input);
+        assert!(!st.overturned);
+    }
+    eprintln!(
+        "60 s: {} zero crossings, {} impacts",
+        st.zero_crossings, st.impacts
+    );
+    assert!(st.zero_crossings > 100);
+    assert_eq!(st.impacts, st.zero_crossings);
 }

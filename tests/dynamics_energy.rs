@@ -132,11 +132,11 @@ fn energy_drift(m: &Model, theta0: f64, crossings: u64) -> (f64, f64) {
     let mut worst_crossing = 0.0f64;
     let mut worst_mid = 0.0f64;
     let mut samples = 0;
-    while st.impacts < crossings {
+    while st.zero_crossings < crossings {
         let t_next = st.t + 0.37;
         let ev = sim.advance_to_event(&mut st, t_next, GroundInput::default());
         assert!(!st.overturned, "overturned at {}", st.t);
-        if ev.impacts > 0 {
+        if ev.zero_crossings > 0 {
             assert_eq!(st.theta, 0.0);
             let e = 0.5 * i0 * st.omega * st.omega;
             worst_crossing = worst_crossing.max((e / e0 - 1.0).abs());

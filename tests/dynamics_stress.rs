@@ -140,7 +140,7 @@ fn run_case(c: &Case) -> Outcome {
                 let ev = sim.advance_to_event(&mut st, t1, GroundInput::default());
                 out.evals += ev.stats.evals as u64;
                 out.max_call_evals = out.max_call_evals.max(ev.stats.evals);
-                if ev.impacts > 0 {
+                if ev.zero_crossings > 0 {
                     let e = 0.5 * i0 * st.omega * st.omega;
                     assert!(
                         e <= last_energy * (1.0 + 1e-7) + 1e-300,

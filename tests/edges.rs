@@ -70,11 +70,16 @@ fn the_start_time_does_not_change_the_motion() {
     ] {
         let reference = free_rocking_from(kn, fm, 0.0);
         assert_eq!(reference.impacts, 2, "kn {kn:e}");
+        assert_eq!(reference.zero_crossings, 2, "kn {kn:e}");
         for t0 in [1e4, 1e6, 1e9, 1e10] {
             let s = within(60, &format!("kn {kn:e} fm {fm:e} t0 {t0:e}"), move || {
                 free_rocking_from(kn, fm, t0)
             });
             assert_eq!(s.impacts, reference.impacts, "kn {kn:e} t0 {t0:e}");
+            assert_eq!(
+                s.zero_crossings, reference.zero_crossings,
+                "kn {kn:e} t0 {t0:e}"
+            );
             assert_eq!(s.t, t0 + 2.0, "kn {kn:e} t0 {t0:e}");
             // the same steps in the call's own time: the same motion up to
             // the rounding of the call boundaries t0 + 0.02 k
@@ -262,7 +267,7 @@ fn trace(m: Model, rtol: f64, theta0: f64, ag: &dyn Fn(f64) -> f64, dt: f64, t_e
                 }
                 rec.peaks.push((at.t, at.theta));
             }
-            if ev.impacts > 0 {
+            if ev.zero_crossings > 0 {
                 rec.impacts.push((st.t, st.omega));
             }
             if let Some(t) = ev.overturned_at {

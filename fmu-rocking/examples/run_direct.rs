@@ -112,7 +112,7 @@ fn set(p: &mut Params, name: &str, s: &str) {
 fn row(sim: &Simulator, s: &State, ag: f64) {
     let o = sim.outputs(s, ag);
     println!(
-        "{},{},{},{},{},{},{},{},{},{},{},{}",
+        "{},{},{},{},{},{},{},{},{},{},{},{},{}",
         s.t,
         s.theta,
         s.omega,
@@ -122,6 +122,7 @@ fn row(sim: &Simulator, s: &State, ag: f64) {
         o.mr,
         o.regime as i32,
         s.impacts,
+        s.zero_crossings,
         s.overturned as i32,
         o.fx,
         o.fz
@@ -180,7 +181,7 @@ fn main() {
     let mut s = sim.initial_state(p.theta0, p.omega0);
     s.t = start;
     println!(
-        "time,theta,omega,angularAcceleration,af,contactLength,MR,regime,impacts,overturned,Fx,Fz"
+        "time,theta,omega,angularAcceleration,af,contactLength,MR,regime,impacts,zeroCrossings,overturned,Fx,Fz"
     );
     row(&sim, &s, steps.first().map_or(ag0, |x| x.1));
     let mut time = start;

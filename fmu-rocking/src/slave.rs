@@ -14,7 +14,7 @@ use rocking::{Formulation, Params, Regime, Restitution};
 pub const MAX_GROUND_ACCELERATION: f64 = 1e100;
 
 /// Layout version of the serialized [`State`] (inside the generic envelope).
-const STATE_VERSION: u32 = 2;
+const STATE_VERSION: u32 = 3;
 
 pub struct RockingSlave {
     sim: Simulator,
@@ -214,6 +214,7 @@ impl Slave for RockingSlave {
         match r {
             vr::REGIME => Ok(self.regime(inputs.real(vr::AG)) as i32),
             vr::IMPACTS => Ok(i32::try_from(self.state.impacts).unwrap_or(i32::MAX)),
+            vr::ZERO_CROSSINGS => Ok(i32::try_from(self.state.zero_crossings).unwrap_or(i32::MAX)),
             _ => Err(format!("no computed Integer with value reference {r}")),
         }
     }
@@ -303,11 +304,13 @@ impl Slave for RockingSlave {
                     t + h
                 ));
             }
-            if ev.impacts > 0 {
+            if ev.zero_crossings > 0 {
                 log.event(format!(
-                    "{} impact(s) in ({t}, {}], {} so far",
-                    ev.impacts,
+                    "{} zero crossing(s) of theta in ({t}, {}], of which {} impact(s) (returns after the joint opened); {} crossings, {} impacts so far",
+                    ev.zero_crossings,
                     t + h,
+                    ev.impacts,
+                    s.zero_crossings,
                     s.impacts
                 ));
             }
@@ -362,6 +365,8 @@ impl Slave for RockingSlave {
             theta,
             omega,
             impacts,
+            zero_crossings,
+            opened,
             at_rest,
             overturned,
             h,
@@ -374,6 +379,8 @@ impl Slave for RockingSlave {
         w.f64(theta);
         w.f64(omega);
         w.u64(impacts);
+        w.u64(zero_crossings);
+        w.bool(opened);
         w.bool(at_rest);
         w.bool(overturned);
         w.f64(h);
@@ -394,6 +401,8 @@ impl Slave for RockingSlave {
             theta: r.f64("theta")?,
             omega: r.f64("omega")?,
             impacts: r.u64("impacts")?,
+            zero_crossings: r.u64("zero_crossings")?,
+            opened: r.bool("opened")?,
             at_rest: r.bool("at_rest")?,
             overturned: r.bool("overturned")?,
             h: r.f64("h")?,
@@ -405,6 +414,12 @@ impl Slave for RockingSlave {
             if !x.is_finite() {
                 return Err(format!("{name} = {x} is not finite"));
             }
+        }
+        if s.impacts > s.zero_crossings {
+            return Err(format!(
+                "impacts = {} > zero crossings = {}: every impact is a zero crossing",
+                s.impacts, s.zero_crossings
+            ));
         }
         if !(s.h.is_finite() && s.h >= 0.0 && s.a.is_finite() && s.a >= 0.0) {
             return Err(format!("step h = {}, contact a = {}: invalid", s.h, s.a));

@@ -265,3 +265,30 @@ fn declared_dependencies_cover_the_real_ones() {
         }
     }
 }
+
+/// The serialized state carries both counts and the opened flag; a state
+/// claiming more impacts than zero crossings is refused (every impact is a
+/// crossing).
+#[test]
+fn serialized_state_keeps_both_counts_and_refuses_more_impacts_than_crossings() {
+    use fmi2_export::bytes::{ByteReader, ByteWriter};
+    use fmi2_export::Slave;
+    let model = Params::default().build().unwrap();
+    let sim = rocking::dynamics::Simulator::new(model, 1e-9);
+    let mut s = sim.initial_state(0.01, 0.0);
+    s.impacts = 3;
+    s.zero_crossings = 7;
+    s.opened = true;
+    let mut w = ByteWriter::new();
+    RockingSlave::write_state(&s, &mut w);
+    let back = RockingSlave::read_state(&mut ByteReader::new(&w.buf)).unwrap();
+    assert_eq!(back, s);
+    s.impacts = 8;
+    let mut w = ByteWriter::new();
+    RockingSlave::write_state(&s, &mut w);
+    let e = RockingSlave::read_state(&mut ByteReader::new(&w.buf)).unwrap_err();
+    assert!(
+        e.contains("impacts = 8") && e.contains("zero crossings = 7"),
+        "{e}"
+    );
+}

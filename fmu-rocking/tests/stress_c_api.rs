@@ -114,6 +114,7 @@ struct Outcome {
     steps: usize,
     overturned: bool,
     impacts: i32,
+    zero_crossings: i32,
     seconds: f64,
 }
 
@@ -231,6 +232,13 @@ fn run(c: Case) -> Result<Outcome, String> {
             return fail(format!("|theta| = {} > thetaOv = {theta_ov}", theta.abs()));
         }
         out.impacts = h.integer("impacts");
+        out.zero_crossings = h.integer("zeroCrossings");
+        if !(0..=out.zero_crossings).contains(&out.impacts) {
+            return fail(format!(
+                "impacts = {} outside [0, zeroCrossings = {}]",
+                out.impacts, out.zero_crossings
+            ));
+        }
         let regime = h.integer("regime");
         if !(0..=4).contains(&regime) {
             return fail(format!("regime {regime}"));
@@ -483,11 +491,13 @@ fn the_stress_grid_through_the_c_api() {
     let started = Instant::now();
     let cases = grid();
     let (mut steps, mut overturned, mut impacts, mut slowest) = (0, 0, 0i64, (0.0, String::new()));
+    let mut zero_crossings = 0i64;
     let mut groups = std::collections::BTreeMap::<&str, (usize, usize, usize)>::new();
     for (group, c) in &cases {
         let o = run_watched(*c, 60);
         steps += o.steps;
         impacts += o.impacts as i64;
+        zero_crossings += o.zero_crossings as i64;
         overturned += o.overturned as usize;
         let g = groups.entry(group).or_default();
         g.0 += 1;
@@ -498,7 +508,7 @@ fn the_stress_grid_through_the_c_api() {
         }
     }
     eprintln!(
-        "{} runs, {steps} fmi2DoStep calls, {overturned} overturned (fmi2Discard), {impacts} impacts, in {:.1} s; slowest run {:.2} s: {}",
+        "{} runs, {steps} fmi2DoStep calls, {overturned} overturned (fmi2Discard), {impacts} impacts ({zero_crossings} zero crossings), in {:.1} s; slowest run {:.2} s: {}",
         cases.len(),
         started.elapsed().as_secs_f64(),
         slowest.0,

@@ -352,7 +352,7 @@ variables! {
     }
     IMPACTS = 28 => {
         name: "impacts",
-        description: "Number of impacts (zero crossings of theta) so far",
+        description: "Impacts so far: returns to theta = 0 after an uplift, i.e. zero crossings of theta after which |theta| had exceeded thetaJo (the joint had opened) since the previous crossing; every zero crossing for the rigid interface (see zeroCrossings)",
         causality: Output, variability: Discrete, initial: Some(Calculated),
         ty: Type::Integer { start: None },
     }
@@ -438,6 +438,12 @@ variables! {
         causality: CalcParam, variability: Fixed, initial: Some(Calculated),
         ty: real(Some("rad"), Some("deg"), None),
         depends_on: D_OVERTURN,
+    }
+    ZERO_CROSSINGS = 41 => {
+        name: "zeroCrossings",
+        description: "Zero crossings of theta so far (every crossing applies the restitution rule); a stiff interface vibrating in full contact crosses without impacts",
+        causality: Output, variability: Discrete, initial: Some(Calculated),
+        ty: Type::Integer { start: None },
     }
 }
 
@@ -741,6 +747,7 @@ mod tests {
             "MR",
             "regime",
             "impacts",
+            "zeroCrossings",
             "overturned",
             "Fx",
             "Fz",

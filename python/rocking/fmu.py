@@ -86,7 +86,10 @@ class Run:
     t_end                  time of the last row (the overturning time if overturned)
     t_overturn             t_end if overturned, else nan
     peak_theta_over_alpha  max |theta| / alpha over the recorded samples
-    impacts                impacts at the end of the run
+    impacts                impacts at the end of the run (returns to theta = 0
+                           after the joint opened)
+    zero_crossings         zero crossings of theta at the end of the run (every
+                           crossing, also in full contact)
     calculated             the calculated parameters (alpha, thetaOv, ...)
     wall                   wall time of the run, s
     messages               what the FMU logged ("[STATUS] category: message")
@@ -98,6 +101,7 @@ class Run:
     t_overturn: float
     peak_theta_over_alpha: float
     impacts: int
+    zero_crossings: int
     calculated: dict
     wall: float
     messages: list = field(default_factory=list)
@@ -317,7 +321,7 @@ class RockingFMU:
                 if (k + 1) % every == 0 or k + 1 == n_steps:
                     sample(grid[k + 1])
             final = {}
-            for name in ("impacts", "overturned"):
+            for name in ("impacts", "zeroCrossings", "overturned"):
                 v = self.variables[name]
                 final[name] = (slave.getInteger([v.valueReference])[0] if v.type == "Integer"
                                else slave.getBoolean([v.valueReference])[0])
@@ -352,6 +356,7 @@ class RockingFMU:
             t_overturn=t_end if overturned else math.nan,
             peak_theta_over_alpha=float(np.max(np.abs(result["thetaOverAlpha"]))),
             impacts=int(final["impacts"]),
+            zero_crossings=int(final["zeroCrossings"]),
             calculated=calculated,
             wall=_time.perf_counter() - t_start,
             messages=list(_MESSAGES),

@@ -8,7 +8,8 @@ in parallel processes, one FMU extraction shared by all of them.
 
 One row per run, in grid order (cases outer, then records, then scales)
 whatever the number of workers: case, the parameters, record, scale,
-overturned, t_overturn, peak_theta_over_alpha, impacts, t_end, alpha, thetaOv
+overturned, t_overturn, peak_theta_over_alpha, impacts, zero_crossings, t_end,
+alpha, thetaOv
 (the FMU's calculated parameters), wall_s, cpu_s (this run's wall and CPU time
 in its process), error (empty when the run succeeded)
 (and history, the recorded outputs, with `histories=True`).
@@ -44,13 +45,14 @@ def _run_task(task):
                                    rtol=opts["rtol"], outputs=opts["outputs"])
         row.update(overturned=run.overturned, t_overturn=run.t_overturn,
                    peak_theta_over_alpha=run.peak_theta_over_alpha, impacts=run.impacts,
+                   zero_crossings=run.zero_crossings,
                    t_end=run.t_end, alpha=run.calculated.get("alpha", math.nan),
                    thetaOv=run.calculated.get("thetaOv", math.nan), error="")
         if opts["histories"]:
             history = run.result
     except Exception as exc:  # noqa: BLE001 - reported in the row
         row.update(overturned=None, t_overturn=math.nan, peak_theta_over_alpha=math.nan,
-                   impacts=-1, t_end=math.nan, alpha=math.nan, thetaOv=math.nan,
+                   impacts=-1, zero_crossings=-1, t_end=math.nan, alpha=math.nan, thetaOv=math.nan,
                    error=str(exc))
     row["wall_s"] = _time.perf_counter() - t0
     row["cpu_s"] = _time.process_time() - c0
@@ -135,7 +137,8 @@ def run_grid(cases, records=(None,), scales=(1.0,), workers=None, fmu=None, *, s
             full["history"] = hist
         rows.append(full)
     columns = (["case"] + param_names + ["record", "scale", "overturned", "t_overturn",
-                                         "peak_theta_over_alpha", "impacts", "t_end", "alpha",
+                                         "peak_theta_over_alpha", "impacts", "zero_crossings",
+                                         "t_end", "alpha",
                                          "thetaOv", "wall_s", "cpu_s", "error"]
                + (["history"] if histories else []))
     return pd.DataFrame(rows, columns=columns)

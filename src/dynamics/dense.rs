@@ -130,6 +130,28 @@ pub(crate) fn first_event(p: &Hermite, s: f64, theta_ov: f64, kinks: &[f64]) -> 
     None
 }
 
+/// The largest `|theta|` on `[0, tau_end]` of the step: at the ends and at
+/// the turning points of `theta` inside, found as in [`first_event`] (the
+/// interval cut into `PIECES`, a root of `omega` bracketed in a piece where
+/// it changes sign, refined to the last bits).
+pub(crate) fn max_abs(p: &Hermite, tau_end: f64) -> f64 {
+    let dg = |tau: f64| p.dtheta(tau);
+    let d2g = |tau: f64| p.d2theta(tau);
+    let mut m = p.theta(0.0).abs();
+    let mut lo = 0.0;
+    for k in 1..=PIECES {
+        let hi = tau_end * k as f64 / PIECES as f64;
+        let (d_lo, d_hi) = (dg(lo), dg(hi));
+        if d_lo * d_hi < 0.0 {
+            let tp = refine(&dg, &d2g, lo, hi, d_lo > 0.0, 0.0);
+            m = m.max(p.theta(tp).abs());
+        }
+        m = m.max(p.theta(hi).abs());
+        lo = hi;
+    }
+    m
+}
+
 /// The lowest level `L` with `from < L <= to` (g rising).
 fn first_kink_up(kinks: &[f64], from: f64, to: f64) -> Option<usize> {
     let mut best: Option<usize> = None;
@@ -210,4 +232,25 @@ fn refine(
         x = next;
     }
     hi
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn max_abs_finds_a_peak_between_step_ends_below_it() {
+        // theta = 0.5 + 2 tau (1 - tau) (h = 1): ends 0.5, peak 1 at tau = 1/2;
+        // the quintic Hermite reproduces a quadratic exactly
+        for s in [1.0, -1.0] {
+            let p = Hermite::new(
+                1.0,
+                [0.5 * s, 2.0 * s, -4.0 * s],
+                [0.5 * s, -2.0 * s, -4.0 * s],
+            );
+            assert!((max_abs(&p, 1.0) - 1.0).abs() <= 1e-15);
+            // rising all the way on [0, 1/4]
+            assert!((max_abs(&p, 0.25) - 0.875).abs() <= 1e-15);
+        }
+    }
 }

@@ -19,7 +19,9 @@
 //!   driver's own copy of the values) and fails with `fmi2Error` otherwise;
 //! - after `fmi2OK` from a getter every value was written; Real outputs are
 //!   finite, calculated parameters are not NaN (`thetaC` is `+inf` without
-//!   crushing), `regime` is 0..=4, `impacts` >= 0, Booleans are 0 or 1;
+//!   crushing), `regime` is 0..=4, `impacts` >= 0, `zeroCrossings` >= 0
+//!   and not below `impacts` (every impact is a crossing) when both are
+//!   read in one call, Booleans are 0 or 1;
 //! - every non-OK status comes with a logger message of that status; every
 //!   message is non-empty UTF-8, names the instance, has a declared category
 //!   and no `%` conversion left; OK messages only with debug logging on;
@@ -1482,8 +1484,13 @@ impl Driver {
                 match r {
                     vr::REGIME => assert!((0..=4).contains(&x), "regime = {x}"),
                     vr::IMPACTS => assert!(x >= 0, "impacts = {x}"),
+                    vr::ZERO_CROSSINGS => assert!(x >= 0, "zeroCrossings = {x}"),
                     _ => assert_ne!(x, 0x5eed_f00d, "fmi2GetInteger: vr {r} not written"),
                 }
+            }
+            let of = |v: u32| r.iter().position(|&q| q == v).map(|i| out[i]);
+            if let (Some(i), Some(z)) = (of(vr::IMPACTS), of(vr::ZERO_CROSSINGS)) {
+                assert!(i <= z, "impacts = {i} > zeroCrossings = {z}");
             }
         }
     }
