@@ -423,3 +423,61 @@ fn output_derivatives_match_differences_along_trajectories() {
     }
     assert!(failures.is_empty(), "{failures:#?}");
 }
+
+/// A body at rest that `ag` sets moving: the rates at that instant are the
+/// starting motion's. References: `outputs` for the values, and the motion
+/// actually integrated from rest (`omega` and `Fx` 1 and 2 ms later) for
+/// the derivatives, through the remainder of the jets' Taylor polynomials.
+#[test]
+fn rates_of_a_body_that_ag_sets_moving_from_rest() {
+    use rocking::model::LawKind::*;
+    for law in [Elastic, ElastoPlastic, Rigid] {
+        let sim = Simulator::new(
+            block(law, Formulation::ShiftingPivot).build().unwrap(),
+            1e-13,
+        );
+        let ag = if law == Rigid {
+            1.1 * sim.uplift_acceleration()
+        } else {
+            1.0
+        };
+        let input = GroundInput { ag, dag: 0.0 };
+        let s0 = sim.initial_state(0.0, 0.0);
+        assert!(s0.at_rest && !sim.held_at_rest(ag));
+        let r = sim.output_rates(&s0, input);
+        let o = sim.outputs(&s0, ag);
+        assert_eq!(r.theta_dd[0], o.theta_dd, "{law:?}");
+        assert_eq!((r.fx[0], r.fz[0]), (o.fx, o.fz), "{law:?}");
+        assert!(o.theta_dd != 0.0);
+        // theta' = omega = 0, omega' = theta'' at the start
+        assert_eq!(r.theta[1], 0.0);
+        assert_eq!(r.theta[2], o.theta_dd);
+        assert_eq!(r.omega[1], o.theta_dd);
+        let later = |h: f64| {
+            let mut s = s0;
+            sim.advance(&mut s, h, input);
+            (s.omega, sim.outputs(&s, ag).fx)
+        };
+        // Taylor's polynomial of the jet against the integrated motion: the
+        // remainder, relative to the polynomial's own terms, must be small
+        // and grow like h² (absolute remainder O(h³): orders 1 and 2 right).
+        let remainder = |h: f64| {
+            let (w, f) = later(h);
+            let w_jet = r.omega[0] + r.omega[1] * h + r.omega[2] * h * h / 2.0;
+            let f_jet = r.fx[0] + r.fx[1] * h + r.fx[2] * h * h / 2.0;
+            let w_terms = (r.omega[1] * h).abs() + (r.omega[2] * h * h / 2.0).abs();
+            let f_terms = (r.fx[1] * h).abs() + (r.fx[2] * h * h / 2.0).abs();
+            ((w - w_jet).abs() / w_terms, (f - f_jet).abs() / f_terms)
+        };
+        let (w1, f1) = remainder(1e-3);
+        let (w2, f2) = remainder(2e-3);
+        eprintln!("{law:?}: remainders omega {w1:e} {w2:e}, Fx {f1:e} {f2:e}");
+        for (what, e1, e2) in [("omega", w1, w2), ("Fx", f1, f2)] {
+            assert!(e1 < 1e-2, "{law:?}: {what} remainder {e1:e} at h = 1 ms");
+            assert!(
+                e2 / e1 > 3.0,
+                "{law:?}: {what} remainder is not O(h^3): {e1:e}, {e2:e}"
+            );
+        }
+    }
+}

@@ -125,7 +125,7 @@ impl Simulator {
         if state.at_rest {
             let c = m.interface.contact(0.0);
             let constant = |x: f64| [x, 0.0, 0.0];
-            return OutputRates {
+            let rest = OutputRates {
                 theta: constant(state.theta),
                 omega: constant(state.omega),
                 theta_dd: constant(0.0),
@@ -135,7 +135,28 @@ impl Simulator {
                 fx: [b.mass * ag, b.mass * dag, 0.0],
                 fz: constant(b.weight),
             };
+            if self.held_at_rest(ag) {
+                return rest;
+            }
+            // ag sets the body moving: the motion's rates, but the contact
+            // outputs keep their rest values as `outputs` does (the rigid
+            // law's toe contact starts only once the body has lifted).
+            let start = self.output_rates_in_motion(state, input);
+            return OutputRates {
+                af: rest.af,
+                contact_length: rest.contact_length,
+                mr: rest.mr,
+                ..start
+            };
         }
+        self.output_rates_in_motion(state, input)
+    }
+
+    /// [`output_rates`](Self::output_rates) from the equation of motion at `state`.
+    fn output_rates_in_motion(&self, state: &State, input: GroundInput) -> OutputRates {
+        let m = &self.model;
+        let b = &m.body;
+        let GroundInput { ag, dag } = input;
         let rigid = m.interface.law() == Law::Rigid;
         let s = side_of(state.theta, state.omega, ag);
         // the rigid law continues the formulas through theta = 0 (see
