@@ -26,15 +26,14 @@ import tempfile
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
 
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-import groundmotion as gm  # noqa: E402
-from rockingfmu import RockingFMU  # noqa: E402
+from rocking import RockingFMU  # noqa: E402
+from rocking import groundmotion as gm  # noqa: E402
 
 G = 9.81
 RECORDS = {
