@@ -319,3 +319,33 @@ def test_corner_forwards_or_says_how_to_build(tmp_path):
     fake.chmod(0o755)
     proc = rocking("corner", "--shape", "hollowCircle", "a b", env=env)
     assert proc.returncode == 3 and proc.stdout == "args: --shape hollowCircle a b\n"
+
+
+def test_simulate_takes_the_corner_body_file(fmu_path, tmp_path):
+    """`rocking-corner --body FILE` then `rocking simulate --params FILE`: the body the
+    limit analysis wrote is the one the FMU rocks. Checked against the file itself and
+    closed forms of a lumped body on a solid rectangle: alpha = atan((B/2)/hG), and the
+    rigid body stays at rest below the uplift acceleration g tan(alpha) (ag = 0 here)."""
+    exe = REPO / "target" / "release" / "rocking-corner"
+    if not exe.is_file():
+        pytest.skip("target/release/rocking-corner not built (cargo build --release -p corner)")
+    body = tmp_path / "body.json"
+    subprocess.run([str(exe), "--alpha", "1.570796", "--body", str(body)], check=True,
+                   capture_output=True, timeout=60)
+    values = json.loads(body.read_text())
+    ok("simulate", "--params", body, "--stop-time", "1", "--out", tmp_path / "run")
+    csv, s = read_outputs(tmp_path / "run")
+    assert s["parameters"] == values
+    assert s["calculated"]["alpha"] == pytest.approx(math.atan(values["B"] / 2 / values["hG"]), rel=1e-12)
+    assert s["calculated"]["weight"] == pytest.approx(values["W"], rel=1e-15)
+    assert (csv["theta"] == 0).all() and not s["overturned"]
+
+
+def test_error_params_file(fmu_path, tmp_path):
+    bad = tmp_path / "body.json"
+    bad.write_text('{"W": 500, ')
+    line = fails("simulate", "--params", bad, "--out", tmp_path)
+    assert "body.json" in line and "not JSON" in line
+    bad.write_text('{"Wt": 500}')
+    line = fails("simulate", "--params", bad, "--out", tmp_path)
+    assert "body.json: Wt" in line and "W" in line.split("did you mean", 1)[1]

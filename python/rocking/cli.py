@@ -84,6 +84,22 @@ def unit_of(v):
     return v.unit or (v.declaredType.unit if v.declaredType is not None else None) or ""
 
 
+def read_params_file(path):
+    """Parameters from a JSON file of name -> value (enumerations by item name), as
+    `rocking-corner --body FILE` writes them; CLIError naming the file otherwise."""
+    import json
+
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise CLIError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    except json.JSONDecodeError as exc:
+        raise CLIError(f"{path}: not JSON ({exc.msg} at line {exc.lineno})") from None
+    if not isinstance(data, dict):
+        raise CLIError(f"{path}: expected a JSON object of parameter name -> value")
+    return data
+
+
 def check_parameter(fmu, name, value, where):
     """`value` (a string from the command line, or a TOML value) converted for the FMU
     variable `name`; CLIError naming `where` (e.g. '--kn' or 'cases.soft.kn') if the name or
@@ -230,6 +246,9 @@ def cmd_simulate(args, params_given):
                 raise CLIError(f"--preset: {exc.args[0]}") from None
             for name, value in preset_values.items():
                 params[name] = check_parameter(fmu, name, value, f"preset {args.preset}: {name}")
+        if args.params:
+            for name, value in read_params_file(args.params).items():
+                params[name] = check_parameter(fmu, name, value, f"{args.params}: {name}")
         for name, value in params_given:
             params[name] = check_parameter(fmu, name, value, f"--{name}")
 
@@ -686,6 +705,9 @@ def build_parser():
     p.add_argument("--scale", type=float, default=1.0, help="factor on the record's acceleration (default 1)")
     p.add_argument("--component", help="the record's component, by label (e.g. N28W, 090, UP) or index; default the first")
     p.add_argument("--preset", metavar="NAME", help="start from a named parameter set (see below)")
+    p.add_argument("--params", metavar="FILE",
+                   help="parameters from a JSON object of name -> value (e.g. rocking-corner --body FILE); "
+                        "over the preset's, under --NAME VALUE")
     p.add_argument("--fmu", metavar="PATH", help=fmu_help)
     p.add_argument("--stop-time", type=float, metavar="S", help="default: the record's end (10 s without one)")
     p.add_argument("--output-interval", type=float, metavar="S", help="default: the record's dt (0.01 s without one)")
