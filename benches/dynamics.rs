@@ -422,7 +422,7 @@ fn ag_linear(samples: &[f64], t: f64) -> f64 {
 
 // ------------------------------------------------------------- SciPy
 
-fn scipy(request: &str) -> Option<serde_like::Value> {
+fn scipy(request: &str) -> Option<serde_json::Value> {
     if std::env::var("BENCH_NO_SCIPY").is_ok() {
         return None;
     }
@@ -444,125 +444,28 @@ fn scipy(request: &str) -> Option<serde_like::Value> {
         );
         return None;
     }
-    serde_like::parse(&String::from_utf8_lossy(&out.stdout))
+    match serde_json::from_slice(&out.stdout) {
+        Ok(v) => Some(v),
+        Err(e) => {
+            eprintln!("scipy_reference.py printed no valid JSON: {e}");
+            None
+        }
+    }
 }
 
-/// A minimal JSON reader (numbers, strings, null, arrays, objects): the
-/// crate has no JSON dependency.
-mod serde_like {
-    #[derive(Debug, Clone)]
-    pub enum Value {
-        Null,
-        Num(f64),
-        Str(String),
-        Arr(Vec<Value>),
-        Obj(Vec<(String, Value)>),
+/// Reading SciPy's answer: a number (`null`, for a quantity SciPy did not
+/// reach, reads as NaN) and an array (empty if absent).
+trait Json {
+    fn num(&self) -> f64;
+    fn arr(&self) -> &[serde_json::Value];
+}
+
+impl Json for serde_json::Value {
+    fn num(&self) -> f64 {
+        self.as_f64().unwrap_or(f64::NAN)
     }
-    impl Value {
-        pub fn get(&self, k: &str) -> Option<&Value> {
-            match self {
-                Value::Obj(v) => v.iter().find(|(a, _)| a == k).map(|(_, b)| b),
-                _ => None,
-            }
-        }
-        pub fn num(&self) -> f64 {
-            match self {
-                Value::Num(x) => *x,
-                _ => f64::NAN,
-            }
-        }
-        pub fn arr(&self) -> &[Value] {
-            match self {
-                Value::Arr(v) => v,
-                _ => &[],
-            }
-        }
-    }
-    pub fn parse(s: &str) -> Option<Value> {
-        let b = s.as_bytes();
-        let mut i = 0;
-        let v = value(b, &mut i)?;
-        Some(v)
-    }
-    fn ws(b: &[u8], i: &mut usize) {
-        while *i < b.len() && (b[*i] as char).is_whitespace() {
-            *i += 1;
-        }
-    }
-    fn value(b: &[u8], i: &mut usize) -> Option<Value> {
-        ws(b, i);
-        match *b.get(*i)? {
-            b'[' => {
-                *i += 1;
-                let mut v = Vec::new();
-                loop {
-                    ws(b, i);
-                    if b[*i] == b']' {
-                        *i += 1;
-                        return Some(Value::Arr(v));
-                    }
-                    v.push(value(b, i)?);
-                    ws(b, i);
-                    if b[*i] == b',' {
-                        *i += 1;
-                    }
-                }
-            }
-            b'{' => {
-                *i += 1;
-                let mut v = Vec::new();
-                loop {
-                    ws(b, i);
-                    if b[*i] == b'}' {
-                        *i += 1;
-                        return Some(Value::Obj(v));
-                    }
-                    let k = match value(b, i)? {
-                        Value::Str(s) => s,
-                        _ => return None,
-                    };
-                    ws(b, i);
-                    *i += 1; // ':'
-                    let x = value(b, i)?;
-                    v.push((k, x));
-                    ws(b, i);
-                    if b[*i] == b',' {
-                        *i += 1;
-                    }
-                }
-            }
-            b'"' => {
-                *i += 1;
-                let start = *i;
-                while b[*i] != b'"' {
-                    *i += 1;
-                }
-                *i += 1;
-                Some(Value::Str(
-                    String::from_utf8_lossy(&b[start..*i - 1]).into(),
-                ))
-            }
-            b'n' => {
-                *i += 4;
-                Some(Value::Null)
-            }
-            _ => {
-                let start = *i;
-                while *i < b.len()
-                    && (b"+-.eE0123456789".contains(&b[*i]) || b[*i].is_ascii_alphabetic())
-                {
-                    *i += 1;
-                }
-                let t = std::str::from_utf8(&b[start..*i]).ok()?;
-                let x = match t {
-                    "NaN" => f64::NAN,
-                    "Infinity" => f64::INFINITY,
-                    "-Infinity" => f64::NEG_INFINITY,
-                    _ => t.parse().ok()?,
-                };
-                Some(Value::Num(x))
-            }
-        }
+    fn arr(&self) -> &[serde_json::Value] {
+        self.as_array().map_or(&[], |v| v.as_slice())
     }
 }
 

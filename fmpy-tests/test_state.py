@@ -1,5 +1,9 @@
 """FMU states: save/restore and serialize/deserialize reproduce the
-continuation bit for bit; corrupted or foreign buffers are refused."""
+continuation bit for bit; corrupted or foreign buffers are refused.
+
+That fmi2FreeInstance frees the states still alive is invisible from here: it
+is checked by valgrind's leak check of fmu-rocking/examples/c_api_loop.rs,
+which leaves states alive for it (tools/memcheck.sh, run by tools/test.sh)."""
 
 import struct
 import zlib
@@ -131,15 +135,6 @@ def test_states_of_other_instances_and_freed_states_are_refused(fmu_path, unzipp
     assert a.raw("fmi2SetFMUstate", stale) == ERROR
     a.free()
     b.free()
-
-
-def test_states_are_freed_with_the_instance(fmu_path, unzipped):
-    # nothing to observe from outside but the absence of crashes/leak reports
-    h = Host(fmu_path, unzipped)
-    start(h)
-    for _ in range(10):
-        h.fmu.getFMUstate()
-    h.free()
 
 
 # ----- the byte format ------------------------------------------------------

@@ -5,7 +5,7 @@
 //! - [`rocking_block`]: the RockingBlock FMU's description (docs/model.md §5) and
 //!   its value references [`rocking_block::vr`];
 //! - `xml` (feature `xml`): `modelDescription.xml` through serde + quick-xml,
-//!   and the GUID derived from its content;
+//!   and the GUID derived from its content (SHA-256 of the XML without it);
 //! - `html` (feature `xml`): `documentation/index.html` with the variable table.
 //!
 //! The FMU binary uses the table and the value references; its build script
@@ -14,7 +14,6 @@
 
 pub mod rocking_block;
 pub mod schema;
-pub mod sha256;
 
 #[cfg(feature = "xml")]
 pub mod html;

@@ -2,6 +2,7 @@
 //! serde and quick-xml. Element and attribute order follow the FMI 2.0 XSD.
 
 use serde::Serialize;
+use sha2::{Digest, Sha256};
 
 use crate::schema::*;
 
@@ -515,7 +516,26 @@ pub fn render(md: &ModelDescription, guid: &str) -> String {
 /// The GUID of a model description: derived from its XML without the GUID,
 /// so it changes exactly when the description does.
 pub fn guid(md: &ModelDescription) -> String {
-    crate::sha256::guid_of(render(md, "").as_bytes())
+    guid_of(render(md, "").as_bytes())
+}
+
+/// A GUID `{xxxxxxxx-xxxx-8xxx-yxxx-xxxxxxxxxxxx}` from the first 16 bytes
+/// of the SHA-256 of `content` (RFC 9562 version 8, "custom").
+pub fn guid_of(content: &[u8]) -> String {
+    let d = Sha256::digest(content);
+    let mut b = [0u8; 16];
+    b.copy_from_slice(&d[..16]);
+    b[6] = (b[6] & 0x0f) | 0x80;
+    b[8] = (b[8] & 0x3f) | 0x80;
+    let hex: String = b.iter().map(|x| format!("{x:02x}")).collect();
+    format!(
+        "{{{}-{}-{}-{}-{}}}",
+        &hex[0..8],
+        &hex[8..12],
+        &hex[12..16],
+        &hex[16..20],
+        &hex[20..32]
+    )
 }
 
 /// The XML and its GUID.
@@ -548,6 +568,15 @@ mod tests {
         assert!(xml.contains("<CoSimulation modelIdentifier=\"RockingBlock\" needsExecutionTool=\"false\" canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"true\" maxOutputDerivativeOrder=\"2\" canBeInstantiatedOnlyOncePerProcess=\"false\""));
         assert!(!xml.contains("canRunAsynchronuously"));
         assert!(!xml.contains("providesDirectionalDerivative"));
+    }
+
+    /// SHA-256("abc") is FIPS 180-2's published example
+    /// ba7816bf 8f01cfea 414140de 5dae2223 b00361a3 ...: its first 16 bytes
+    /// with the version nibble (byte 6: 0xcf -> 0x8f) and the variant bits
+    /// (byte 8: 0x41 -> 0x81) of RFC 9562 set.
+    #[test]
+    fn guid_is_the_version_8_form_of_the_sha256() {
+        assert_eq!(guid_of(b"abc"), "{ba7816bf-8f01-8fea-8141-40de5dae2223}");
     }
 
     #[test]

@@ -7,13 +7,11 @@
 
 #![allow(clippy::missing_safety_doc)]
 
-use std::ffi::{CStr, CString};
+use std::ffi::{c_char, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 use std::ptr;
 use std::sync::Mutex;
-
-use libc::{c_char, size_t};
 
 use crate::instance::{error, panic_message, Fail, Inner, Instance, Machine, Res, INSTANCE_MAGIC};
 use crate::logging::{Logger, GENERIC_CATEGORIES};
@@ -69,7 +67,7 @@ fn call<S: Slave>(
     .unwrap_or(fmi2Fatal)
 }
 
-unsafe fn slice<'a, T>(p: *const T, n: size_t, what: &str) -> Res<&'a [T]> {
+unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Res<&'a [T]> {
     if n == 0 {
         Ok(&[])
     } else if p.is_null() {
@@ -80,7 +78,7 @@ unsafe fn slice<'a, T>(p: *const T, n: size_t, what: &str) -> Res<&'a [T]> {
     }
 }
 
-unsafe fn slice_mut<'a, T>(p: *mut T, n: size_t, what: &str) -> Res<&'a mut [T]> {
+unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Res<&'a mut [T]> {
     if n == 0 {
         Ok(&mut [])
     } else if p.is_null() {
@@ -251,7 +249,7 @@ pub unsafe fn free_instance<S: Slave>(c: fmi2Component) {
 pub unsafe fn set_debug_logging<S: Slave>(
     c: fmi2Component,
     logging_on: fmi2Boolean,
-    n: size_t,
+    n: usize,
     categories: *const fmi2String,
 ) -> fmi2Status {
     call::<S>(c, "fmi2SetDebugLogging", |i| {
@@ -314,7 +312,7 @@ pub unsafe fn reset<S: Slave>(c: fmi2Component) -> fmi2Status {
 pub unsafe fn get_real<S: Slave>(
     c: fmi2Component,
     vr: *const fmi2ValueReference,
-    n: size_t,
+    n: usize,
     value: *mut fmi2Real,
 ) -> fmi2Status {
     call::<S>(c, "fmi2GetReal", |i| {
@@ -327,7 +325,7 @@ pub unsafe fn get_real<S: Slave>(
 pub unsafe fn get_integer<S: Slave>(
     c: fmi2Component,
     vr: *const fmi2ValueReference,
-    n: size_t,
+    n: usize,
     value: *mut fmi2Integer,
 ) -> fmi2Status {
     call::<S>(c, "fmi2GetInteger", |i| {
@@ -340,7 +338,7 @@ pub unsafe fn get_integer<S: Slave>(
 pub unsafe fn get_boolean<S: Slave>(
     c: fmi2Component,
     vr: *const fmi2ValueReference,
-    n: size_t,
+    n: usize,
     value: *mut fmi2Boolean,
 ) -> fmi2Status {
     call::<S>(c, "fmi2GetBoolean", |i| {
@@ -353,7 +351,7 @@ pub unsafe fn get_boolean<S: Slave>(
 pub unsafe fn get_string<S: Slave>(
     c: fmi2Component,
     vr: *const fmi2ValueReference,
-    n: size_t,
+    n: usize,
     value: *mut fmi2String,
 ) -> fmi2Status {
     call::<S>(c, "fmi2GetString", |i| {
@@ -366,7 +364,7 @@ pub unsafe fn get_string<S: Slave>(
 pub unsafe fn set_real<S: Slave>(
     c: fmi2Component,
     vr: *const fmi2ValueReference,
-    n: size_t,
+    n: usize,
     value: *const fmi2Real,
 ) -> fmi2Status {
     call::<S>(c, "fmi2SetReal", |i| {
@@ -379,7 +377,7 @@ pub unsafe fn set_real<S: Slave>(
 pub unsafe fn set_integer<S: Slave>(
     c: fmi2Component,
     vr: *const fmi2ValueReference,
-    n: size_t,
+    n: usize,
     value: *const fmi2Integer,
 ) -> fmi2Status {
     call::<S>(c, "fmi2SetInteger", |i| {
@@ -392,7 +390,7 @@ pub unsafe fn set_integer<S: Slave>(
 pub unsafe fn set_boolean<S: Slave>(
     c: fmi2Component,
     vr: *const fmi2ValueReference,
-    n: size_t,
+    n: usize,
     value: *const fmi2Boolean,
 ) -> fmi2Status {
     call::<S>(c, "fmi2SetBoolean", |i| {
@@ -405,7 +403,7 @@ pub unsafe fn set_boolean<S: Slave>(
 pub unsafe fn set_string<S: Slave>(
     c: fmi2Component,
     vr: *const fmi2ValueReference,
-    n: size_t,
+    n: usize,
     value: *const fmi2String,
 ) -> fmi2Status {
     call::<S>(c, "fmi2SetString", |i| {
@@ -449,7 +447,7 @@ pub unsafe fn free_fmu_state<S: Slave>(c: fmi2Component, state: *mut fmi2FMUstat
 pub unsafe fn serialized_fmu_state_size<S: Slave>(
     c: fmi2Component,
     state: fmi2FMUstate,
-    size: *mut size_t,
+    size: *mut usize,
 ) -> fmi2Status {
     call::<S>(c, "fmi2SerializedFMUstateSize", |i| {
         let size = unsafe { out(size, "size") }?;
@@ -462,7 +460,7 @@ pub unsafe fn serialize_fmu_state<S: Slave>(
     c: fmi2Component,
     state: fmi2FMUstate,
     bytes: *mut fmi2Byte,
-    size: size_t,
+    size: usize,
 ) -> fmi2Status {
     call::<S>(c, "fmi2SerializeFMUstate", |i| {
         let buf = unsafe { slice_mut(bytes as *mut u8, size, "serializedState") }?;
@@ -473,7 +471,7 @@ pub unsafe fn serialize_fmu_state<S: Slave>(
 pub unsafe fn deserialize_fmu_state<S: Slave>(
     c: fmi2Component,
     bytes: *const fmi2Byte,
-    size: size_t,
+    size: usize,
     state: *mut fmi2FMUstate,
 ) -> fmi2Status {
     call::<S>(c, "fmi2DeSerializeFMUstate", |i| {
@@ -494,7 +492,7 @@ pub unsafe fn get_directional_derivative<S: Slave>(c: fmi2Component) -> fmi2Stat
 pub unsafe fn set_real_input_derivatives<S: Slave>(
     c: fmi2Component,
     vr: *const fmi2ValueReference,
-    n: size_t,
+    n: usize,
     order: *const fmi2Integer,
     value: *const fmi2Real,
 ) -> fmi2Status {
@@ -509,7 +507,7 @@ pub unsafe fn set_real_input_derivatives<S: Slave>(
 pub unsafe fn get_real_output_derivatives<S: Slave>(
     c: fmi2Component,
     vr: *const fmi2ValueReference,
-    n: size_t,
+    n: usize,
     order: *const fmi2Integer,
     value: *mut fmi2Real,
 ) -> fmi2Status {

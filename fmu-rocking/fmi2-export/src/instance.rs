@@ -4,7 +4,7 @@
 
 #![allow(non_upper_case_globals)] // the FMI constants keep their C names
 
-use std::collections::HashSet;
+use std::collections::BTreeSet;
 use std::ffi::CString;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
@@ -174,8 +174,10 @@ pub struct Inner<S: Slave> {
     slave: Option<S>,
     /// The stored values changed since `slave` was built.
     stale: bool,
-    /// Live `fmi2FMUstate` pointers handed out by this instance.
-    states: HashSet<usize>,
+    /// Live `fmi2FMUstate` pointers handed out by this instance: a membership
+    /// registry, ordered rather than hashed, so that the FMU never asks the OS
+    /// for random hasher keys (std's `HashSet` seeds its `RandomState` so).
+    states: BTreeSet<usize>,
     pub(crate) resource_dir: Option<PathBuf>,
 }
 
@@ -255,7 +257,7 @@ impl<S: Slave> Inner<S> {
             terminated: false,
             slave: None,
             stale: true,
-            states: HashSet::new(),
+            states: BTreeSet::new(),
             resource_dir,
         };
         inner.reset_values();
@@ -1138,7 +1140,7 @@ impl<S: Slave> Inner<S> {
 
     /// Frees every FMU state still alive (at fmi2FreeInstance).
     pub(crate) fn free_all_states(&mut self) {
-        for p in self.states.drain() {
+        for p in std::mem::take(&mut self.states) {
             // SAFETY: registered pointers are live boxes created by us.
             drop(unsafe { Box::from_raw(p as *mut Snapshot<S>) });
         }

@@ -2,7 +2,7 @@
 //! particular model: a model implements [`Slave`] and a cdylib calls
 //! [`export_fmi2!`] once to export every FMI 2.0 co-simulation function.
 //!
-//! - [`types`]: the FMI 2.0 C types, declared once (libc);
+//! - [`types`]: the FMI 2.0 C types, declared once (`std::ffi`);
 //! - [`slave`]: the [`Slave`] trait and the views it gets of the stored values;
 //! - [`instance`]: the state machine, get/set rules, stepping and FMU states;
 //! - [`logging`]: the host logger, categories and `fmi2SetDebugLogging`;

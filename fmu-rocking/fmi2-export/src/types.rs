@@ -1,10 +1,11 @@
 //! The FMI 2.0 C types (fmi2TypesPlatform.h, fmi2FunctionTypes.h), declared
-//! once with libc types. Enumerations the host passes in are plain `c_int`
+//! once with `std::ffi` types; `size_t` is `usize`, its size on every target
+//! Rust supports (std has no stable `c_size_t`). Enumerations the host passes in are plain `c_int`
 //! so that an out-of-range value is an error, never undefined behaviour.
 
 #![allow(non_camel_case_types, non_upper_case_globals, non_snake_case)]
 
-use libc::{c_char, c_double, c_int, c_uint, c_void, size_t};
+use std::ffi::{c_char, c_double, c_int, c_uint, c_void};
 
 pub type fmi2Component = *mut c_void;
 pub type fmi2ComponentEnvironment = *mut c_void;
@@ -49,8 +50,7 @@ pub type fmi2CallbackLogger = unsafe extern "C" fn(
     message: fmi2String,
     ...
 );
-pub type fmi2CallbackAllocateMemory =
-    unsafe extern "C" fn(nobj: size_t, size: size_t) -> *mut c_void;
+pub type fmi2CallbackAllocateMemory = unsafe extern "C" fn(nobj: usize, size: usize) -> *mut c_void;
 pub type fmi2CallbackFreeMemory = unsafe extern "C" fn(obj: *mut c_void);
 pub type fmi2StepFinished =
     unsafe extern "C" fn(componentEnvironment: fmi2ComponentEnvironment, status: fmi2Status);
