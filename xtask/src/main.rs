@@ -222,6 +222,13 @@ fn build_linux64() -> Res<Result<PathBuf, String>> {
         "PATH",
         env::join_paths(paths).map_err(|e| format!("PATH: {e}"))?,
     );
+    Ok(Ok(build_platform(cmd, LINUX64_TARGET, "linux64", ".so")?))
+}
+
+/// Runs `cmd` (cargo or cargo zigbuild) to build the FMU's cdylib for
+/// `target` in its own target dir `platforms/<platform>`, and returns the
+/// library (ending in `extension`).
+fn build_platform(mut cmd: Command, target: &str, platform: &str, extension: &str) -> Res<PathBuf> {
     cmd.args([
         "build",
         "--release",
@@ -229,14 +236,13 @@ fn build_linux64() -> Res<Result<PathBuf, String>> {
         "fmu-rocking",
         "--lib",
         "--target",
-        LINUX64_TARGET,
+        target,
         "--target-dir",
     ]);
-    cmd.arg(target_dir().join("platforms/linux64"));
+    cmd.arg(target_dir().join("platforms").join(platform));
     let messages = cargo_messages(cmd)?;
-    Ok(Ok(
-        cdylib(&messages, ".so").ok_or("cargo zigbuild reported no fmu_rocking cdylib")?
-    ))
+    cdylib(&messages, extension)
+        .ok_or_else(|| format!("cargo reported no fmu_rocking {extension} for {target}"))
 }
 
 /// The win64 DLL, or `Err(why not)` when the Rust target or mingw-w64 is missing.
@@ -264,21 +270,7 @@ fn build_win64() -> Res<Result<PathBuf, String>> {
         "CARGO_TARGET_X86_64_PC_WINDOWS_GNU_RUSTFLAGS",
         "-C link-arg=-Wl,--no-insert-timestamp",
     );
-    cmd.args([
-        "build",
-        "--release",
-        "--package",
-        "fmu-rocking",
-        "--lib",
-        "--target",
-        WIN64_TARGET,
-        "--target-dir",
-    ]);
-    cmd.arg(target_dir().join("platforms/win64"));
-    let messages = cargo_messages(cmd)?;
-    Ok(Ok(
-        cdylib(&messages, ".dll").ok_or("cargo reported no fmu_rocking DLL")?
-    ))
+    Ok(Ok(build_platform(cmd, WIN64_TARGET, "win64", ".dll")?))
 }
 
 fn read(p: &Path) -> Res<Vec<u8>> {
