@@ -24,7 +24,7 @@ FMI 2.0, section 4.2.1: fmi2SetRealInputDerivatives sets the n-th time
 derivative of the inputs given by `vr` (`order` 1 is the first derivative;
 `nvr` is the length of `vr`, `order` and `value`), with the same restrictions
 as fmi2SetReal. The FMU declares canInterpolateInputs="true" (the only flag
-fmpy checks; it does not read maxOutputDerivativeOrder).
+fmpy's simulation checks; maxOutputDerivativeOrder it only parses).
 
 The workaround: `rocking.RockingFMU.simulate` drives the FMU's C functions
 itself and passes at each sample the slope of the segment that starts there,

@@ -17,7 +17,9 @@ the FMU declares canInterpolateInputs): the FMU sees the record's piecewise
 linear interpolation exactly. The loop is written here rather than with
 `fmpy.simulate_fmu(..., set_input_derivatives=True)`, which fails in fmpy
 0.3.32 for an FMI 2 FMU with one real input ("Can only assign sequence of same
-size": its derivative buffer has a fixed length of 9). Overturning: the FMU
+size": its derivative buffer has a fixed length of 9), and which, with that
+buffer sized, passes at most samples the slope of the segment that ends there
+(docs/examples.md, "Input derivatives and fmpy"). Overturning: the FMU
 returns fmi2Discard with fmi2Terminated true; the run ends at
 fmi2LastSuccessfulTime, whose outputs are the last row.
 """
