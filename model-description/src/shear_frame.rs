@@ -153,17 +153,17 @@ fn build_variables() -> Vec<Variable> {
             .collect::<Vec<_>>()
             .into_boxed_slice(),
     );
-    for i in 0..MAX_STOREYS {
+    for (i, &name) in m.iter().enumerate() {
         v.push(param(
-            m[i],
+            name,
             vr::at(vr::M, i + 1),
             leak(format!("Mass of floor {}", i + 1)),
             real("kg", Some("t"), Some(1.0e5)),
         ));
     }
-    for i in 0..MAX_STOREYS {
+    for (i, &name) in k.iter().enumerate() {
         v.push(param(
-            k[i],
+            name,
             vr::at(vr::K, i + 1),
             leak(format!(
                 "Lateral stiffness of storey {} (between floor {} and floor {})",
@@ -195,9 +195,9 @@ fn build_variables() -> Vec<Variable> {
             });
         }
     }
-    for i in 0..MAX_STOREYS {
+    for (i, &name) in u.iter().enumerate() {
         v.push(Variable {
-            name: u[i],
+            name,
             vr: vr::at(vr::U, i + 1),
             description: leak(format!(
                 "Displacement of floor {} relative to the ground, +x; its start value is the initial displacement",
@@ -210,9 +210,9 @@ fn build_variables() -> Vec<Variable> {
             depends_on: &[],
         });
     }
-    for i in 0..MAX_STOREYS {
+    for (i, &name) in vel.iter().enumerate() {
         v.push(Variable {
-            name: vel[i],
+            name,
             vr: vr::at(vr::V, i + 1),
             description: leak(format!(
                 "Velocity of floor {} relative to the ground, du/dt; its start value is the initial velocity",

@@ -111,7 +111,10 @@ fn check_positive(name: &str, i: usize, x: f64, unit: &str) -> Result<(), String
     if x.is_finite() && x > 0.0 {
         Ok(())
     } else {
-        Err(format!("{name}[{}] = {x} {unit}: must be finite and > 0", i + 1))
+        Err(format!(
+            "{name}[{}] = {x} {unit}: must be finite and > 0",
+            i + 1
+        ))
     }
 }
 
@@ -121,7 +124,9 @@ impl Frame {
     pub fn new(m: &[f64], k: &[f64], damping: Damping) -> Result<Frame, String> {
         let n = m.len();
         if !(1..=MAX_STOREYS).contains(&n) {
-            return Err(format!("n = {n}: the frame must have 1 to {MAX_STOREYS} storeys"));
+            return Err(format!(
+                "n = {n}: the frame must have 1 to {MAX_STOREYS} storeys"
+            ));
         }
         if k.len() != n {
             return Err(format!("{} storey stiffnesses for n = {n} floors", k.len()));
@@ -140,7 +145,9 @@ impl Frame {
             }
             Damping::Rayleigh { alpha, beta } => {
                 if !(alpha.is_finite() && alpha >= 0.0) {
-                    return Err(format!("rayleighAlpha = {alpha} 1/s: must be finite and >= 0"));
+                    return Err(format!(
+                        "rayleighAlpha = {alpha} 1/s: must be finite and >= 0"
+                    ));
                 }
                 if !(beta.is_finite() && beta >= 0.0) {
                     return Err(format!("rayleighBeta = {beta} s: must be finite and >= 0"));

@@ -3,6 +3,9 @@
 //! rotation, energy conservation, a fine Runge-Kutta integration and the
 //! static storey shears.
 
+// The references index matrices as the textbook formulas do.
+#![allow(clippy::needless_range_loop)]
+
 use shear_frame::{Damping, Frame, Load, State, MAX_STOREYS};
 
 /// Runs `steps` exact steps of length h from `s` under constant-rate loads
@@ -40,8 +43,8 @@ fn sdof(w: f64, zeta: f64, a0: f64, r: f64, t: f64) -> (f64, f64) {
 
 #[test]
 fn one_storey_step_and_ramp_of_ground_acceleration_match_the_closed_form() {
-    let (m, k, zeta) = (2.0e5, 8.0e7, 0.05);
-    let w = (k / m as f64).sqrt();
+    let (m, k, zeta): (f64, f64, f64) = (2.0e5, 8.0e7, 0.05);
+    let w = (k / m).sqrt();
     let frame = Frame::new(&[m], &[k], Damping::Modal { zeta }).unwrap();
     assert!((frame.omega()[0] - w).abs() < 1e-12 * w);
     for (a0, r) in [(1.5, 0.0), (0.0, 2.0), (-0.7, 3.0)] {
@@ -49,7 +52,14 @@ fn one_storey_step_and_ramp_of_ground_acceleration_match_the_closed_form() {
         let h = 0.01;
         let mut worst: f64 = 0.0;
         for j in 1..=300 {
-            run(&frame, &mut s, h, 1, ground(a0 + r * (j - 1) as f64 * h), ground(r));
+            run(
+                &frame,
+                &mut s,
+                h,
+                1,
+                ground(a0 + r * (j - 1) as f64 * h),
+                ground(r),
+            );
             let t = j as f64 * h;
             let (u, v) = sdof(w, zeta, a0, r, t);
             let scale = (a0.abs() + r * t) / (w * w);
@@ -61,7 +71,10 @@ fn one_storey_step_and_ramp_of_ground_acceleration_match_the_closed_form() {
             assert!((a - (ud2 + a0 + r * t)).abs() < 1e-9 * scale * w * w);
         }
         eprintln!("SDOF a0 = {a0}, r = {r}: relative error {worst:e}");
-        assert!(worst < 1e-11, "a0 = {a0}, r = {r}: relative error {worst:e}");
+        assert!(
+            worst < 1e-11,
+            "a0 = {a0}, r = {r}: relative error {worst:e}"
+        );
     }
 }
 
@@ -189,9 +202,7 @@ fn without_damping_energy_minus_the_work_of_constant_forces_is_conserved() {
     load.fx[4] = -1.0e5;
     let mut s = State::at_rest(0.0);
     s.u[..5].copy_from_slice(&[0.01, 0.015, 0.02, 0.02, 0.03]);
-    let total = |s: &State| {
-        energy(s, &M5, &K5) - (0..5).map(|i| load.fx[i] * s.u[i]).sum::<f64>()
-    };
+    let total = |s: &State| energy(s, &M5, &K5) - (0..5).map(|i| load.fx[i] * s.u[i]).sum::<f64>();
     let e0 = total(&s);
     let p = frame.propagator(0.013);
     let mut worst: f64 = 0.0;
@@ -206,7 +217,15 @@ fn without_damping_energy_minus_the_work_of_constant_forces_is_conserved() {
 #[test]
 fn damped_energy_decreases_by_the_dissipated_work() {
     // with Rayleigh damping: E(t) - E(0) = -int v^T C v dt (trapezoid on a fine grid)
-    let frame = Frame::new(&M5, &K5, Damping::Rayleigh { alpha: 0.4, beta: 0.002 }).unwrap();
+    let frame = Frame::new(
+        &M5,
+        &K5,
+        Damping::Rayleigh {
+            alpha: 0.4,
+            beta: 0.002,
+        },
+    )
+    .unwrap();
     let c = frame.damping_matrix().clone();
     let mut s = State::at_rest(0.0);
     s.v[..5].copy_from_slice(&[0.2, -0.1, 0.3, 0.1, -0.2]);
@@ -232,7 +251,11 @@ fn damped_energy_decreases_by_the_dissipated_work() {
     }
     let e1 = energy(&s, &M5, &K5);
     assert!(e1 < 0.9 * e0);
-    assert!(((e0 - e1) - work).abs() < 1e-6 * e0, "{} vs {work}", e0 - e1);
+    assert!(
+        ((e0 - e1) - work).abs() < 1e-6 * e0,
+        "{} vs {work}",
+        e0 - e1
+    );
 }
 
 /// Classical RK4 on M u'' + C u' + K u = -M ag + Fx.
@@ -265,8 +288,16 @@ fn rk4(frame: &Frame, m: &[f64], s: &mut State, h: f64, steps: usize, load: Load
     for j in 0..steps {
         let t = j as f64 * h;
         let (k1u, k1v) = f(t, &u, &v);
-        let (k2u, k2v) = f(t + h / 2.0, &axpy(&u, h / 2.0, &k1u), &axpy(&v, h / 2.0, &k1v));
-        let (k3u, k3v) = f(t + h / 2.0, &axpy(&u, h / 2.0, &k2u), &axpy(&v, h / 2.0, &k2v));
+        let (k2u, k2v) = f(
+            t + h / 2.0,
+            &axpy(&u, h / 2.0, &k1u),
+            &axpy(&v, h / 2.0, &k1v),
+        );
+        let (k3u, k3v) = f(
+            t + h / 2.0,
+            &axpy(&u, h / 2.0, &k2u),
+            &axpy(&v, h / 2.0, &k2v),
+        );
         let (k4u, k4v) = f(t + h, &axpy(&u, h, &k3u), &axpy(&v, h, &k3v));
         for i in 0..n {
             u[i] += h / 6.0 * (k1u[i] + 2.0 * k2u[i] + 2.0 * k3u[i] + k4u[i]);
@@ -281,7 +312,15 @@ fn rk4(frame: &Frame, m: &[f64], s: &mut State, h: f64, steps: usize, load: Load
 fn agrees_with_a_fine_runge_kutta_integration_under_ramped_loads() {
     let m = [2.0e5, 1.8e5, 1.2e5];
     let k = [2.0e8, 1.6e8, 1.0e8];
-    let frame = Frame::new(&m, &k, Damping::Rayleigh { alpha: 0.3, beta: 0.001 }).unwrap();
+    let frame = Frame::new(
+        &m,
+        &k,
+        Damping::Rayleigh {
+            alpha: 0.3,
+            beta: 0.001,
+        },
+    )
+    .unwrap();
     let mut load = ground(0.5);
     load.fx[2] = 3.0e4;
     let mut rate = ground(-1.2);
@@ -334,9 +373,19 @@ fn bad_parameters_name_the_variable() {
         (Frame::new(&[1.0, -2.0], &[1.0, 1.0], ok), "m[2] = -2"),
         (Frame::new(&[1.0, 2.0], &[1.0, 0.0], ok), "k[2] = 0"),
         (Frame::new(&[f64::NAN], &[1.0], ok), "m[1] = NaN"),
-        (Frame::new(&[1.0], &[1.0], Damping::Modal { zeta: -0.1 }), "zeta = -0.1"),
         (
-            Frame::new(&[1.0], &[1.0], Damping::Rayleigh { alpha: -1.0, beta: 0.0 }),
+            Frame::new(&[1.0], &[1.0], Damping::Modal { zeta: -0.1 }),
+            "zeta = -0.1",
+        ),
+        (
+            Frame::new(
+                &[1.0],
+                &[1.0],
+                Damping::Rayleigh {
+                    alpha: -1.0,
+                    beta: 0.0,
+                },
+            ),
             "rayleighAlpha = -1",
         ),
     ];
@@ -380,10 +429,30 @@ fn rates_are_the_derivatives_of_the_exact_trajectory() {
         let da = (ap[i] - am[i]) / (2.0 * h);
         let d2a = (ap[i] - 2.0 * a0[i] + am[i]) / (h * h);
         let d2u = (xp.u[i] - 2.0 * s.u[i] + xm.u[i]) / (h * h);
-        assert!((du - r.u[0][i]).abs() < 1e-6 * (1.0 + du.abs()), "u' {du} {}", r.u[0][i]);
-        assert!((d2u - r.u[1][i]).abs() < 1e-4 * (1.0 + d2u.abs()), "u'' {d2u} {}", r.u[1][i]);
-        assert!((dv - r.v[0][i]).abs() < 1e-6 * (1.0 + dv.abs()), "v' {dv} {}", r.v[0][i]);
-        assert!((da - r.a[0][i]).abs() < 1e-5 * (1.0 + da.abs()), "a' {da} {}", r.a[0][i]);
-        assert!((d2a - r.a[1][i]).abs() < 1e-3 * (1.0 + d2a.abs()), "a'' {d2a} {}", r.a[1][i]);
+        assert!(
+            (du - r.u[0][i]).abs() < 1e-6 * (1.0 + du.abs()),
+            "u' {du} {}",
+            r.u[0][i]
+        );
+        assert!(
+            (d2u - r.u[1][i]).abs() < 1e-4 * (1.0 + d2u.abs()),
+            "u'' {d2u} {}",
+            r.u[1][i]
+        );
+        assert!(
+            (dv - r.v[0][i]).abs() < 1e-6 * (1.0 + dv.abs()),
+            "v' {dv} {}",
+            r.v[0][i]
+        );
+        assert!(
+            (da - r.a[0][i]).abs() < 1e-5 * (1.0 + da.abs()),
+            "a' {da} {}",
+            r.a[0][i]
+        );
+        assert!(
+            (d2a - r.a[1][i]).abs() < 1e-3 * (1.0 + d2a.abs()),
+            "a'' {d2a} {}",
+            r.a[1][i]
+        );
     }
 }
