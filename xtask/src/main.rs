@@ -95,8 +95,8 @@ fn usage() {
          target/fmu/RockingBlock.fmu, target/fmu/ShearFrame.fmu (and\n               \
          target/release/examples/run_direct)\n  \
          shear-frame  only target/fmu/ShearFrame.fmu\n  \
-         crosscheck   the FMU, then FMI cross-check artefacts (FMU, input, reference\n               \
-         results from the engine run directly, options, README) under\n               \
+         crosscheck   the FMUs, then RockingBlock's FMI cross-check artefacts (FMU, input,\n               \
+         reference results from the engine run directly, options, README) under\n               \
          target/cross-check/fmus/2.0/cs/{{linux64,win64}}/..."
     );
 }
@@ -429,8 +429,10 @@ fn cc_ground_motion(t: f64) -> f64 {
     3.0 * (2.0 * std::f64::consts::PI * 1.5 * t).sin() * (-0.3 * t).exp()
 }
 
-/// `cargo xtask crosscheck`: FMI cross-check artefacts for the FMU.
+/// `cargo xtask crosscheck`: both FMUs, and FMI cross-check artefacts for RockingBlock.
 fn crosscheck() -> Res<()> {
+    // every FMU, as `cargo xtask fmu` (the test command runs this task only)
+    package(&SHEAR_FRAME)?;
     let (fmu_path, built, platforms) = package(&ROCKING_BLOCK)?;
     let run_direct = built
         .run_direct
