@@ -12,6 +12,9 @@
 
 pub mod slave;
 
+#[cfg(test)]
+mod tests;
+
 pub use slave::ShearFrameSlave;
 
 /// The GUID of the `modelDescription.xml` this binary ships with.
