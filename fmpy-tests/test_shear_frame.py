@@ -69,11 +69,21 @@ def test_validates_and_names_the_issue_variables(shear_fmu):
     assert out["u[4]"].dependencies == []
 
 
-def test_one_storey_step_of_ground_acceleration_is_the_closed_form(shear_fmu):
-    m, k, zeta, a0 = 2.0e5, 8.0e7, 0.05, 1.5
-    res = simulate_fmu(shear_fmu, start_values={"n": 1, "m[1]": m, "k[1]": k, "zeta": zeta, "ag": a0},
-                       stop_time=3.0, output_interval=0.01, output=["u[1]", "v[1]", "a[1]", "period[1]"])
+@pytest.mark.parametrize("damping", ["modal", "rayleigh"])
+def test_one_storey_step_of_ground_acceleration_is_the_closed_form(shear_fmu, damping):
+    m, k, a0 = 2.0e5, 8.0e7, 1.5
     w = math.sqrt(k / m)
+    start = {"n": 1, "m[1]": m, "k[1]": k, "ag": a0}
+    if damping == "modal":
+        zeta = 0.05
+        start["zeta"] = zeta
+    else:
+        # Rayleigh: the ratio alpha / (2 w) + beta w / 2 of the single mode
+        alpha, beta = 0.8, 0.002
+        zeta = alpha / (2 * w) + beta * w / 2
+        start.update(damping=2, rayleighAlpha=alpha, rayleighBeta=beta, zeta=0.5)
+    res = simulate_fmu(shear_fmu, start_values=start,
+                       stop_time=3.0, output_interval=0.01, output=["u[1]", "v[1]", "a[1]", "period[1]"])
     u, v = sdof(w, zeta, a0, 0.0, res["time"])
     scale = a0 / w**2
     assert np.max(np.abs(res["u[1]"] - u)) < 1e-10 * scale
