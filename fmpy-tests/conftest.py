@@ -59,7 +59,7 @@ _FMPY_LOGGER = []
 
 # The test modules of the FMU itself (the others manage fmpy's logger themselves).
 FMU_MODULES = {"test_model_description", "test_fmi_calls", "test_state", "test_simulation", "test_crosscheck",
-               "test_robustness", "test_input_derivatives"}
+               "test_robustness", "test_input_derivatives", "test_shear_frame"}
 
 
 @pytest.fixture(autouse=True)

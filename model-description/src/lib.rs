@@ -4,6 +4,8 @@
 //!   enumeration types, capabilities, default experiment);
 //! - [`rocking_block`]: the RockingBlock FMU's description (docs/model.md §5) and
 //!   its value references [`rocking_block::vr`];
+//! - [`shear_frame`]: the ShearFrame FMU's description (an n-storey shear
+//!   building) and its value references [`shear_frame::vr`];
 //! - `xml` (feature `xml`): `modelDescription.xml` through serde + quick-xml,
 //!   and the GUID derived from its content (SHA-256 of the XML without it);
 //! - `html` (feature `xml`): `documentation/index.html` with the variable table.
@@ -14,6 +16,7 @@
 
 pub mod rocking_block;
 pub mod schema;
+pub mod shear_frame;
 
 #[cfg(feature = "xml")]
 pub mod html;

@@ -1,20 +1,21 @@
-//! `cargo xtask fmu`: builds the release cdylib and writes
-//! `target/fmu/RockingBlock.fmu` (modelDescription.xml, the binaries,
-//! documentation/index.html), reproducibly: fixed timestamps and permissions,
-//! sorted entries. The XML and the page are the very files
-//! `fmu-rocking/build.rs` generated for the binary, whose embedded GUID is
+//! `cargo xtask fmu`: builds the release cdylibs and writes
+//! `target/fmu/RockingBlock.fmu` and `target/fmu/ShearFrame.fmu`
+//! (modelDescription.xml, the binaries, documentation/index.html),
+//! reproducibly: fixed timestamps and permissions, sorted entries. The XML
+//! and the page are the very files each crate's `build.rs` (`fmu-rocking`,
+//! `fmu-shear-frame`) generated for its binary, whose embedded GUID is
 //! checked against the XML's.
 //!
 //! The binaries, each built in a target directory of its own under
 //! `target/platforms/`, so that no build's linker or C compiler settings
 //! reach another's artefacts:
-//! - `binaries/linux64/RockingBlock.so`: `cargo zigbuild` for
+//! - `binaries/linux64/<model>.so`: `cargo zigbuild` for
 //!   `x86_64-unknown-linux-gnu.2.17`, linked by zig against glibc 2.17 (the
 //!   manylinux2014 baseline: RHEL 7 and every later distribution).
 //!   cargo-zigbuild and zig come from the pinned wheels in `.venv`
 //!   (`tools/cross-deps.sh`); without them the native build is packaged and
 //!   a line says so.
-//! - `binaries/win64/RockingBlock.dll`: `x86_64-pc-windows-gnu`, linked by
+//! - `binaries/win64/<model>.dll`: `x86_64-pc-windows-gnu`, linked by
 //!   mingw-w64. Without that Rust target or `x86_64-w64-mingw32-gcc` the FMU
 //!   has no win64 folder and a line says so.
 //!
@@ -31,14 +32,45 @@ use std::time::Instant;
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, DateTime, ZipWriter};
 
-const MODEL_IDENTIFIER: &str = "RockingBlock";
+/// One FMU of the workspace: its cdylib crate and what the archive is named.
+struct Model {
+    /// Cargo package (a directory of the workspace root of the same name).
+    package: &'static str,
+    /// Library target name of the cdylib.
+    lib: &'static str,
+    /// `modelIdentifier`: the archive and binary names.
+    identifier: &'static str,
+    /// Examples built with the native release library.
+    examples: &'static [&'static str],
+}
+
+const ROCKING_BLOCK: Model = Model {
+    package: "fmu-rocking",
+    lib: "fmu_rocking",
+    identifier: "RockingBlock",
+    examples: &["run_direct"],
+};
+
+const SHEAR_FRAME: Model = Model {
+    package: "fmu-shear-frame",
+    lib: "fmu_shear_frame",
+    identifier: "ShearFrame",
+    examples: &[],
+};
+
+/// The FMUs `cargo xtask fmu` writes.
+const MODELS: [&Model; 2] = [&ROCKING_BLOCK, &SHEAR_FRAME];
+
+/// The model of the cross-check artefacts.
+const MODEL_IDENTIFIER: &str = ROCKING_BLOCK.identifier;
 
 type Res<T> = Result<T, String>;
 
 fn main() {
     let args: Vec<String> = env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
-        Some("fmu") => fmu().map(|_| ()),
+        Some("fmu") => MODELS.iter().try_for_each(|m| package(m).map(|_| ())),
+        Some("shear-frame") => package(&SHEAR_FRAME).map(|_| ()),
         Some("crosscheck") => crosscheck(),
         Some("-h") | Some("--help") | None => {
             usage();
@@ -59,10 +91,12 @@ fn usage() {
     eprintln!(
         "usage: cargo xtask <task>\n\n\
          tasks:\n  \
-         fmu          build the release library for linux64 (glibc 2.17) and win64 and write\n               \
-         target/fmu/{MODEL_IDENTIFIER}.fmu (and target/release/examples/run_direct)\n  \
-         crosscheck   the FMU, then FMI cross-check artefacts (FMU, input, reference\n               \
-         results from the engine run directly, options, README) under\n               \
+         fmu          build the release libraries for linux64 (glibc 2.17) and win64 and write\n               \
+         target/fmu/RockingBlock.fmu, target/fmu/ShearFrame.fmu (and\n               \
+         target/release/examples/run_direct)\n  \
+         shear-frame  only target/fmu/ShearFrame.fmu\n  \
+         crosscheck   the FMUs, then RockingBlock's FMI cross-check artefacts (FMU, input,\n               \
+         reference results from the engine run directly, options, README) under\n               \
          target/cross-check/fmus/2.0/cs/{{linux64,win64}}/..."
     );
 }
@@ -103,8 +137,8 @@ fn package_dir(id: &str) -> Option<PathBuf> {
 }
 
 /// Runs a cargo build (`--message-format=json-render-diagnostics`) and
-/// returns its JSON messages about the fmu-rocking package.
-fn cargo_messages(mut cmd: Command) -> Res<Vec<serde_json::Value>> {
+/// returns its JSON messages about the model's package.
+fn cargo_messages(mut cmd: Command, model: &Model) -> Res<Vec<serde_json::Value>> {
     let output = cmd
         .current_dir(root())
         .arg("--message-format=json-render-diagnostics")
@@ -119,7 +153,7 @@ fn cargo_messages(mut cmd: Command) -> Res<Vec<serde_json::Value>> {
             output.status
         ));
     }
-    let fmu_dir = root().join("fmu-rocking");
+    let fmu_dir = root().join(model.package);
     Ok(String::from_utf8_lossy(&output.stdout)
         .lines()
         .filter_map(|line| serde_json::from_str::<serde_json::Value>(line).ok())
@@ -129,12 +163,12 @@ fn cargo_messages(mut cmd: Command) -> Res<Vec<serde_json::Value>> {
         .collect())
 }
 
-/// The fmu_rocking cdylib among the messages, the file ending in `suffix`.
-fn cdylib(messages: &[serde_json::Value], suffix: &str) -> Option<PathBuf> {
+/// The model's cdylib among the messages, the file ending in `suffix`.
+fn cdylib(messages: &[serde_json::Value], model: &Model, suffix: &str) -> Option<PathBuf> {
     messages.iter().find_map(|v| {
         let kinds = v["target"]["kind"].as_array()?;
         if v["reason"] != "compiler-artifact"
-            || v["target"]["name"] != "fmu_rocking"
+            || v["target"]["name"] != model.lib
             || !kinds.iter().any(|k| k == "cdylib")
         {
             return None;
@@ -154,18 +188,13 @@ fn cargo() -> Command {
 
 /// The native release build: the library the tests load from
 /// `target/release`, the XML and page of its build script, and `run_direct`.
-fn build() -> Res<Built> {
+fn build(model: &Model) -> Res<Built> {
     let mut cmd = cargo();
-    cmd.args([
-        "build",
-        "--release",
-        "--package",
-        "fmu-rocking",
-        "--lib",
-        "--example",
-        "run_direct",
-    ]);
-    let messages = cargo_messages(cmd)?;
+    cmd.args(["build", "--release", "--package", model.package, "--lib"]);
+    for e in model.examples {
+        cmd.args(["--example", e]);
+    }
+    let messages = cargo_messages(cmd, model)?;
     let out_dir = messages
         .iter()
         .filter(|v| v["reason"] == "build-script-executed")
@@ -175,8 +204,14 @@ fn build() -> Res<Built> {
         .filter(|v| v["reason"] == "compiler-artifact" && v["target"]["name"] == "run_direct")
         .find_map(|v| v["executable"].as_str().map(PathBuf::from));
     Ok(Built {
-        library: cdylib(&messages, ".so").ok_or("cargo reported no fmu_rocking cdylib")?,
-        out_dir: out_dir.ok_or("cargo reported no build-script output for fmu-rocking")?,
+        library: cdylib(&messages, model, ".so")
+            .ok_or_else(|| format!("cargo reported no {} cdylib", model.lib))?,
+        out_dir: out_dir.ok_or_else(|| {
+            format!(
+                "cargo reported no build-script output for {}",
+                model.package
+            )
+        })?,
         run_direct,
     })
 }
@@ -198,7 +233,7 @@ const MINGW_GCC: &str = "x86_64-w64-mingw32-gcc";
 
 /// The linux64 library linked against glibc 2.17 by cargo-zigbuild, or
 /// `Err(why not)` when cargo-zigbuild is missing.
-fn build_linux64() -> Res<Result<PathBuf, String>> {
+fn build_linux64(model: &Model) -> Res<Result<PathBuf, String>> {
     let venv_bin = root().join(".venv/bin");
     let zigbuild = [venv_bin.join("cargo-zigbuild"), "cargo-zigbuild".into()]
         .into_iter()
@@ -222,31 +257,43 @@ fn build_linux64() -> Res<Result<PathBuf, String>> {
         "PATH",
         env::join_paths(paths).map_err(|e| format!("PATH: {e}"))?,
     );
-    Ok(Ok(build_platform(cmd, LINUX64_TARGET, "linux64", ".so")?))
+    Ok(Ok(build_platform(
+        cmd,
+        model,
+        LINUX64_TARGET,
+        "linux64",
+        ".so",
+    )?))
 }
 
 /// Runs `cmd` (cargo or cargo zigbuild) to build the FMU's cdylib for
 /// `target` in its own target dir `platforms/<platform>`, and returns the
 /// library (ending in `extension`).
-fn build_platform(mut cmd: Command, target: &str, platform: &str, extension: &str) -> Res<PathBuf> {
+fn build_platform(
+    mut cmd: Command,
+    model: &Model,
+    target: &str,
+    platform: &str,
+    extension: &str,
+) -> Res<PathBuf> {
     cmd.args([
         "build",
         "--release",
         "--package",
-        "fmu-rocking",
+        model.package,
         "--lib",
         "--target",
         target,
         "--target-dir",
     ]);
     cmd.arg(target_dir().join("platforms").join(platform));
-    let messages = cargo_messages(cmd)?;
-    cdylib(&messages, extension)
-        .ok_or_else(|| format!("cargo reported no fmu_rocking {extension} for {target}"))
+    let messages = cargo_messages(cmd, model)?;
+    cdylib(&messages, model, extension)
+        .ok_or_else(|| format!("cargo reported no {} {extension} for {target}", model.lib))
 }
 
 /// The win64 DLL, or `Err(why not)` when the Rust target or mingw-w64 is missing.
-fn build_win64() -> Res<Result<PathBuf, String>> {
+fn build_win64(model: &Model) -> Res<Result<PathBuf, String>> {
     let sysroot = Command::new(env::var("RUSTC").unwrap_or_else(|_| "rustc".into()))
         .args(["--print", "sysroot"])
         .output()
@@ -270,7 +317,13 @@ fn build_win64() -> Res<Result<PathBuf, String>> {
         "CARGO_TARGET_X86_64_PC_WINDOWS_GNU_RUSTFLAGS",
         "-C link-arg=-Wl,--no-insert-timestamp",
     );
-    Ok(Ok(build_platform(cmd, WIN64_TARGET, "win64", ".dll")?))
+    Ok(Ok(build_platform(
+        cmd,
+        model,
+        WIN64_TARGET,
+        "win64",
+        ".dll",
+    )?))
 }
 
 fn read(p: &Path) -> Res<Vec<u8>> {
@@ -302,14 +355,10 @@ fn write_fmu(path: &Path, entries: &mut [(String, Vec<u8>, u32)]) -> Res<()> {
     fs::rename(&tmp, path).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-fn fmu() -> Res<PathBuf> {
-    Ok(package()?.0)
-}
-
 /// Builds and packages; returns the archive, the native build's products
 /// and the platforms the archive has binaries for.
-fn package() -> Res<(PathBuf, Built, Vec<&'static str>)> {
-    let built = build()?;
+fn package(model: &Model) -> Res<(PathBuf, Built, Vec<&'static str>)> {
+    let built = build(model)?;
     let xml = read(&built.out_dir.join("modelDescription.xml"))?;
     let guid = String::from_utf8(read(&built.out_dir.join("guid.txt"))?)
         .map_err(|e| format!("guid.txt: {e}"))?;
@@ -333,7 +382,7 @@ fn package() -> Res<(PathBuf, Built, Vec<&'static str>)> {
             ));
         }
         let ext = library.extension().and_then(|e| e.to_str()).unwrap_or("");
-        let name = format!("binaries/{platform}/{MODEL_IDENTIFIER}.{ext}");
+        let name = format!("binaries/{platform}/{}.{ext}", model.identifier);
         println!(
             "{name}: {} bytes, built in {seconds:.1} s ({})",
             data.len(),
@@ -344,7 +393,7 @@ fn package() -> Res<(PathBuf, Built, Vec<&'static str>)> {
         Ok(())
     };
     let start = Instant::now();
-    match build_linux64()? {
+    match build_linux64(model)? {
         Ok(so) => add("linux64", &so, start.elapsed().as_secs_f64())?,
         Err(why) => {
             println!(
@@ -354,13 +403,13 @@ fn package() -> Res<(PathBuf, Built, Vec<&'static str>)> {
         }
     }
     let start = Instant::now();
-    match build_win64()? {
+    match build_win64(model)? {
         Ok(dll) => add("win64", &dll, start.elapsed().as_secs_f64())?,
         Err(why) => println!("win64: skipped: {why}"),
     }
     let dir = target_dir().join("fmu");
     fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let path = dir.join(format!("{MODEL_IDENTIFIER}.fmu"));
+    let path = dir.join(format!("{}.fmu", model.identifier));
     write_fmu(&path, &mut entries)?;
     let size = fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
     println!("{} ({size} bytes, GUID {guid})", path.display());
@@ -380,9 +429,11 @@ fn cc_ground_motion(t: f64) -> f64 {
     3.0 * (2.0 * std::f64::consts::PI * 1.5 * t).sin() * (-0.3 * t).exp()
 }
 
-/// `cargo xtask crosscheck`: FMI cross-check artefacts for the FMU.
+/// `cargo xtask crosscheck`: both FMUs, and FMI cross-check artefacts for RockingBlock.
 fn crosscheck() -> Res<()> {
-    let (fmu_path, built, platforms) = package()?;
+    // every FMU, as `cargo xtask fmu` (the test command runs this task only)
+    package(&SHEAR_FRAME)?;
+    let (fmu_path, built, platforms) = package(&ROCKING_BLOCK)?;
     let run_direct = built
         .run_direct
         .ok_or("cargo reported no run_direct executable")?;
