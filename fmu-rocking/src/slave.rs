@@ -202,8 +202,8 @@ impl Slave for RockingSlave {
             _ => return Err(format!("no computed Real with value reference {r}")),
         };
         // thetaC is +inf without crushing; anything else not finite is an
-        // overflow of a finite but absurd start value or input (omega = 1e300
-        // rad/s gave Fx = NaN with fmi2OK), refused rather than returned.
+        // overflow of a finite but absurd start value or input, refused
+        // rather than returned as if it were a result.
         if !x.is_finite() && r != vr::THETA_C {
             return Err(self.overflow(x, ag));
         }
@@ -271,8 +271,8 @@ impl Slave for RockingSlave {
             ));
         }
         // Beyond this the equations of motion overflow on the way to
-        // overturning and the integrator never finished the step (ag =
-        // 1.8e308 m/s2 hung fmi2DoStep; 1e100 takes microseconds).
+        // overturning and the integrator cannot finish the step (the limit
+        // itself is far above any ground motion and costs microseconds).
         let a_end = ag + dag * h;
         if ag.abs().max(a_end.abs()) > MAX_GROUND_ACCELERATION {
             return Err(format!(
