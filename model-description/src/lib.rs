@@ -14,6 +14,7 @@
 //! generates the XML and the GUID, so the library embeds exactly the GUID the
 //! archive ships.
 
+pub mod common;
 pub mod rocking_block;
 pub mod schema;
 pub mod shear_frame;

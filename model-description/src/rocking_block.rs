@@ -4,6 +4,7 @@
 //! The value references the binary uses ([`vr`]), the `modelDescription.xml`
 //! and the variable table of `documentation/index.html` all come from here.
 
+use crate::common;
 use crate::schema::*;
 
 /// Relative tolerance of the integrator when the master gives none
@@ -669,24 +670,12 @@ pub static LOG_CATEGORIES: &[LogCategory] = &[
 pub static ROCKING_BLOCK: ModelDescription = ModelDescription {
     model_name: "RockingBlock",
     description: "Rocking of a masonry body on a flexible, no-tension interface that can crush (co-simulation)",
-    author: "RockingBlock developers",
+    author: common::AUTHOR,
     version: env!("CARGO_PKG_VERSION"),
-    copyright: "RockingBlock developers",
-    license: "MIT OR Apache-2.0",
-    generation_tool: concat!("RockingBlock model-description ", env!("CARGO_PKG_VERSION")),
-    co_simulation: CoSimulation {
-        model_identifier: "RockingBlock",
-        needs_execution_tool: false,
-        can_handle_variable_communication_step_size: true,
-        can_interpolate_inputs: true,
-        max_output_derivative_order: 2,
-        can_run_asynchronuously: false,
-        can_be_instantiated_only_once_per_process: false,
-        can_not_use_memory_management_functions: true,
-        can_get_and_set_fmu_state: true,
-        can_serialize_fmu_state: true,
-        provides_directional_derivative: false,
-    },
+    copyright: common::COPYRIGHT,
+    license: common::LICENSE,
+    generation_tool: common::GENERATION_TOOL,
+    co_simulation: common::co_simulation("RockingBlock"),
     units: UNITS,
     types: TYPES,
     log_categories: LOG_CATEGORIES,

@@ -9,6 +9,7 @@
 
 use std::sync::LazyLock;
 
+use crate::common;
 use crate::schema::*;
 
 /// Length of every per-floor array: the most storeys a frame may have.
@@ -395,24 +396,12 @@ pub static SHEAR_FRAME: LazyLock<ModelDescription> = LazyLock::new(|| {
     ModelDescription {
     model_name: "ShearFrame",
     description: "A linear n-storey shear building under ground acceleration and floor forces, stepped exactly (co-simulation)",
-    author: "RockingBlock developers",
+    author: common::AUTHOR,
     version: env!("CARGO_PKG_VERSION"),
-    copyright: "RockingBlock developers",
-    license: "MIT OR Apache-2.0",
-    generation_tool: concat!("RockingBlock model-description ", env!("CARGO_PKG_VERSION")),
-    co_simulation: CoSimulation {
-        model_identifier: "ShearFrame",
-        needs_execution_tool: false,
-        can_handle_variable_communication_step_size: true,
-        can_interpolate_inputs: true,
-        max_output_derivative_order: 2,
-        can_run_asynchronuously: false,
-        can_be_instantiated_only_once_per_process: false,
-        can_not_use_memory_management_functions: true,
-        can_get_and_set_fmu_state: true,
-        can_serialize_fmu_state: true,
-        provides_directional_derivative: false,
-    },
+    copyright: common::COPYRIGHT,
+    license: common::LICENSE,
+    generation_tool: common::GENERATION_TOOL,
+    co_simulation: common::co_simulation("ShearFrame"),
     units: UNITS,
     types: TYPES,
     log_categories: LOG_CATEGORIES,
