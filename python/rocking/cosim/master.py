@@ -305,9 +305,9 @@ class _Loop:
         if status == fmi2Discard:
             raise _fmu.FMUError("RockingBlock: fmi2DoStep discarded a step without terminating")
         self._release_frame(fstate)
-        # the block's force at t + h, seen by the frame's a[j] from now on (feedthrough)
-        new_force, _ = self._block_force()
-        self._set_frame_force(new_force, [0.0, 0.0])
+        # the block's force at t + h and its rate, seen by the frame's a[j] and a[j]'
+        # from now on (feedthrough)
+        self._set_frame_force(*self._block_force())
         return True
 
     # -- overturning: the frame is brought to the overturning time -------------
