@@ -62,18 +62,26 @@ class ElasticRectangle:
         self.thetaOv = brentq(lambda x: self.levers(x)[0], 1e-9, self.alpha, xtol=1e-15)
 
     def af(self, phi):
-        """(af, d af/d phi), m and m/rad: full contact below thetaJo, a = sqrt(2W/(kn phi L)) above."""
-        if phi <= self.thetaJo:
-            return self.B / 2 - self.kn * phi * self.Is / self.W, -self.kn * self.Is / self.W
-        a = math.sqrt(2 * self.W / (self.kn * phi * self.L))
-        return a / 3, -a / (6 * phi)
+        """(af, d af/d phi), m and m/rad: full contact below thetaJo, a = sqrt(2W/(kn phi L))
+        above. phi: a float (the integrator's path, in plain floats for speed) or an array."""
+        if np.ndim(phi) == 0:
+            if phi <= self.thetaJo:
+                return self.B / 2 - self.kn * phi * self.Is / self.W, -self.kn * self.Is / self.W
+            a = math.sqrt(2 * self.W / (self.kn * phi * self.L))
+            return a / 3, -a / (6 * phi)
+        full = phi <= self.thetaJo
+        a = np.sqrt(2 * self.W / (self.kn * np.maximum(phi, self.thetaJo) * self.L))
+        af = np.where(full, self.B / 2 - self.kn * phi * self.Is / self.W, a / 3)
+        daf = np.where(full, -self.kn * self.Is / self.W, -a / (6 * np.maximum(phi, self.thetaJo)))
+        return af, daf
 
     def levers(self, phi):
-        """hW, hg, their phi-derivatives, I and dI/dphi (docs/model.md §3, §5)."""
+        """hW, hg, their phi-derivatives, I and dI/dphi (docs/model.md §3, §5); phi: float or array."""
+        sin, cos = (math.sin, math.cos) if np.ndim(phi) == 0 else (np.sin, np.cos)
         af, daf = self.af(phi)
-        s, c = math.sin(phi), math.cos(phi)
-        hW = self.R0 * math.sin(self.alpha - phi) - af * c
-        hg = self.R0 * math.cos(self.alpha - phi) - af * s
+        s, c = sin(phi), cos(phi)
+        hW = self.R0 * sin(self.alpha - phi) - af * c
+        hg = self.R0 * cos(self.alpha - phi) - af * s
         I = self.Ic + self.m * (self.R0**2 + af**2 - 2 * self.R0 * af * math.sin(self.alpha))
         dI = -2 * self.m * (self.R0 * math.sin(self.alpha) - af) * daf
         return hW, hg, hW - daf * s, -hg - daf * c, I, dI
@@ -117,28 +125,35 @@ class Reference:
 
     # -- the equations ------------------------------------------------------------
     def _accelerations(self, t, y):
-        """(u'' of every floor, A = absolute acceleration of floor j, theta'', Fx)."""
+        """(u'' of every floor, A = absolute acceleration of floor j, theta'', Fx) at t for
+        the state y = (u, v, theta, omega); t: float or array, y: (2n + 2,) or (len(t), 2n + 2)."""
         n, j, bd = self.n, self.j, self.body
-        u, v, th, om = y[:n], y[n:2 * n], y[2 * n], y[2 * n + 1]
-        ag = float(self.ground(t))
-        f = -(self.C @ v + self.K @ u)
-        s, phi = math.copysign(1.0, th) if th != 0 else 0.0, abs(th)
+        y = np.asarray(y)
+        u, v, th, om = y[..., :n], y[..., n:2 * n], y[..., 2 * n], y[..., 2 * n + 1]
+        ag = self.ground(t)
+        f = -(v @ self.C.T + u @ self.K.T)
+        if np.ndim(th) == 0:
+            th, om, ag = float(th), float(om), float(ag)
+            s, phi = math.copysign(1.0, th) if th != 0 else 0.0, abs(th)
+        else:
+            s, phi = np.sign(th), np.abs(th)
         hW, hg, dhg, _, I, dI = bd.levers(phi)
         gyro = 0.5 * s * dI * om**2 if bd.shifting else 0.0
         mb, mj = bd.m, self.mass[j]
+        fj = f[..., j]
         if self.two_way:
             # [(mj + mb)  mb hg] [A     ]   [f_j - mb s hg' om^2    ]
             # [ mb hg     I    ] [theta''] = [-s W hW - (1/2) s I' om^2]
             a11, a12, a22 = mj + mb, mb * hg, I
-            r1, r2 = f[j] - mb * s * dhg * om**2, -s * bd.W * hW - gyro
+            r1, r2 = fj - mb * s * dhg * om**2, -s * bd.W * hW - gyro
             det = a11 * a22 - a12 * a12
             A, thdd = (r1 * a22 - a12 * r2) / det, (a11 * r2 - a12 * r1) / det
         else:
-            A = f[j] / mj
+            A = fj / mj
             thdd = (-s * bd.W * hW - gyro - mb * A * hg) / I
         Fx = mb * (A + hg * thdd + s * dhg * om**2)
-        udd = f / self.mass - ag
-        udd[j] = A - ag
+        udd = f / self.mass - np.asarray(ag)[..., None]
+        udd[..., j] = A - ag
         return udd, A, thdd, Fx
 
     def _rhs(self, t, y):
@@ -184,28 +199,28 @@ class Reference:
         self.t_end = t
 
     # -- results --------------------------------------------------------------------
-    def at(self, times):
-        """Values at `times` (within the run): theta, omega, u (len x n), v, a_floor
-        (absolute, floor j), Fx (the block's support force), each an array."""
+    def at(self, times, accelerations=True):
+        """Values at `times` (within the run): theta, omega, u (len x n), v and, with
+        accelerations, a_floor (absolute, floor j) and Fx (the block's support force)."""
         times = np.asarray(times, dtype=float)
         y = np.empty((len(times), 2 * self.n + 2))
         starts = np.array([s.t[0] for s in self.segments])
-        for i, t in enumerate(times):
-            # the segment that ends at or after t (before an impact: its pre-impact value)
-            k = max(0, np.searchsorted(starts, t, side="left") - 1)
-            y[i] = self.segments[k].sol(t)
+        # the segment that ends at or after t (before an impact: its pre-impact value)
+        seg = np.maximum(0, np.searchsorted(starts, times, side="left") - 1)
+        for k in np.unique(seg):
+            sel = seg == k
+            y[sel] = self.segments[k].sol(times[sel]).T
         out = {"time": times, "theta": y[:, 2 * self.n], "omega": y[:, 2 * self.n + 1],
                "u": y[:, :self.n], "v": y[:, self.n:2 * self.n]}
-        acc = [self._accelerations(t, yy) for t, yy in zip(times, y)]
-        out["a_floor"] = np.array([a[1] for a in acc])
-        out["Fx"] = np.array([a[3] for a in acc])
+        if accelerations:
+            _, out["a_floor"], _, out["Fx"] = self._accelerations(times, y)
         return out
 
     def peak(self, name, dt=2e-4):
         """max |name| over the run, on a grid of dt plus the solver's own steps."""
         grid = np.union1d(np.arange(0.0, self.t_end, dt), np.concatenate([s.t for s in self.segments]))
         grid = grid[grid <= self.t_end]
-        return float(np.max(np.abs(self.at(grid)[name])))
+        return float(np.max(np.abs(self.at(grid, name not in ("theta", "omega", "u", "v"))[name])))
 
     def energy(self, times):
         """Mechanical energy of frame and block (J) on a fixed ground (ag = 0): the kinetic
