@@ -224,7 +224,7 @@ def plot_sweep(rows, path):
 
 def _table_convergence(rows):
     lines = ["| scheme | inputs | rejection | order theta | order a[j] | 1 % peak theta | 1 % peak a[j] "
-             "| 1 % theta(t) | 1 % a[j](t) |", "|---|---|---|---:|---:|---:|---:|---:|---:|"]
+             "| 1 % theta history | 1 % a[j] history |", "|---|---|---|---:|---:|---:|---:|---:|---:|"]
     need = [step_for(rows, k) for k in ("peak_theta", "peak_a_floor", "theta", "a_floor")]
     for v in dict.fromkeys((r["scheme"], r["inputs"], r["reject"]) for r in rows):
         sel = [r for r in rows if (r["scheme"], r["inputs"], r["reject"]) == v]
