@@ -131,9 +131,11 @@ def _rocking(*args):
 
 
 def test_cli_runs_the_example_case(tmp_path, case, ref):
-    proc = _rocking("cosim", REPO / "examples" / "cosim" / "roof_block.toml", "--out", tmp_path)
+    proc = _rocking("cosim", REPO / "examples" / "cosim" / "roof_block.toml", "--out", tmp_path, "--reference")
     assert proc.returncode == 0, proc.stderr
     summary = json.loads((tmp_path / "summary.json").read_text())
+    # --reference: the command's own check, the same as errors() against our reference
+    assert summary["error_against_reference"]["theta"] < 1e-3  # measured 1.4e-4
     assert (tmp_path / "plot.png").stat().st_size > 10_000
     table = np.genfromtxt(tmp_path / "timehistory.csv", delimiter=",", names=True)
     assert summary["peak_theta_rad"] == pytest.approx(np.max(np.abs(table["theta"])), rel=1e-12)

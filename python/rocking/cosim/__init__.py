@@ -12,8 +12,14 @@ docs/cosimulation.md).
 - `command`: `rocking cosim CASE.toml`.
 """
 
-from .master import (COUPLINGS, INPUTS, SCHEMES, CosimResult, CoupledFMUs, frame_params,
-                     record_ground, sine_ground)
-
 __all__ = ["COUPLINGS", "INPUTS", "SCHEMES", "CosimResult", "CoupledFMUs", "frame_params",
            "record_ground", "sine_ground"]
+
+
+def __getattr__(name):
+    # lazy, so that `rocking COMMAND` (which registers `cosim` from command.py) does not
+    # load fmpy and SciPy for the other commands
+    if name in __all__:
+        from . import master
+        return getattr(master, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
