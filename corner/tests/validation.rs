@@ -5,6 +5,8 @@
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
+mod support;
+
 use corner::{
     corner_multiplier, CornerColumn, CornerModel, CrackRatio, Direction, Geometry, Options, Preset,
     Specimen,
@@ -144,32 +146,20 @@ fn lambda_x_of_a_geometry_is_lambda_y_of_its_mirror() {
     let model = CornerModel::paper(1, 0.3).unwrap();
     let v = model.specimen.v();
     let h = model.specimen.h;
-    let mut seed = 12345u64;
-    let mut next = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 33) as f64 / f64::from(1u32 << 31)
-    };
+    let mut next = support::uniform(12345);
     let mut tested = 0;
     while tested < 200 {
         let z1 = h * (1.0 + 7.0 * next());
         let pick = |r: f64, lo: f64, hi: f64| lo + r * (hi - lo);
-        let x3 = pick(next(), v, 6.0 * v);
-        let x1 = pick(next(), x3, 10.0 * v);
-        let x2 = pick(next(), 0.1 * v, 4.0 * v);
-        let y3 = pick(next(), v, 6.0 * v);
-        let y2 = pick(next(), y3, 10.0 * v);
-        let y1 = pick(next(), 0.1 * v, 4.0 * v);
-        let g = Geometry {
-            x1,
-            x2,
-            x3,
-            y1,
-            y2,
-            y3,
+        let g = support::draw_geometry(
+            &mut next,
+            pick,
             z1,
-        };
+            v,
+            6.0 * v,
+            10.0 * v,
+            (0.1 * v, 4.0 * v),
+        );
         if g.check(&model, 0.0).is_err() {
             continue;
         }
@@ -430,13 +420,7 @@ fn bounded_search_finds_what_the_plain_double_loop_finds() {
 fn any_valid_corner_gives_an_admissible_optimum() {
     // Random corners (sizes, courses, blocks, m, k, alpha): either refused by name or solved,
     // with an admissible joint-aligned optimum and a refinement no worse than it.
-    let mut seed = 7u64;
-    let mut next = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 33) as f64 / f64::from(1u32 << 31)
-    };
+    let mut next = support::uniform(7);
     let mut solved = 0;
     for _ in 0..60 {
         let sp = Specimen {
