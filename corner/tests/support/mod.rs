@@ -1,4 +1,6 @@
 //! What the corner tests share.
+// Each test file uses only some of these.
+#![allow(dead_code)]
 
 /// Uniform numbers in [0, 1) from a 64-bit linear congruential generator started at `seed`.
 /// Hand-written rather than a random-number crate: the sampled corners and geometries must be
@@ -41,5 +43,13 @@ pub fn draw_geometry(
         y2,
         y3,
         z1,
+    }
+}
+
+/// The default options without the Nelder-Mead refinement: the exact grid search alone.
+pub fn grid_only() -> corner::Options {
+    corner::Options {
+        refine: false,
+        ..corner::Options::default()
     }
 }
