@@ -17,18 +17,13 @@ def corner_binary():
     return shutil.which("rocking-corner")
 
 
-def cmd_corner(argv):
+def forward(argv):
+    """Run rocking-corner on argv as given (argparse never sees it); its exit status."""
     exe = corner_binary()
     if exe is None:
         raise CLIError("rocking-corner not found (target/release of the repository, PATH): "
                        "build it with `cargo build --release -p corner`")
     return subprocess.call([exe, *argv])
-
-
-
-def forward(argv):
-    """Run the subcommand on argv as given (argparse never sees it)."""
-    return cmd_corner(argv)
 
 
 def register(sub, common):

@@ -44,7 +44,6 @@ def cmd_info(args, _params):
     return 0
 
 
-
 def register(sub, common):
     """Add the subcommand to `sub` (argparse subparsers); `common` is the parent parser of --debug."""
     p = sub.add_parser("info", parents=[common], help="the FMU's variables, units, defaults; --presets",

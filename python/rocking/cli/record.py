@@ -65,7 +65,6 @@ def plot_records(path, records, source):
     plt.close(fig)
 
 
-
 def register(sub, common):
     """Add the subcommand to `sub` (argparse subparsers); `common` is the parent parser of --debug."""
     p = sub.add_parser("record", parents=[common], help="what the reader sees in a ground-motion file",

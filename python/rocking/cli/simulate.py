@@ -208,7 +208,6 @@ def plot_simulation(path, table, s, regimes, rec, args):
     plt.close(fig)
 
 
-
 def register(sub, common):
     """Add the subcommand to `sub` (argparse subparsers); `common` is the parent parser of --debug."""
     from ..presets import NAMING

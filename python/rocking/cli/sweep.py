@@ -144,7 +144,6 @@ def cmd_sweep(args, _params):
     return 0
 
 
-
 def register(sub, common):
     """Add the subcommand to `sub` (argparse subparsers); `common` is the parent parser of --debug."""
     from ..presets import NAMING
