@@ -24,6 +24,22 @@ fn time_it(budget: f64, mut f: impl FnMut()) -> f64 {
     best
 }
 
+/// The study of `model` over `alphas`: candidate geometries per orientation, those evaluated
+/// over all orientations, and the best wall time of the whole study (s) within `budget` s.
+fn study(model: &CornerModel, alphas: &[f64], budget: f64) -> (u64, u64, f64) {
+    let candidates = corner_multiplier(model, alphas[0]).unwrap().candidates;
+    let evaluated: u64 = alphas
+        .iter()
+        .map(|&a| corner_multiplier(model, a).unwrap().evaluated)
+        .sum();
+    let t = time_it(budget, || {
+        for &a in alphas {
+            std::hint::black_box(corner_multiplier(model, a).unwrap());
+        }
+    });
+    (candidates, evaluated, t)
+}
+
 fn main() {
     let alphas: Vec<f64> = (4..=8).map(|i| PI * f64::from(i) / 16.0).collect();
     println!("five-orientation study (pi/4..pi/2), paper specimen, best of repeated runs");
@@ -38,16 +54,7 @@ fn main() {
                 ..Options::default()
             };
             let model = CornerModel::new(Specimen::paper(), m, k, o).unwrap();
-            let candidates = corner_multiplier(&model, alphas[0]).unwrap().candidates;
-            let evaluated: u64 = alphas
-                .iter()
-                .map(|&a| corner_multiplier(&model, a).unwrap().evaluated)
-                .sum();
-            let t = time_it(1.0, || {
-                for &a in &alphas {
-                    std::hint::black_box(corner_multiplier(&model, a).unwrap());
-                }
-            });
+            let (candidates, evaluated, t) = study(&model, &alphas, 1.0);
             println!(
                 "{:>4} {:>4} {:>8} {:>14} {:>16} {:>12.2} {:>14.2}",
                 m,
@@ -83,16 +90,7 @@ fn main() {
         ..Options::default()
     };
     let model = CornerModel::new(big, 1, 0.3, o).unwrap();
-    let candidates = corner_multiplier(&model, alphas[0]).unwrap().candidates;
-    let evaluated: u64 = alphas
-        .iter()
-        .map(|&a| corner_multiplier(&model, a).unwrap().evaluated)
-        .sum();
-    let t = time_it(2.0, || {
-        for &a in &alphas {
-            std::hint::black_box(corner_multiplier(&model, a).unwrap());
-        }
-    });
+    let (candidates, evaluated, t) = study(&model, &alphas, 2.0);
     println!(
         "18 courses x 14 blocks per wall, grid only: {} candidates per orientation, {} evaluated over five orientations, five orientations {:.1} ms ({:.2} ns/candidate)",
         candidates,

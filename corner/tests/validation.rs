@@ -5,6 +5,8 @@
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
+mod support;
+
 use corner::{
     corner_multiplier, CornerColumn, CornerModel, CrackRatio, Direction, Geometry, Options, Preset,
     Specimen,
@@ -74,10 +76,7 @@ fn matches_the_independent_reference_implementation() {
         (0, 0.3, [0.285, 0.275, 0.256, 0.211, 0.188]),
     ];
     for (m, k, reference) in cases {
-        let o = Options {
-            refine: false,
-            ..Options::default()
-        };
+        let o = support::grid_only();
         let model = CornerModel::new(Specimen::paper(), m, k, o).unwrap();
         for (ours, r) in lambdas(&model).iter().zip(reference) {
             // The reference's figures carry 3 or 4 decimals.
@@ -117,10 +116,7 @@ fn optimal_hinge_sits_on_the_first_bed_joint() {
 
 #[test]
 fn symmetric_specimen_gives_symmetric_multipliers() {
-    let o = Options {
-        refine: false,
-        ..Options::default()
-    };
+    let o = support::grid_only();
     for (m, k) in [(1, 0.3), (0, 0.3), (1, 0.6)] {
         let model = CornerModel::new(Specimen::paper(), m, k, o).unwrap();
         for i in 0..=8 {
@@ -144,32 +140,20 @@ fn lambda_x_of_a_geometry_is_lambda_y_of_its_mirror() {
     let model = CornerModel::paper(1, 0.3).unwrap();
     let v = model.specimen.v();
     let h = model.specimen.h;
-    let mut seed = 12345u64;
-    let mut next = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 33) as f64 / f64::from(1u32 << 31)
-    };
+    let mut next = support::uniform(12345);
     let mut tested = 0;
     while tested < 200 {
         let z1 = h * (1.0 + 7.0 * next());
         let pick = |r: f64, lo: f64, hi: f64| lo + r * (hi - lo);
-        let x3 = pick(next(), v, 6.0 * v);
-        let x1 = pick(next(), x3, 10.0 * v);
-        let x2 = pick(next(), 0.1 * v, 4.0 * v);
-        let y3 = pick(next(), v, 6.0 * v);
-        let y2 = pick(next(), y3, 10.0 * v);
-        let y1 = pick(next(), 0.1 * v, 4.0 * v);
-        let g = Geometry {
-            x1,
-            x2,
-            x3,
-            y1,
-            y2,
-            y3,
+        let g = support::draw_geometry(
+            &mut next,
+            pick,
             z1,
-        };
+            v,
+            6.0 * v,
+            10.0 * v,
+            (0.1 * v, 4.0 * v),
+        );
         if g.check(&model, 0.0).is_err() {
             continue;
         }
@@ -210,10 +194,7 @@ fn nelder_mead_refines_at_most_a_little_below_the_grid() {
 #[test]
 fn longer_walls_can_only_lower_the_multiplier() {
     // A longer wall adds candidate geometries and removes none.
-    let o = Options {
-        refine: false,
-        ..Options::default()
-    };
+    let o = support::grid_only();
     let base = CornerModel::new(Specimen::paper(), 1, 0.3, o).unwrap();
     let mut long = Specimen::paper();
     long.blocks_y = 10;
@@ -236,10 +217,7 @@ fn each_reconstruction_moves_lambda_as_the_reference_found() {
     // The reference implementation's spread over the reconstructions: one reading switched at
     // a time (m = 1, k = 0.3 unless the case says otherwise), the largest |lambda / Table 5 - 1|
     // over the five orientations, in per cent.
-    let base = Options {
-        refine: false,
-        ..Options::default()
-    };
+    let base = support::grid_only();
     let sp = Specimen::paper();
     let worst = |sp: Specimen, k: f64, o: Options| {
         let model = CornerModel::new(sp, 1, k, o).unwrap();
@@ -251,22 +229,16 @@ fn each_reconstruction_moves_lambda_as_the_reference_found() {
     };
     let mut literal = Options::preset(Preset::Literal);
     literal.refine = false;
-    let once = Options {
-        corner_column: CornerColumn::Once,
-        ..base
+    // The base options with one reading switched.
+    let with = |switch: fn(&mut Options)| {
+        let mut o = base;
+        switch(&mut o);
+        o
     };
-    let third = Options {
-        friction_lever: corner::FrictionLever::Third,
-        ..base
-    };
-    let tan = Options {
-        crack_ratio: CrackRatio::Tan,
-        ..base
-    };
-    let inner = Options {
-        friction_joints: corner::FrictionJoints::Inner,
-        ..base
-    };
+    let once = with(|o| o.corner_column = CornerColumn::Once);
+    let third = with(|o| o.friction_lever = corner::FrictionLever::Third);
+    let tan = with(|o| o.crack_ratio = CrackRatio::Tan);
+    let inner = with(|o| o.friction_joints = corner::FrictionJoints::Inner);
     let cases = [
         ("literal", worst(sp, 0.3, literal), 27.0),
         ("corner column once", worst(sp, 0.3, once), 14.0),
@@ -299,38 +271,18 @@ fn invalid_input_is_refused_by_name() {
     let o = Options::default();
     let sp = Specimen::paper();
     let named = |r: Result<CornerModel, corner::CornerError>| r.unwrap_err().parameter;
-    assert_eq!(
-        named(CornerModel::new(Specimen { t: 0.0, ..sp }, 1, 0.3, o)),
-        "t"
-    );
-    assert_eq!(
-        named(CornerModel::new(Specimen { l: -1.0, ..sp }, 1, 0.3, o)),
-        "l"
-    );
-    assert_eq!(
-        named(CornerModel::new(Specimen { h: f64::NAN, ..sp }, 1, 0.3, o)),
-        "h"
-    );
-    assert_eq!(
-        named(CornerModel::new(Specimen { rho: 0.0, ..sp }, 1, 0.3, o)),
-        "rho"
-    );
-    assert_eq!(
-        named(CornerModel::new(Specimen { mu: 0.0, ..sp }, 1, 0.3, o)),
-        "mu"
-    );
-    assert_eq!(
-        named(CornerModel::new(Specimen { courses: 1, ..sp }, 1, 0.3, o)),
-        "courses"
-    );
-    assert_eq!(
-        named(CornerModel::new(Specimen { blocks_x: 0, ..sp }, 1, 0.3, o)),
-        "blocks_x"
-    );
-    assert_eq!(
-        named(CornerModel::new(Specimen { blocks_y: 0, ..sp }, 1, 0.3, o)),
-        "blocks_y"
-    );
+    for (bad, parameter) in [
+        (Specimen { t: 0.0, ..sp }, "t"),
+        (Specimen { l: -1.0, ..sp }, "l"),
+        (Specimen { h: f64::NAN, ..sp }, "h"),
+        (Specimen { rho: 0.0, ..sp }, "rho"),
+        (Specimen { mu: 0.0, ..sp }, "mu"),
+        (Specimen { courses: 1, ..sp }, "courses"),
+        (Specimen { blocks_x: 0, ..sp }, "blocks_x"),
+        (Specimen { blocks_y: 0, ..sp }, "blocks_y"),
+    ] {
+        assert_eq!(named(CornerModel::new(bad, 1, 0.3, o)), parameter);
+    }
     assert_eq!(named(CornerModel::new(sp, 2, 0.3, o)), "m");
     // A wall of one block cannot hold a base of two half blocks (t > v) plus a red triangle.
     let thick = Specimen {
@@ -404,10 +356,7 @@ fn bounded_search_finds_what_the_plain_double_loop_finds() {
         blocks_y: 5,
         ..Specimen::paper()
     };
-    let o = Options {
-        refine: false,
-        ..Options::default()
-    };
+    let o = support::grid_only();
     for (sp, alphas) in [
         (small, vec![0.0, 0.3, FRAC_PI_4, 1.2, FRAC_PI_2]),
         (Specimen::paper(), vec![FRAC_PI_4, 3.0 * PI / 8.0]),
@@ -430,13 +379,7 @@ fn bounded_search_finds_what_the_plain_double_loop_finds() {
 fn any_valid_corner_gives_an_admissible_optimum() {
     // Random corners (sizes, courses, blocks, m, k, alpha): either refused by name or solved,
     // with an admissible joint-aligned optimum and a refinement no worse than it.
-    let mut seed = 7u64;
-    let mut next = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 33) as f64 / f64::from(1u32 << 31)
-    };
+    let mut next = support::uniform(7);
     let mut solved = 0;
     for _ in 0..60 {
         let sp = Specimen {

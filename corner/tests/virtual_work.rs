@@ -4,6 +4,8 @@
 //! piece by piece with polygon formulas and an exact quadrature. Nothing here uses the
 //! trapezoid formulas of the crate.
 
+mod support;
+
 use corner::{
     rocking_body, torsion_lever, CornerColumn, CornerModel, Direction, Geometry, InPlaneWedge,
     Mechanism, Options, Specimen,
@@ -161,13 +163,7 @@ fn brute_force(model: &CornerModel, x: &Geometry, dir: Direction) -> Sums {
 fn geometries(model: &CornerModel) -> Vec<Geometry> {
     let v = model.specimen.v();
     let h = model.specimen.h;
-    let mut seed = 99u64;
-    let mut next = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 33) as f64 / f64::from(1u32 << 31)
-    };
+    let mut next = support::uniform(99);
     let mut out = vec![
         // The paper's optima at pi/4 and pi/2 on the joint grid.
         Geometry {
@@ -205,21 +201,7 @@ fn geometries(model: &CornerModel) -> Vec<Geometry> {
         } else {
             h * (1.0 + 7.0 * next())
         };
-        let x3 = q(next(), v, 8.0 * v);
-        let x1 = q(next(), x3, 12.0 * v);
-        let x2 = q(next(), v, 5.0 * v);
-        let y3 = q(next(), v, 8.0 * v);
-        let y2 = q(next(), y3, 12.0 * v);
-        let y1 = q(next(), v, 5.0 * v);
-        let g = Geometry {
-            x1,
-            x2,
-            x3,
-            y1,
-            y2,
-            y3,
-            z1,
-        };
+        let g = support::draw_geometry(&mut next, q, z1, v, 8.0 * v, 12.0 * v, (v, 5.0 * v));
         if g.check(model, 0.0).is_ok() {
             out.push(g);
         }

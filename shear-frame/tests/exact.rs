@@ -429,30 +429,17 @@ fn rates_are_the_derivatives_of_the_exact_trajectory() {
         let da = (ap[i] - am[i]) / (2.0 * h);
         let d2a = (ap[i] - 2.0 * a0[i] + am[i]) / (h * h);
         let d2u = (xp.u[i] - 2.0 * s.u[i] + xm.u[i]) / (h * h);
-        assert!(
-            (du - r.u[0][i]).abs() < 1e-6 * (1.0 + du.abs()),
-            "u' {du} {}",
-            r.u[0][i]
-        );
-        assert!(
-            (d2u - r.u[1][i]).abs() < 1e-4 * (1.0 + d2u.abs()),
-            "u'' {d2u} {}",
-            r.u[1][i]
-        );
-        assert!(
-            (dv - r.v[0][i]).abs() < 1e-6 * (1.0 + dv.abs()),
-            "v' {dv} {}",
-            r.v[0][i]
-        );
-        assert!(
-            (da - r.a[0][i]).abs() < 1e-5 * (1.0 + da.abs()),
-            "a' {da} {}",
-            r.a[0][i]
-        );
-        assert!(
-            (d2a - r.a[1][i]).abs() < 1e-3 * (1.0 + d2a.abs()),
-            "a'' {d2a} {}",
-            r.a[1][i]
-        );
+        // The finite difference `fd` against the derivative `exact`, relative to 1 + |fd|.
+        let near = |fd: f64, exact: f64, tol: f64, what: &str| {
+            assert!(
+                (fd - exact).abs() < tol * (1.0 + fd.abs()),
+                "{what} {fd} {exact}"
+            );
+        };
+        near(du, r.u[0][i], 1e-6, "u'");
+        near(d2u, r.u[1][i], 1e-4, "u''");
+        near(dv, r.v[0][i], 1e-6, "v'");
+        near(da, r.a[0][i], 1e-5, "a'");
+        near(d2a, r.a[1][i], 1e-3, "a''");
     }
 }

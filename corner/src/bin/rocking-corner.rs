@@ -14,10 +14,10 @@ macro_rules! out {
 
 use clap::{Parser, ValueEnum};
 use corner::{
-    body_direction, corner_multiplier, rocking_body, BodyKind, CornerColumn, CornerModel,
-    CornerResult, CrackRatio, FrictionJoints, FrictionLever, Geometry, InPlaneWedge, Options,
-    Preset, Specimen,
+    body_direction, corner_multiplier, rocking_body, BodyKind, CornerModel, CornerResult, Geometry,
+    Options, Specimen,
 };
+use serde::de::DeserializeOwned;
 use serde_json::{json, Map, Value};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -133,66 +133,33 @@ enum JointsArg {
     Inner,
 }
 
+/// The library's value of a command-line choice. The CLI's enums (clap needs its own) use the
+/// names the library's enums have in serde (lowercase), so one conversion serves them all.
+fn same_name<A: ValueEnum, T: DeserializeOwned>(arg: A) -> T {
+    let name = arg.to_possible_value().expect("no value is skipped");
+    serde_json::from_value(Value::String(name.get_name().to_owned()))
+        .expect("each CLI value names a library value")
+}
+
 fn model_of(cli: &Cli) -> Result<CornerModel, corner::CornerError> {
-    let mut sp = Specimen::paper();
-    if let Some(t) = cli.t {
-        sp.t = t;
-    }
-    if let Some(l) = cli.l {
-        sp.l = l;
-    }
-    if let Some(h) = cli.h {
-        sp.h = h;
-    }
-    if let Some(rho) = cli.rho {
-        sp.rho = rho;
-    }
-    if let Some(mu) = cli.mu {
-        sp.mu = mu;
-    }
-    if let Some(c) = cli.courses {
-        sp.courses = c;
-    }
-    if let Some(b) = cli.blocks_x {
-        sp.blocks_x = b;
-    }
-    if let Some(b) = cli.blocks_y {
-        sp.blocks_y = b;
-    }
-    let mut o = Options::preset(match cli.preset {
-        PresetArg::Paper => Preset::Paper,
-        PresetArg::Literal => Preset::Literal,
-    });
-    if let Some(w) = cli.wedge {
-        o.in_plane_wedge = match w {
-            WedgeArg::Green => InPlaneWedge::Green,
-            WedgeArg::Outer => InPlaneWedge::Outer,
-        };
-    }
-    if let Some(c) = cli.corner_column {
-        o.corner_column = match c {
-            ColumnArg::Both => CornerColumn::Both,
-            ColumnArg::Once => CornerColumn::Once,
-        };
-    }
-    if let Some(f) = cli.friction_lever {
-        o.friction_lever = match f {
-            LeverArg::Joints => FrictionLever::Joints,
-            LeverArg::Third => FrictionLever::Third,
-        };
-    }
-    if let Some(r) = cli.crack_ratio {
-        o.crack_ratio = match r {
-            RatioArg::Angle => CrackRatio::Angle,
-            RatioArg::Tan => CrackRatio::Tan,
-        };
-    }
-    if let Some(j) = cli.friction_joints {
-        o.friction_joints = match j {
-            JointsArg::Eq9 => FrictionJoints::Eq9,
-            JointsArg::Inner => FrictionJoints::Inner,
-        };
-    }
+    let paper = Specimen::paper();
+    let sp = Specimen {
+        t: cli.t.unwrap_or(paper.t),
+        l: cli.l.unwrap_or(paper.l),
+        h: cli.h.unwrap_or(paper.h),
+        rho: cli.rho.unwrap_or(paper.rho),
+        mu: cli.mu.unwrap_or(paper.mu),
+        courses: cli.courses.unwrap_or(paper.courses),
+        blocks_x: cli.blocks_x.unwrap_or(paper.blocks_x),
+        blocks_y: cli.blocks_y.unwrap_or(paper.blocks_y),
+        ..paper
+    };
+    let mut o: Options = Options::preset(same_name(cli.preset));
+    o.in_plane_wedge = cli.wedge.map_or(o.in_plane_wedge, same_name);
+    o.corner_column = cli.corner_column.map_or(o.corner_column, same_name);
+    o.friction_lever = cli.friction_lever.map_or(o.friction_lever, same_name);
+    o.crack_ratio = cli.crack_ratio.map_or(o.crack_ratio, same_name);
+    o.friction_joints = cli.friction_joints.map_or(o.friction_joints, same_name);
     o.refine = !cli.no_refine;
     CornerModel::new(sp, cli.m, cli.k, o)
 }
@@ -323,10 +290,7 @@ fn run(cli: &Cli) -> Result<(), String> {
         let r = solve(alpha)?;
         let dir = body_direction(alpha);
         let body = rocking_body(&model, &r.grid.geometry, dir).map_err(|e| e.to_string())?;
-        let kind = match cli.body_kind {
-            BodyArg::Geometric => BodyKind::Geometric,
-            BodyArg::Threshold => BodyKind::Threshold,
-        };
+        let kind: BodyKind = same_name(cli.body_kind);
         let mut map = Map::new();
         for (name, value) in body.fmu_parameters(kind, model.specimen.g) {
             map.insert(name.into(), serde_json::to_value(value).expect("number"));

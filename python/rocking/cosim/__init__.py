@@ -9,7 +9,7 @@ docs/cosimulation.md).
   the FMUs) -> `Reference`;
 - `study`: convergence and one-way/two-way sweeps, plots for the docs
   (`python -m rocking.cosim.study`);
-- `command`: `rocking cosim CASE.toml`.
+- the command `rocking cosim CASE.toml` is rocking/cli/cosim.py.
 """
 
 __all__ = ["COUPLINGS", "INPUTS", "SCHEMES", "CosimResult", "CoupledFMUs", "frame_params",
@@ -17,8 +17,7 @@ __all__ = ["COUPLINGS", "INPUTS", "SCHEMES", "CosimResult", "CoupledFMUs", "fram
 
 
 def __getattr__(name):
-    # lazy, so that `rocking COMMAND` (which registers `cosim` from command.py) does not
-    # load fmpy and SciPy for the other commands
+    # lazy: rocking.cosim.reference and .study are usable without loading fmpy
     if name in __all__:
         from . import master
         return getattr(master, name)

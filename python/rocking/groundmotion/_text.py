@@ -63,6 +63,16 @@ class TextFile:
             self.lineno += 1
         return self.peek() is None
 
+    def read_sections(self, read_one, what):
+        """Every section of the file, each read by `read_one(self)` after the blank lines
+        before it, to the end; an empty file is an error saying that `what` was expected."""
+        sections = []
+        while not self.skip_blank():
+            sections.append(read_one(self))
+        if not sections:
+            raise self.error(f"expected {what}, found an empty file", 1)
+        return sections
+
     def expect_end(self, what):
         """Only blank lines may follow; `what` describes what was read up to here."""
         if not self.skip_blank():

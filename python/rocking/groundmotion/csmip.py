@@ -36,13 +36,8 @@ def read_csmip_v2(path, units=None):
     `units` overrides the units the file states (normally CM/SEC/SEC).
     Components are labelled as the file does, without "DEG": "90", "UP", "0".
     """
-    tf = TextFile(path)
-    records = []
-    while not tf.skip_blank():
-        records.append(_read_channel(tf, units))
-    if not records:
-        raise tf.error("expected a CSMIP V2 channel ('CORRECTED ACCELEROGRAM ...'), found an empty file", 1)
-    return records
+    return TextFile(path).read_sections(lambda tf: _read_channel(tf, units),
+                                        "a CSMIP V2 channel ('CORRECTED ACCELEROGRAM ...')")
 
 
 def _read_channel(tf, units):

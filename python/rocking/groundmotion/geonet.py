@@ -35,13 +35,8 @@ def read_geonet_v2a(path, units=None):
 
     `units` overrides the units the header states (normally mm/s/s).
     """
-    tf = TextFile(path)
-    records = []
-    while not tf.skip_blank():
-        records.append(_read_component(tf, units))
-    if not records:
-        raise tf.error("expected a V2A component ('Corrected accelerogram ...'), found an empty file", 1)
-    return records
+    return TextFile(path).read_sections(lambda tf: _read_component(tf, units),
+                                        "a V2A component ('Corrected accelerogram ...')")
 
 
 def _read_component(tf, units):

@@ -37,12 +37,14 @@ import textwrap
 import tomllib
 from pathlib import Path
 
+from .common import CLIError, read_record
+
 SECTIONS = {"frame", "block", "ground", "coupling"}
 COUPLING_KEYS = {"floor", "step", "stop_time", "scheme", "inputs", "coupling", "reject", "substeps", "rtol"}
 
 
-def add_parser(sub, common):
-    """Register the subcommand on the `rocking` parser (cli.build_parser)."""
+def register(sub, common):
+    """Add the subcommand to the `rocking` parser (cli.main.build_parser)."""
     p = sub.add_parser("cosim", parents=[common], help="a block on a floor of a shear frame, co-simulated",
                        description=textwrap.fill(
                            "Couple RockingBlock.fmu to floor j of ShearFrame.fmu (docs/cosimulation.md) as "
@@ -60,7 +62,6 @@ def add_parser(sub, common):
 
 
 def _error(message):
-    from ..cli import CLIError
     return CLIError(message)
 
 
@@ -88,7 +89,7 @@ def load_case(path):
 
 
 def frame_from(table, where):
-    from .master import frame_params
+    from ..cosim.master import frame_params
     table = dict(table)
     masses, stiff = table.pop("masses", None), table.pop("stiffnesses", None)
     if (masses is None) != (stiff is None):
@@ -104,10 +105,9 @@ def frame_from(table, where):
 
 def ground_from(table, case_path):
     """(ag callable, default stop time, facts for the summary)."""
-    from .master import record_ground, sine_ground
+    from ..cosim.master import record_ground, sine_ground
     table = dict(table)
     if "record" in table:
-        from ..cli import read_record
         path = Path(table["record"])
         if not path.is_absolute():
             path = case_path.parent / path
@@ -131,7 +131,7 @@ def cmd_cosim(args, _params):
     import pandas as pd
 
     from .. import paths
-    from .master import CoupledFMUs
+    from ..cosim.master import CoupledFMUs
 
     case_path = Path(args.case)
     case = load_case(case_path)
@@ -154,8 +154,8 @@ def cmd_cosim(args, _params):
             raise _error(f"{case_path}: [coupling] {exc}") from exc
     check = None
     if args.reference:
-        from .reference import Reference
-        from .study import errors
+        from ..cosim.reference import Reference
+        from ..cosim.study import errors
         try:
             ref = Reference(frame, block, opts["floor"], ground, res.time[-1],
                             coupling=opts.get("coupling", "two-way"))

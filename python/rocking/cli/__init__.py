@@ -1,0 +1,37 @@
+"""The `rocking` command.
+
+    rocking simulate [RECORD] [--scale 1.5] [--component LABEL] [--preset NAME]
+                     [--PARAM VALUE ...] [--fmu PATH] --out DIR
+    rocking sweep CASES.toml --records DIR [--scales 0.5:3:0.25] --out results.parquet
+    rocking info [--presets]
+    rocking record FILE [--plot out.png]
+    rocking corner ARGS...          (the Rust binary rocking-corner)
+    rocking cosim CASE.toml --out DIR   (a block on a floor of a shear frame, co-simulated)
+
+Errors are one line on stderr naming the file, the variable or the parameter,
+with exit status 2; `--debug` shows the traceback instead.
+
+One module per subcommand, named as the subcommand, with `register(sub, common)` that
+adds its argparse subparser and `set_defaults(func=cmd_NAME)`, where
+`cmd_NAME(args, params) -> exit status`. Optional module attributes:
+`TAKES_PARAMETERS = True` passes `--NAME VALUE` pairs of FMU parameters to cmd_NAME as
+`params`; `forward(argv)` takes the arguments untouched instead of argparse (`corner`).
+Shared helpers (CLIError, the FMU, parameters, records) are in `common`; the parser and
+`main` in `main`.
+"""
+
+#: The subcommands, in the order `rocking --help` lists them; each is a module of this
+#: package. Registering a new subcommand is one line here (its module, e.g. "cosim").
+COMMANDS = (
+    "simulate",
+    "sweep",
+    "info",
+    "record",
+    "corner",
+    "cosim",
+)
+
+from .common import CLIError  # noqa: E402 - after COMMANDS, which .main reads
+from .main import main  # noqa: E402
+
+__all__ = ["COMMANDS", "CLIError", "main"]

@@ -1,0 +1,7 @@
+"""`python -m rocking.cli ...`: the `rocking` command."""
+
+import sys
+
+from . import main
+
+sys.exit(main())

@@ -1,0 +1,241 @@
+"""`rocking simulate`: one run through the FMU -> time history CSV, summary JSON, plot."""
+
+import argparse
+import json
+import math
+import re
+import textwrap
+from pathlib import Path
+
+from .common import (FMU_HELP, CLIError, check_parameter, open_fmu, read_params_file, read_record,
+                     record_facts, unit_of)
+
+#: This subcommand also takes any FMU parameter as `--NAME VALUE` (see `common.split_parameters`).
+TAKES_PARAMETERS = True
+
+#: Outputs written by `simulate`, in this order, when the FMU has them.
+SIMULATE_OUTPUTS = ("theta", "omega", "thetaOverAlpha", "MR", "af", "contactLength", "regime",
+                    "impacts", "zeroCrossings", "overturned")
+
+
+def regime_names(fmu):
+    """{value: name} of the `regime` output, from its description ("0 full contact, 1 ...")."""
+    v = fmu.variables.get("regime")
+    if v is None:
+        return {}
+    return {int(k): name.strip() for k, name in re.findall(r"(\d+)\s+([^,;]+)", v.description or "")}
+
+
+def cmd_simulate(args, params_given):
+    import numpy as np
+    import pandas as pd
+
+    from .. import presets as presets_module
+
+    out = Path(args.out)
+    with open_fmu(args.fmu) as fmu:
+        params = {}
+        if args.preset:
+            try:
+                preset_values = presets_module.preset(args.preset)
+            except KeyError as exc:
+                raise CLIError(f"--preset: {exc.args[0]}") from None
+            for name, value in preset_values.items():
+                params[name] = check_parameter(fmu, name, value, f"preset {args.preset}: {name}")
+        if args.params:
+            for name, value in read_params_file(args.params).items():
+                params[name] = check_parameter(fmu, name, value, f"{args.params}: {name}")
+        for name, value in params_given:
+            params[name] = check_parameter(fmu, name, value, f"--{name}")
+
+        rec = fmt = None
+        if args.record:
+            rec, fmt = read_record(args.record, args.component)
+        outputs = [o for o in SIMULATE_OUTPUTS if o in fmu.variables]
+        run = fmu.simulate(params, record=rec, scale=args.scale, stop_time=args.stop_time,
+                           output_interval=args.output_interval, rtol=args.rtol, outputs=outputs)
+        regimes = regime_names(fmu)
+        units = {name: unit_of(fmu.variables[name]) for name in outputs}
+        guid = fmu.model_description.guid
+
+    res = run.result
+    t = res["time"]
+    ag = (args.scale * np.interp(t, rec.time, rec.acc, right=0.0)) if rec is not None else np.zeros(len(t))
+    table = pd.DataFrame({"time": t, "ag": ag})
+    for name in outputs:
+        column = res[name]
+        table[name] = column.astype(int) if column.dtype == bool else column
+    out.mkdir(parents=True, exist_ok=True)
+    csv_path, json_path, png_path = out / "timehistory.csv", out / "summary.json", out / "plot.png"
+    table.to_csv(csv_path, index=False)
+
+    theta = res["theta"]
+    k_peak = int(np.argmax(np.abs(theta)))
+    last = res[-1]
+    summary = {
+        "fmu": str(fmu.path), "guid": guid,
+        "record": None if rec is None else {
+            "path": str(args.record), "format": fmt, "name": rec.name, "component": rec.component,
+            **record_facts(rec), "scale": args.scale, "scaled_pga_g": abs(args.scale) * rec.pga_g,
+            "synthetic_stand_in": "stand-in" in rec.notes.lower()},
+        "preset": args.preset,
+        "parameters": params,
+        "calculated": run.calculated,
+        "stop_time_s": float(t[-1]) if run.overturned else (args.stop_time or float(t[-1])),
+        "rows": int(len(t)),
+        "peak_theta_rad": float(abs(theta[k_peak])),
+        "t_peak_theta_s": float(t[k_peak]),
+        "peak_theta_over_alpha": run.peak_theta_over_alpha,
+        "overturned": bool(run.overturned),
+        "t_overturn_s": run.t_overturn if run.overturned else None,
+        "impacts": int(last["impacts"]) if "impacts" in outputs else run.impacts,
+    }
+    if "zeroCrossings" in outputs:
+        summary["zeroCrossings"] = int(last["zeroCrossings"])
+    if "regime" in outputs:
+        reached = sorted({int(r) for r in res["regime"]})
+        summary["regimes_reached"] = [regimes.get(r, str(r)) for r in reached]
+    summary["units"] = {"time": "s", "ag": "m/s2", **units}
+    summary["wall_s"] = run.wall
+    summary["files"] = {"timehistory": csv_path.name, "plot": png_path.name}
+    json_path.write_text(json.dumps(summary, indent=2, default=_json_default) + "\n")
+    plot_simulation(png_path, table, summary, regimes, rec, args)
+    print(summary_text(summary, out))
+    return 0
+
+
+def _json_default(value):
+    if hasattr(value, "item"):
+        return value.item()
+    raise TypeError(type(value).__name__)
+
+
+def summary_text(s, out):
+    lines = []
+    if s["record"]:
+        r = s["record"]
+        comp = f" [{r['component']}]" if r["component"] else ""
+        lines.append(f"record      {r['path']}{comp} ({r['format']}), {r['npts']} points, "
+                     f"dt = {r['dt_s']:g} s, PGA = {r['pga_g']:.3f} g x {r['scale']:g} "
+                     f"= {r['scaled_pga_g']:.3f} g" + ("  (SYNTHETIC STAND-IN)" if r["synthetic_stand_in"] else ""))
+    else:
+        lines.append("record      none (free rocking from the initial conditions)")
+    if s["preset"]:
+        lines.append(f"preset      {s['preset']}")
+    calc = s["calculated"]
+    lines.append(f"body        alpha = {calc.get('alpha', math.nan):.5g} rad, "
+                 f"thetaOv = {calc.get('thetaOv', math.nan):.5g} rad")
+    if s["overturned"]:
+        lines.append(f"result      OVERTURNED at t = {s['t_overturn_s']:.4f} s")
+    else:
+        lines.append(f"result      stands until t = {s['stop_time_s']:g} s")
+    lines.append(f"peak        |theta| = {s['peak_theta_rad']:.6g} rad at t = {s['t_peak_theta_s']:.4f} s "
+                 f"(|theta|/alpha = {s['peak_theta_over_alpha']:.4g})")
+    counts = f"impacts = {s['impacts']}"
+    if "zeroCrossings" in s:
+        counts += f", zeroCrossings = {s['zeroCrossings']}"
+    lines.append(f"counts      {counts}")
+    if "regimes_reached" in s:
+        lines.append(f"regimes     {', '.join(s['regimes_reached'])}")
+    lines.append(f"wrote       {out / s['files']['timehistory']}, {out / 'summary.json'}, "
+                 f"{out / s['files']['plot']}  ({s['rows']} rows, {s['wall_s']:.2f} s)")
+    return "\n".join(lines)
+
+
+def plot_simulation(path, table, s, regimes, rec, args):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.ticker import EngFormatter
+
+    g = 9.80665
+    t = table["time"].to_numpy()
+    fig, axes = plt.subplots(4, 1, sharex=True, figsize=(10, 9), height_ratios=(1.1, 1.6, 1.1, 0.8))
+    title = s["preset"] or f"RockingBlock ({s['parameters'].get('shape', 'default shape')})"
+    if rec is not None:
+        comp = f" [{rec.component}]" if rec.component else ""
+        title += f" under {rec.name or Path(args.record).name}{comp} x {args.scale:g}"
+        if s["record"]["synthetic_stand_in"]:
+            title += " (synthetic stand-in)"
+    outcome = (f"overturned at {s['t_overturn_s']:.2f} s" if s["overturned"]
+               else f"stands; peak |theta|/alpha = {s['peak_theta_over_alpha']:.3g}")
+    fig.suptitle(f"{title}\n{outcome}", fontsize=11)
+
+    ax = axes[0]
+    if rec is not None:
+        t_rec = rec.time[rec.time <= t[-1] + rec.dt]
+        ax.plot(t_rec, args.scale * rec.acc[:len(t_rec)] / g, lw=0.6, color="0.3")
+    else:
+        ax.plot(t, table["ag"] / g, lw=0.6, color="0.3")
+    ax.set_ylabel("ground acc. ag (g)")
+
+    ax = axes[1]
+    ax.plot(t, table["thetaOverAlpha"], lw=0.9, color="C0")
+    ax.axhline(0, color="0.6", lw=0.5)
+    for sign in (1, -1):
+        ax.axhline(sign, color="C1", lw=0.7, ls="--", label="theta = ±alpha" if sign > 0 else None)
+    alpha, theta_ov = s["calculated"].get("alpha"), s["calculated"].get("thetaOv")
+    if alpha and theta_ov and math.isfinite(theta_ov):
+        for sign in (1, -1):
+            ax.axhline(sign * theta_ov / alpha, color="C3", lw=0.7, ls=":",
+                       label="overturning thetaOv" if sign > 0 else None)
+    ax.set_ylabel("theta / alpha")
+    ax.legend(loc="upper left", fontsize=8)
+
+    ax = axes[2]
+    ax.plot(t, table["MR"], lw=0.9, color="C2")
+    ax.yaxis.set_major_formatter(EngFormatter(unit="N·m"))
+    ax.set_ylabel("restoring moment MR")
+
+    ax = axes[3]
+    if "regime" in table:
+        ax.step(t, table["regime"], where="post", lw=0.9, color="C4")
+        values = sorted(regimes) or sorted(set(table["regime"]))
+        ax.set_yticks(values, [regimes.get(v, str(v)) for v in values], fontsize=7)
+        ax.set_ylim(min(values) - 0.5, max(values) + 0.5)
+    ax.set_ylabel("regime")
+    ax.set_xlabel("time (s)")
+
+    if s["overturned"]:
+        for ax in axes:
+            ax.axvline(s["t_overturn_s"], color="C3", lw=1.2)
+        axes[1].annotate(f"overturned\n{s['t_overturn_s']:.2f} s", xy=(s["t_overturn_s"], 0),
+                         xytext=(-6, 0), textcoords="offset points", ha="right", color="C3", fontsize=9)
+    for ax in axes:
+        ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def register(sub, common):
+    """Add the subcommand to `sub` (argparse subparsers); `common` is the parent parser of --debug."""
+    from ..presets import NAMING
+
+    p = sub.add_parser(
+        "simulate", parents=[common], allow_abbrev=False,
+        help="one run: time history CSV, summary, plot",
+        usage="rocking simulate [RECORD] [--scale S] [--component C] [--preset NAME] [--PARAM VALUE ...]\n"
+              "                        [--fmu PATH] [--stop-time S] [--output-interval S] [--rtol R] --out DIR",
+        description=textwrap.fill(
+            "Run one case through the FMU and write DIR/timehistory.csv (time, ag and the outputs), "
+            "DIR/summary.json (peak theta, overturning and its time, impacts, regimes, PGA) and "
+            "DIR/plot.png. Any FMU parameter can be given by its name, e.g. --shape hollowCircle "
+            "--Ro 3.99 --kn 2e9 (theta and omega set the initial conditions); they override the preset's.", 100),
+        epilog=textwrap.fill(f"presets: {NAMING}. `rocking info --presets` lists them; `rocking info` lists "
+                             "the parameters, their units and defaults.", 100),
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("record", nargs="?", metavar="RECORD",
+                   help="ground-motion file (any format `rocking record` reads); none: free rocking")
+    p.add_argument("--scale", type=float, default=1.0, help="factor on the record's acceleration (default 1)")
+    p.add_argument("--component", help="the record's component, by label (e.g. N28W, 090, UP) or index; default the first")
+    p.add_argument("--preset", metavar="NAME", help="start from a named parameter set (see below)")
+    p.add_argument("--params", metavar="FILE",
+                   help="parameters from a JSON object of name -> value (e.g. rocking-corner --body FILE); "
+                        "over the preset's, under --NAME VALUE")
+    p.add_argument("--fmu", metavar="PATH", help=FMU_HELP)
+    p.add_argument("--stop-time", type=float, metavar="S", help="default: the record's end (10 s without one)")
+    p.add_argument("--output-interval", type=float, metavar="S", help="default: the record's dt (0.01 s without one)")
+    p.add_argument("--rtol", type=float, help="the integrator's relative tolerance (default: the FMU's)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.set_defaults(func=cmd_simulate)
