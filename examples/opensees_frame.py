@@ -12,7 +12,7 @@ and P-Delta; beams are elastic; each floor carries 30 t (lumped at the two
 beam-column joints), the gravity loads are applied first and held; Rayleigh
 damping of 5 % in the first two modes.
 
-    python examples/opensees_frame.py [--scale 2.0] [--plot out.png]
+    python examples/opensees_frame.py [--scale 3.0] [--plot out.png]
 
 prints the frame's periods, the peak roof acceleration, the peak drift, the
 block's peak rotation and whether the columns yielded, for the frame with and
@@ -117,7 +117,7 @@ class PeakTracker:
         self.yielded = self.yielded or column_yielded(ops)
 
 
-def run(scale=2.0, h=0.01, t_end=20.0, two_way=True, fmu=None):
+def run(scale=3.0, h=0.01, t_end=20.0, two_way=True, fmu=None):
     """One coupled run; returns (Coupled, PeakTracker, periods)."""
     rec = gm.katnp()
     keep = rec.time <= t_end + 1e-9
@@ -152,7 +152,7 @@ class _OneWay:
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--scale", type=float, default=2.0, help="factor on the KATNP stand-in record")
+    parser.add_argument("--scale", type=float, default=3.0, help="factor on the KATNP stand-in record")
     parser.add_argument("--t-end", type=float, default=20.0, help="end time (s)")
     parser.add_argument("--plot", help="write a plot of both runs to this PNG file")
     args = parser.parse_args()

@@ -170,11 +170,14 @@ def ground(record_t, record_ag, t, h, mode):
     return a0, (float(np.interp(t + h, record_t, record_ag)) - a0) / h
 
 
-def couple(structure, block, record_t, record_ag, h, t_end, hold="constant", ground_mode="linear"):
+def couple(structure, block, record_t, record_ag, h, t_end, hold="constant", ground_mode="linear", force_sign=-1.0):
     """Jacobi coupling of `block` (a Slave of RockingBlock.fmu) and `structure` (see module doc).
 
     Ends at t_end, or cleanly at the step where the block overturns (the
     structure keeps its state at the last communication point).
+    `force_sign` is the factor from the block's forces to the floor's: -1,
+    the physics; +1 only to reproduce a host that cannot change a sign
+    (rocking.cosim.ssp, `signs="drop"`).
     """
     steps = int(round(t_end / h))
     t_out, theta, af, fx_out = [], [], [], []
@@ -199,6 +202,7 @@ def couple(structure, block, record_t, record_ag, h, t_end, hold="constant", gro
         if not block.do_step(t, h):
             overturned = True
             break
-        structure.step(t, h, g0, dg, -fx, -dfx, -fz, -dfz)
+        sg = force_sign
+        structure.step(t, h, g0, dg, sg * fx, sg * dfx, sg * fz, sg * dfz)
     return Coupled(np.array(t_out), np.array(theta), np.array(af), np.array(fx_out), overturned,
                    block.last_successful_time() if overturned else t)
