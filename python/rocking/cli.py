@@ -6,6 +6,7 @@
     rocking info [--presets]
     rocking record FILE [--plot out.png]
     rocking corner ARGS...          (the Rust binary rocking-corner)
+    rocking cosim CASE.toml --out DIR  (block on a shear frame: rocking/cosim/command.py)
 
 Errors are one line on stderr naming the file, the variable or the parameter,
 with exit status 2; `--debug` shows the traceback instead.
@@ -754,6 +755,8 @@ def build_parser():
     p.set_defaults(func=cmd_record)
 
     sub.add_parser("corner", help="forward the arguments to the Rust binary rocking-corner", add_help=False)
+    from .cosim.command import add_parser as add_cosim
+    add_cosim(sub, common)
     return parser
 
 

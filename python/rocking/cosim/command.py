@@ -1,0 +1,206 @@
+"""`rocking cosim CASE.toml --out DIR`: one coupled run, block on a frame, from a file.
+
+CASE.toml (or .json, the same tables):
+
+    [frame]                  # ShearFrame.fmu: masses/stiffnesses per storey (kg, N/m),
+    masses = [1e4, 1e4, 1e4] # floor 1 first, or any parameter by name ("m[1]" = 1e4)
+    stiffnesses = [4e6, 4e6, 4e6]
+    zeta = 0.02
+
+    [block]                  # RockingBlock.fmu parameters by name (docs/model.md §5)
+    interface = "elastic"
+    kn = 1e8
+
+    [ground]                 # either a record file (path relative to CASE.toml) ...
+    record = "../data/ground-motions/some.AT2"
+    component = "090"        # optional
+    scale = 1.0              # optional
+    # ... or a sine: amplitude = 4.0 (m/s2), frequency = 2.0 (Hz), cycles = 3
+
+    [coupling]               # all optional but floor
+    floor = 3
+    step = 0.001             # communication step (s)
+    stop_time = 3.0          # default: the record's end, or the sine's end + 2 s
+    scheme = "gauss-seidel"  # or "jacobi"
+    inputs = "extrapolate"   # or "constant"
+    coupling = "two-way"     # or "one-way"
+    reject = true            # step rejection at impacts and contact changes
+    rtol = 1e-10             # the block's integrator tolerance
+
+Writes DIR/timehistory.csv (time, ag, theta, omega, a_floor, Fx, Fz, u[1..n]),
+DIR/summary.json and DIR/plot.png, and prints a summary.
+"""
+
+import argparse
+import json
+import textwrap
+import tomllib
+from pathlib import Path
+
+SECTIONS = {"frame", "block", "ground", "coupling"}
+COUPLING_KEYS = {"floor", "step", "stop_time", "scheme", "inputs", "coupling", "reject", "substeps", "rtol"}
+
+
+def add_parser(sub, common):
+    """Register the subcommand on the `rocking` parser (cli.build_parser)."""
+    p = sub.add_parser("cosim", parents=[common], help="a block on a floor of a shear frame, co-simulated",
+                       description=textwrap.fill(
+                           "Couple RockingBlock.fmu to floor j of ShearFrame.fmu (docs/cosimulation.md) as "
+                           "CASE describes and write DIR/timehistory.csv, DIR/summary.json and DIR/plot.png.", 100),
+                       epilog=__doc__.split("\n\n", 1)[1].split("\nWrites")[0],
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("case", metavar="CASE.toml", help="the coupled case (.toml or .json)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    p.add_argument("--frame-fmu", metavar="PATH", help="default: target/fmu/ShearFrame.fmu")
+    p.add_argument("--block-fmu", metavar="PATH", help="default: target/fmu/RockingBlock.fmu")
+    p.set_defaults(func=cmd_cosim)
+
+
+def _error(message):
+    from ..cli import CLIError
+    return CLIError(message)
+
+
+def load_case(path):
+    """The case file as a dict of its four tables; one-line errors naming the file and key."""
+    path = Path(path)
+    if not path.is_file():
+        raise _error(f"{path}: no such case file")
+    try:
+        case = json.loads(path.read_text()) if path.suffix == ".json" else tomllib.loads(path.read_text())
+    except (ValueError, tomllib.TOMLDecodeError) as exc:
+        raise _error(f"{path}: {exc}") from exc
+    unknown = set(case) - SECTIONS
+    if unknown:
+        raise _error(f"{path}: unknown table(s) {sorted(unknown)}; expected {sorted(SECTIONS)}")
+    for key in ("frame", "ground", "coupling"):
+        if key not in case:
+            raise _error(f"{path}: missing table [{key}]")
+    bad = set(case["coupling"]) - COUPLING_KEYS
+    if bad:
+        raise _error(f"{path}: [coupling] unknown key(s) {sorted(bad)}; expected {sorted(COUPLING_KEYS)}")
+    if "floor" not in case["coupling"]:
+        raise _error(f"{path}: [coupling] floor is required (the floor carrying the block, 1..n)")
+    return case
+
+
+def frame_from(table, where):
+    from .master import frame_params
+    table = dict(table)
+    masses, stiff = table.pop("masses", None), table.pop("stiffnesses", None)
+    if (masses is None) != (stiff is None):
+        raise _error(f"{where}: [frame] masses and stiffnesses go together")
+    params = {}
+    if masses is not None:
+        if len(masses) != len(stiff) or not 1 <= len(masses) <= 20:
+            raise _error(f"{where}: [frame] masses and stiffnesses need one value per storey, 1 to 20")
+        params = frame_params(masses, stiff, zeta=table.pop("zeta", 0.05))
+    params.update(table)
+    return params
+
+
+def ground_from(table, case_path):
+    """(ag callable, default stop time, facts for the summary)."""
+    from .master import record_ground, sine_ground
+    table = dict(table)
+    if "record" in table:
+        from ..cli import read_record
+        path = Path(table["record"])
+        if not path.is_absolute():
+            path = case_path.parent / path
+        rec, fmt = read_record(path, table.get("component"))
+        scale = float(table.get("scale", 1.0))
+        facts = {"record": str(path), "format": fmt, "component": rec.component, "scale": scale,
+                 "dt_s": rec.dt, "pga_m_s2": rec.pga * scale}
+        return record_ground(rec.time, scale * rec.acc), float(rec.time[-1]), facts
+    try:
+        amp, freq = float(table["amplitude"]), float(table["frequency"])
+    except KeyError as exc:
+        raise _error(f"{case_path}: [ground] needs `record = FILE` or `amplitude` and `frequency` "
+                     f"(missing {exc.args[0]})") from exc
+    cycles = table.get("cycles")
+    end = (float(cycles) / freq + 2.0) if cycles is not None else 10.0
+    return sine_ground(amp, freq, cycles=cycles), end, {"sine": table}
+
+
+def cmd_cosim(args, _params):
+    import numpy as np
+    import pandas as pd
+
+    from .. import paths
+    from .master import CoupledFMUs
+
+    case_path = Path(args.case)
+    case = load_case(case_path)
+    frame = frame_from(case["frame"], case_path)
+    block = dict(case.get("block", {}))
+    ground, end, ground_facts = ground_from(case["ground"], case_path)
+    opts = dict(case["coupling"])
+    opts.setdefault("stop_time", end)
+    opts.setdefault("step", 1e-3)
+    fmu_dir = paths.target_dir() / "fmu" if paths.REPO is not None else Path(".")
+    frame_fmu = Path(args.frame_fmu) if args.frame_fmu else fmu_dir / "ShearFrame.fmu"
+    block_fmu = Path(args.block_fmu) if args.block_fmu else fmu_dir / "RockingBlock.fmu"
+    for f in (frame_fmu, block_fmu):
+        if not f.is_file():
+            raise _error(f"{f}: no such FMU (run `cargo xtask fmu`, or pass --frame-fmu/--block-fmu)")
+    with CoupledFMUs(frame_fmu, block_fmu) as fmus:
+        try:
+            res = fmus.run(frame, block, ground=ground, **opts)
+        except TypeError as exc:
+            raise _error(f"{case_path}: [coupling] {exc}") from exc
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    n = res.u.shape[1]
+    table = pd.DataFrame({"time": res.time, "ag": res.ag, "theta": res.theta, "omega": res.omega,
+                          "a_floor": res.a_floor, "Fx": res.Fx, "Fz": res.Fz,
+                          **{f"u[{i + 1}]": res.u[:, i] for i in range(n)}})
+    table.to_csv(out / "timehistory.csv", index=False)
+    k_th, k_a = int(np.argmax(np.abs(res.theta))), int(np.argmax(np.abs(res.a_floor)))
+    summary = {"case": str(case_path), "ground": ground_facts, "frame": frame, "block": block,
+               "options": res.options, "overturned": res.overturned,
+               "t_overturn_s": res.t_overturn if res.overturned else None,
+               "t_end_s": float(res.time[-1]), "peak_theta_rad": float(abs(res.theta[k_th])),
+               "t_peak_theta_s": float(res.time[k_th]), "peak_a_floor_m_s2": float(abs(res.a_floor[k_a])),
+               "t_peak_a_floor_s": float(res.time[k_a]), "peak_roof_displacement_m": float(np.max(np.abs(res.u[:, -1]))),
+               "steps": res.steps, "rejected_steps": res.rejected, "wall_s": res.wall,
+               "files": {"timehistory": "timehistory.csv", "plot": "plot.png"}}
+    (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    plot(out / "plot.png", res, summary)
+    outcome = (f"OVERTURNED at t = {res.t_overturn:.4f} s (the frame's state kept at that time)"
+               if res.overturned else f"stands until t = {res.time[-1]:g} s")
+    print(f"coupling    {res.options['scheme']}, {res.options['inputs']} inputs, {res.options['coupling']}, "
+          f"h = {res.options['step']:g} s, block on floor {res.options['floor']} of {n}\n"
+          f"result      {outcome}\n"
+          f"peak        |theta| = {summary['peak_theta_rad']:.6g} rad at t = {summary['t_peak_theta_s']:.4f} s, "
+          f"|a[{res.options['floor']}]| = {summary['peak_a_floor_m_s2']:.6g} m/s2 at t = "
+          f"{summary['t_peak_a_floor_s']:.4f} s\n"
+          f"wrote       {out / 'timehistory.csv'}, {out / 'summary.json'}, {out / 'plot.png'}  "
+          f"({len(res.time)} rows, {res.steps} steps, {res.rejected} rejected, {res.wall:.2f} s)")
+    return 0
+
+
+def plot(path, res, summary):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(3, 1, sharex=True, figsize=(10, 7.5))
+    o = res.options
+    fig.suptitle(f"Block on floor {o['floor']}: {o['scheme']}, {o['inputs']}, {o['coupling']}, h = {o['step']:g} s"
+                 + (f"; overturned at {res.t_overturn:.3f} s" if res.overturned else ""), fontsize=10)
+    axes[0].plot(res.time, res.ag, lw=0.7, color="0.4", label="ground ag")
+    axes[0].plot(res.time, res.a_floor, lw=0.9, color="C0", label=f"floor a[{o['floor']}]")
+    axes[0].set_ylabel("acceleration (m/s2)")
+    axes[0].legend(fontsize=8, loc="upper right")
+    axes[1].plot(res.time, res.theta, lw=0.9, color="C1")
+    axes[1].set_ylabel("theta (rad)")
+    axes[2].plot(res.time, res.Fx / 1e3, lw=0.9, color="C2", label="Fx")
+    axes[2].set_ylabel("support force Fx (kN)")
+    axes[2].set_xlabel("time (s)")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        if res.overturned:
+            ax.axvline(res.t_overturn, color="C3", lw=1.0)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -1,0 +1,338 @@
+"""The co-simulation master: RockingBlock.fmu standing on floor j of ShearFrame.fmu.
+
+    from rocking.cosim import CoupledFMUs, frame_params, sine_ground
+    with CoupledFMUs() as fmus:                    # target/fmu/{ShearFrame,RockingBlock}.fmu
+        res = fmus.run(frame=frame_params([1e4] * 3, [4e6] * 3, zeta=0.02),
+                       block={"interface": "elastic", "kn": 1e8},
+                       floor=3, ground=sine_ground(3.0, 2.0), stop_time=4.0, step=1e-3,
+                       scheme="gauss-seidel", inputs="extrapolate")
+        res.time, res.theta, res.a_floor, res.overturned, res.t_overturn
+
+The coupling (docs/cosimulation.md §1): the frame's absolute acceleration of
+floor j, `a[j]`, is the block's `ag`; the opposite of the block's support
+forces `Fx`, `Fz` is applied to the frame's `Fx[j]`, `Fz[j]`. Both outputs
+feed through their inputs (`a[j]` through `Fx[j]`, `Fx` through `ag`): the
+algebraic loop is broken by the master's scheme.
+
+Schemes (`scheme`):
+- "jacobi": read both FMUs' outputs at t, set both inputs, step both;
+- "gauss-seidel": step the frame first with the block's force predicted
+  from t, then the block with the frame's `a[j]`, known over the whole step
+  (interpolated between t and t + h with inputs="extrapolate", its end value
+  held with inputs="constant").
+
+Inputs (`inputs`): "constant" holds each input over the step (order 1);
+"extrapolate" passes it with its first derivative (fmi2SetRealInputDerivatives),
+taken from the other FMU's fmi2GetRealOutputDerivatives (order 2). The ground
+acceleration is an external input known in advance: always passed as the
+chord between communication points.
+
+`coupling="one-way"`: the block's forces are not applied to the frame (the
+frame alone drives the block; what a record-driven study assumes).
+
+`reject=True`: a step during which the block crosses theta = 0 (an impact,
+its angular velocity jumps) or changes contact regime is rejected: both FMUs
+go back to the step's start (fmi2SetFMUstate) and the step is redone in
+`substeps` equal parts. docs/cosimulation.md §4 measures what it buys.
+
+Overturning: the block's fmi2DoStep returns fmi2Discard with fmi2Terminated
+true; the frame is brought to the same time (back to the step's start and
+stepped to the overturning time), the run ends there, and the frame's FMU
+state is returned serialized (`frame_state`) so the structure can go on alone.
+"""
+
+import math
+import time as _time
+from dataclasses import dataclass, field
+
+import numpy as np
+from fmpy.fmi2 import fmi2Discard, fmi2LastSuccessfulTime, fmi2Terminated
+
+from .. import fmu as _fmu
+from .. import paths
+from .slave import Slave
+
+SCHEMES = ("jacobi", "gauss-seidel")
+INPUTS = ("constant", "extrapolate")
+COUPLINGS = ("two-way", "one-way")
+
+
+def frame_params(masses, stiffnesses, zeta=0.05):
+    """ShearFrame parameters for storey masses (kg) and stiffnesses (N/m), floor 1 first,
+    modal damping ratio `zeta`."""
+    if len(masses) != len(stiffnesses):
+        raise ValueError("masses and stiffnesses must have one value per storey")
+    p = {"n": len(masses), "damping": "modal", "zeta": float(zeta)}
+    for i, (m, k) in enumerate(zip(masses, stiffnesses), start=1):
+        p[f"m[{i}]"], p[f"k[{i}]"] = float(m), float(k)
+    return p
+
+
+def sine_ground(amplitude, frequency, cycles=None, t0=0.0):
+    """ag(t) = amplitude sin(2 pi f (t - t0)) for `cycles` cycles (all time if None), m/s2.
+    Vectorized; the master and the reference both take such a callable."""
+    def ag(t):
+        t = np.asarray(t, dtype=float)
+        s = t - t0
+        out = amplitude * np.sin(2 * np.pi * frequency * s)
+        mask = s >= 0 if cycles is None else (s >= 0) & (s <= cycles / frequency)
+        return np.where(mask, out, 0.0)
+    return ag
+
+
+def record_ground(time, acc):
+    """ag(t) from samples (s, m/s2), linear between them, 0 after the last."""
+    time, acc = np.asarray(time, float), np.asarray(acc, float)
+    return lambda t: np.interp(t, time, acc, right=0.0)
+
+
+@dataclass
+class CosimResult:
+    """One coupled run, sampled at the communication points.
+
+    time          s
+    theta, omega  the block's rotation (rad) and angular velocity (rad/s)
+    a_floor       absolute acceleration of the block's floor, a[j] (m/s2)
+    Fx, Fz        the block's support forces (N; the floor receives their opposite)
+    u             floor displacements relative to the ground, shape (len(time), n) (m)
+    ag            the ground acceleration (m/s2)
+    overturned    the block overturned; the run ends at t_overturn
+    t_overturn    nan unless overturned
+    frame_state   the frame's serialized FMU state at the end (fmi2DeSerializeFMUstate
+                  it to continue the structure alone)
+    steps, rejected  communication steps taken, and rejected (reject=True)
+    wall          s
+    """
+
+    time: np.ndarray
+    theta: np.ndarray
+    omega: np.ndarray
+    a_floor: np.ndarray
+    Fx: np.ndarray
+    Fz: np.ndarray
+    u: np.ndarray
+    ag: np.ndarray
+    overturned: bool
+    t_overturn: float
+    frame_state: bytes
+    steps: int
+    rejected: int
+    wall: float
+    options: dict = field(default_factory=dict)
+    messages: list = field(default_factory=list)
+
+
+class CoupledFMUs:
+    """ShearFrame.fmu and RockingBlock.fmu extracted and loaded once; `run` couples them.
+
+    frame_fmu, block_fmu  default: target/fmu/ShearFrame.fmu and RockingBlock.fmu
+    """
+
+    def __init__(self, frame_fmu=None, block_fmu=None):
+        fmu_dir = paths.target_dir() / "fmu" if (frame_fmu is None or block_fmu is None) else None
+        self.frame = Slave(frame_fmu or fmu_dir / "ShearFrame.fmu")
+        self.block = Slave(block_fmu or fmu_dir / "RockingBlock.fmu")
+        for s in (self.frame, self.block):
+            cs = s.capabilities
+            if not (cs.canInterpolateInputs and (cs.maxOutputDerivativeOrder or 0) >= 1
+                    and cs.canGetAndSetFMUstate and cs.canHandleVariableCommunicationStepSize):
+                raise _fmu.FMUError(f"{s.path}: needs canInterpolateInputs, output derivatives, "
+                                    "fmi2Get/SetFMUstate and variable steps")
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def close(self):
+        self.frame.close()
+        self.block.close()
+
+    def run(self, frame, block, floor, ground, stop_time, step, scheme="gauss-seidel",
+            inputs="extrapolate", coupling="two-way", reject=False, substeps=16, rtol=1e-10):
+        """Couple the block on floor `floor` (1-based) of the frame from t = 0 to
+        `stop_time` with communication step `step`; returns a `CosimResult`.
+
+        frame, block  parameter (and start) values by name of each FMU
+        ground        ag(t), a vectorized callable (m/s2): sine_ground, record_ground
+        rtol          the block's integrator tolerance (the frame's step is exact)
+        """
+        if scheme not in SCHEMES:
+            raise ValueError(f"scheme = {scheme!r}: not one of {SCHEMES}")
+        if inputs not in INPUTS:
+            raise ValueError(f"inputs = {inputs!r}: not one of {INPUTS}")
+        if coupling not in COUPLINGS:
+            raise ValueError(f"coupling = {coupling!r}: not one of {COUPLINGS}")
+        n = int(frame.get("n", 3))
+        if not 1 <= int(floor) <= n:
+            raise ValueError(f"floor = {floor}: must be a floor of the frame, 1..{n}")
+        if not (step > 0 and stop_time > 0):
+            raise ValueError("step and stop_time must be positive")
+        wall = _time.perf_counter()
+        loop = _Loop(self.frame, self.block, int(floor), n, ground, scheme, inputs == "extrapolate",
+                     coupling == "two-way", reject, int(substeps))
+        try:
+            self.frame.instantiate(frame, 0.0, stop_time)
+            self.block.instantiate(block, 0.0, stop_time, rtol=rtol)
+            self.frame.exit_init()
+            self.block.exit_init()
+            loop.start()
+            n_steps = int(math.ceil(stop_time / step - 1e-9))
+            grid = np.minimum(np.arange(n_steps + 1) * step, stop_time)
+            for k in range(n_steps):
+                if not loop.advance(grid[k], grid[k + 1] - grid[k]):
+                    break
+            frame_state = loop.frame_serialized()
+        finally:
+            self.frame.free()
+            self.block.free()
+        rows = np.array(loop.rows)
+        return CosimResult(
+            time=rows[:, 0], theta=rows[:, 1], omega=rows[:, 2], a_floor=rows[:, 3], Fx=rows[:, 4],
+            Fz=rows[:, 5], ag=rows[:, 6], u=rows[:, 7:7 + n], overturned=loop.overturned,
+            t_overturn=loop.t_overturn, frame_state=frame_state, steps=loop.steps,
+            rejected=loop.rejected, wall=_time.perf_counter() - wall,
+            options=dict(floor=floor, stop_time=stop_time, step=step, scheme=scheme, inputs=inputs,
+                         coupling=coupling, reject=reject, substeps=substeps, rtol=rtol),
+            messages=list(_fmu._MESSAGES))
+
+
+class _Loop:
+    """The state of one coupled run between communication points."""
+
+    def __init__(self, frame, block, j, n, ground, scheme, extrapolate, two_way, reject, substeps):
+        self.frame, self.block, self.ground = frame, block, ground
+        self.gs, self.extrapolate, self.two_way = scheme == "gauss-seidel", extrapolate, two_way
+        self.reject, self.substeps = reject, substeps
+        self.r_ag = frame.refs(["ag"])
+        self.r_force = frame.refs([f"Fx[{j}]", f"Fz[{j}]"])
+        self.r_a = frame.refs([f"a[{j}]"])
+        self.r_u = frame.refs([f"u[{i}]" for i in range(1, n + 1)])
+        self.r_bag = block.refs(["ag"])
+        self.r_bf = block.refs(["Fx", "Fz"])
+        self.r_th = block.refs(["theta", "omega"])
+        self.rows, self.steps, self.rejected = [], 0, 0
+        self.overturned, self.t_overturn = False, math.nan
+
+    # -- the exchanged values at the current communication point --------------
+    def _block_force(self):
+        """The force on the floor, -(Fx, Fz), and its rate (0 unless extrapolating)."""
+        f = self.block.get(self.r_bf)
+        d = self.block.get_der(self.r_bf) if self.extrapolate else [0.0, 0.0]
+        return [-f[0], -f[1]], [-d[0], -d[1]]
+
+    def _floor_acc(self):
+        a = self.frame.get(self.r_a)[0]
+        return a, (self.frame.get_der(self.r_a)[0] if self.extrapolate else 0.0)
+
+    def _set_frame_force(self, force, rate):
+        if self.two_way:
+            self.frame.set(self.r_force, force, rate)
+
+    def start(self):
+        """Consistent values at t = 0: iterate the algebraic loop (a contraction for
+        block/floor mass ratios below 1) until it settles."""
+        g = float(self.ground(0.0))
+        self.frame.set(self.r_ag, [g])
+        for _ in range(50):
+            a, _ = self._floor_acc()
+            self.block.set(self.r_bag, [a])
+            force, _ = self._block_force()
+            self._set_frame_force(force, [0.0, 0.0])
+            if abs(self._floor_acc()[0] - a) <= 1e-13 * (1 + abs(a)):
+                break
+        self._record(0.0)
+
+    def _record(self, t):
+        th = self.block.get(self.r_th)
+        f = self.block.get(self.r_bf)
+        self.rows.append([t, th[0], th[1], self.frame.get(self.r_a)[0], f[0], f[1],
+                          float(self.ground(t)), *self.frame.get(self.r_u)])
+
+    # -- one communication step ------------------------------------------------
+    def advance(self, t, h):
+        """Step both FMUs from t to t + h; False once the block has overturned."""
+        if not self.reject:
+            ok = self._step(t, h)
+        else:
+            fstate, bstate = self.frame.get_state(), self.block.get_state()
+            before = (self.block.get_int("zeroCrossings"), self.block.get_int("regime"))
+            try:
+                ok = self._step(t, h)
+                if ok and (self.block.get_int("zeroCrossings"), self.block.get_int("regime")) != before:
+                    self.frame.set_state(fstate)
+                    self.block.set_state(bstate)
+                    self.rejected += 1
+                    hs = h / self.substeps
+                    for i in range(self.substeps):
+                        ts = t + i * hs
+                        ok = self._step(ts, hs if i + 1 < self.substeps else t + h - ts)
+                        if not ok:
+                            break
+            finally:
+                self.frame.free_state(fstate)
+                self.block.free_state(bstate)
+        self.steps += 1
+        if ok:
+            self._record(t + h)
+        return ok
+
+    def _step(self, t, h):
+        g0, g1 = (float(x) for x in self.ground(np.array([t, t + h])))
+        self.frame.set(self.r_ag, [g0], [(g1 - g0) / h])
+        force, rate = self._block_force()
+        if self.gs:
+            a0, _ = self._floor_acc()
+            fstate = self._keep_frame()
+            self._set_frame_force(force, rate)
+            self.frame.do_step(t, h)
+            a1, _ = self._floor_acc()
+            if self.extrapolate:
+                self.block.set(self.r_bag, [a0], [(a1 - a0) / h])
+            else:
+                self.block.set(self.r_bag, [a1])
+        else:
+            a0, da = self._floor_acc()
+            fstate = self._keep_frame()
+            self.block.set(self.r_bag, [a0], [da] if self.extrapolate else None)
+            self._set_frame_force(force, rate)
+            self.frame.do_step(t, h)
+        status = self.block.do_step(t, h)
+        if status == fmi2Discard and self.block.status(fmi2Terminated, boolean=True):
+            self._overturn(t, fstate, force, rate)
+            return False
+        if status == fmi2Discard:
+            raise _fmu.FMUError("RockingBlock: fmi2DoStep discarded a step without terminating")
+        self._release_frame(fstate)
+        # the block's force at t + h and its rate, seen by the frame's a[j] and a[j]'
+        # from now on (feedthrough)
+        self._set_frame_force(*self._block_force())
+        return True
+
+    # -- overturning: the frame is brought to the overturning time -------------
+    def _keep_frame(self):
+        return self.frame.get_state()
+
+    def _release_frame(self, fstate):
+        if fstate is not None:
+            self.frame.free_state(fstate)
+
+    def _overturn(self, t, fstate, force, rate):
+        t_ov = self.block.status(fmi2LastSuccessfulTime)
+        self.frame.set_state(fstate)
+        self._release_frame(fstate)
+        g0, g1 = (float(x) for x in self.ground(np.array([t, t_ov])))
+        if t_ov > t:
+            self.frame.set(self.r_ag, [g0], [(g1 - g0) / (t_ov - t)])
+            self._set_frame_force(force, rate)
+            self.frame.do_step(t, t_ov - t)
+        self.overturned, self.t_overturn = True, t_ov
+        self._record(t_ov)
+
+    def frame_serialized(self):
+        state = self.frame.get_state()
+        try:
+            return self.frame.serialize(state)
+        finally:
+            self.frame.free_state(state)

@@ -1,0 +1,244 @@
+"""The co-simulation studies of docs/cosimulation.md: convergence of each scheme
+against the monolithic reference, and when two-way coupling matters.
+
+    python -m rocking.cosim.study [--out docs/img] [--quick] [--workers 2]
+
+writes cosim_convergence.png and cosim_coupling.png to --out and prints the
+tables of docs/cosimulation.md (markdown) and a JSON of every figure to
+--out/cosim_study.json. Takes ~2 min on 2 cores (--quick: a smaller grid).
+"""
+
+import argparse
+import json
+import math
+import sys
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+import numpy as np
+
+from .master import CoupledFMUs, frame_params, sine_ground
+from .reference import ElasticRectangle, Reference
+
+#: The block of both studies: the FMU's default prism (0.5 m x 1 m x 2.5 m, 2250 kg)
+#: on an elastic bed of 1e8 Pa/m (thetaJo = 1.8e-3 rad).
+BLOCK = {"interface": "elastic", "kn": 1e8}
+
+
+def convergence_case():
+    """3 storeys of 1e4 kg and 4e6 N/m (T1 = 0.71 s), 2 % modal damping, the block on the
+    roof (block/floor mass 0.225), 3 cycles of a 2 Hz, 4 m/s2 ground sine, 3 s."""
+    return dict(frame=frame_params([1e4] * 3, [4e6] * 3, zeta=0.02), block=dict(BLOCK), floor=3,
+                ground=sine_ground(4.0, 2.0, cycles=3), stop_time=3.0)
+
+
+#: (scheme, inputs, reject) of the convergence study.
+VARIANTS = [("jacobi", "constant", True), ("gauss-seidel", "constant", True),
+            ("jacobi", "extrapolate", True), ("gauss-seidel", "extrapolate", True),
+            ("jacobi", "extrapolate", False), ("gauss-seidel", "extrapolate", False)]
+STEPS = [0.02, 0.01, 0.005, 0.0025, 0.00125, 0.000625]
+
+
+def errors(res, ref):
+    """Relative errors of a run against the reference: max over the communication points
+    of theta and of the floor's acceleration (each over the reference's peak), and of
+    the peaks themselves (the run's sampled peak against the reference's true one)."""
+    r = ref.at(res.time)
+    pth, pa = ref.peak("theta"), ref.peak("a_floor")
+    return {"theta": float(np.max(np.abs(res.theta - r["theta"])) / pth),
+            "a_floor": float(np.max(np.abs(res.a_floor - r["a_floor"])) / pa),
+            "peak_theta": float(abs(np.max(np.abs(res.theta)) - pth) / pth),
+            "peak_a_floor": float(abs(np.max(np.abs(res.a_floor)) - pa) / pa)}
+
+
+def slope(h, err):
+    """Fitted order: the slope of log(err) against log(h)."""
+    return float(np.polyfit(np.log(h), np.log(err), 1)[0])
+
+
+def convergence(steps=STEPS, variants=VARIANTS, fmus=None):
+    """Rows of (scheme, inputs, reject, step, errors...) for the convergence case."""
+    case = convergence_case()
+    ref = Reference(**case)
+    own = fmus is None
+    fmus = fmus or CoupledFMUs()
+    rows = []
+    try:
+        for scheme, inputs, reject in variants:
+            for h in steps:
+                res = fmus.run(**case, step=h, scheme=scheme, inputs=inputs, reject=reject)
+                rows.append(dict(scheme=scheme, inputs=inputs, reject=reject, step=h,
+                                 rejected=res.rejected, wall=res.wall, **errors(res, ref)))
+    finally:
+        if own:
+            fmus.close()
+    return rows
+
+
+def step_for(rows, key, target=0.01):
+    """The largest step of each variant whose error `key`, and every smaller step's, is
+    below target (nan if none)."""
+    out = {}
+    for v in {(r["scheme"], r["inputs"], r["reject"]) for r in rows}:
+        sel = sorted((r for r in rows if (r["scheme"], r["inputs"], r["reject"]) == v),
+                     key=lambda r: r["step"])
+        ok = math.nan
+        for r in sel:
+            if r[key] >= target:
+                break
+            ok = r["step"]
+        out[v] = ok
+    return out
+
+
+# -- when does two-way coupling matter -----------------------------------------------
+
+def sweep_case(mass_ratio, freq_ratio, amplitude=None):
+    """One storey carrying the block: floor mass = block mass / mass_ratio, period
+    T1 = freq_ratio / p (p = sqrt(W R0 / IO), the block's rocking frequency parameter),
+    5 % damping; ground: a sine at 1/T1 for max(3 T1, 2 s), then 2 s more."""
+    body = ElasticRectangle(BLOCK)
+    p = math.sqrt(body.W * body.R0 / body.IO)
+    T1 = freq_ratio / p
+    m1 = body.m / mass_ratio
+    k1 = m1 * (2 * math.pi / T1) ** 2
+    cycles = max(3, math.ceil(2.0 / T1))
+    amp = 1.0 if amplitude is None else amplitude
+    return dict(frame=frame_params([m1], [k1], zeta=0.05), block=dict(BLOCK), floor=1,
+                ground=sine_ground(amp, 1.0 / T1, cycles=cycles), stop_time=cycles * T1 + 2.0)
+
+
+def _sweep_point(args):
+    mass_ratio, freq_ratio, amplitude = args
+    out = {"mass_ratio": mass_ratio, "freq_ratio": freq_ratio}
+    for coupling in ("one-way", "two-way"):
+        ref = Reference(**sweep_case(mass_ratio, freq_ratio, amplitude), coupling=coupling, rtol=1e-10)
+        out[coupling] = {"peak_theta": ref.peak("theta"), "peak_a_floor": ref.peak("a_floor"),
+                         "overturned": ref.overturned}
+    return out
+
+
+def coupling_sweep(mass_ratios, freq_ratios, floor_peak_over_uplift=2.0, workers=2):
+    """The one-way and two-way reference at each (mass ratio, frequency ratio). The ground
+    amplitude is set so that the frame alone (one-way) has a peak floor acceleration of
+    floor_peak_over_uplift * g tan(alpha) (the rigid block's uplift threshold)."""
+    from tqdm import tqdm
+    body = ElasticRectangle(BLOCK)
+    target = floor_peak_over_uplift * body.g * math.tan(body.alpha)
+    amps = {}
+    for fr in freq_ratios:  # the frame is linear: one run at unit amplitude scales
+        unit = Reference(**sweep_case(1e-4, fr, 1.0), coupling="one-way", rtol=1e-10).peak("a_floor")
+        amps[fr] = target / unit
+    jobs = [(mr, fr, amps[fr]) for fr in freq_ratios for mr in mass_ratios]
+    with ProcessPoolExecutor(workers) as pool:
+        rows = list(tqdm(pool.map(_sweep_point, jobs), total=len(jobs), desc="coupling sweep",
+                         file=sys.stderr))
+    for r in rows:
+        one, two = r["one-way"], r["two-way"]
+        r["d_theta"] = abs(two["peak_theta"] - one["peak_theta"]) / one["peak_theta"]
+        r["d_a_floor"] = abs(two["peak_a_floor"] - one["peak_a_floor"]) / one["peak_a_floor"]
+    return rows
+
+
+# -- plots -------------------------------------------------------------------------
+
+def plot_convergence(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6), sharex=True)
+    styles = {("jacobi", "constant"): ("C0", "o"), ("gauss-seidel", "constant"): ("C1", "s"),
+              ("jacobi", "extrapolate"): ("C2", "^"), ("gauss-seidel", "extrapolate"): ("C3", "v")}
+    for ax, key, title in ((axes[0], "theta", "block rotation theta"),
+                           (axes[1], "a_floor", "floor absolute acceleration a[j]")):
+        for (scheme, inputs, reject) in dict.fromkeys((r["scheme"], r["inputs"], r["reject"]) for r in rows):
+            sel = [r for r in rows if (r["scheme"], r["inputs"], r["reject"]) == (scheme, inputs, reject)]
+            h = np.array([r["step"] for r in sel])
+            e = np.array([r[key] for r in sel])
+            color, marker = styles[(scheme, inputs)]
+            label = f"{scheme}, {inputs}{'' if reject else ', no rejection'} (slope {slope(h, e):.2f})"
+            ax.loglog(h, e, color=color, marker=marker, ls="-" if reject else ":", label=label)
+        h = np.array(STEPS)
+        ax.loglog(h, 0.3 * h / h[0] * 1e-1, "k--", lw=0.8)
+        ax.loglog(h, 0.3 * (h / h[0]) ** 2 * 1e-1, "k-.", lw=0.8)
+        ax.axhline(0.01, color="grey", lw=0.6)
+        ax.set_title(f"error in {title}")
+        ax.set_xlabel("communication step h (s)")
+        ax.set_ylabel("max |co-sim - reference| / reference peak")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("Co-simulation error against the monolithic reference (dashed: slope 1, dash-dot: slope 2; "
+                 "grey: 1 %)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def plot_sweep(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6), sharex=True)
+    freqs = sorted({r["freq_ratio"] for r in rows})
+    for ax, key, title in ((axes[0], "d_theta", "peak block rotation"),
+                           (axes[1], "d_a_floor", "peak floor acceleration")):
+        for i, fr in enumerate(freqs):
+            sel = sorted((r for r in rows if r["freq_ratio"] == fr), key=lambda r: r["mass_ratio"])
+            mu = np.array([r["mass_ratio"] for r in sel])
+            d = np.maximum([r[key] for r in sel], 1e-12)
+            ax.loglog(mu, d, marker="o", color=f"C{i}", label=f"T1 p = {fr:g}")
+            ov = [k for k, r in enumerate(sel) if r["one-way"]["overturned"] or r["two-way"]["overturned"]]
+            if ov:
+                ax.loglog(mu[ov], d[ov], "kx", ms=9)
+        ax.axhline(0.05, color="grey", lw=0.6)
+        ax.set_title(f"two-way vs one-way: {title}")
+        ax.set_xlabel("block mass / floor mass")
+        ax.set_ylabel("|two-way - one-way| / one-way")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle("One storey carrying the block, ground sine at the frame's frequency, floor peak 2 g tan(alpha) "
+                 "one-way (x: overturned; grey: 5 %)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def _table_convergence(rows):
+    lines = ["| scheme | inputs | rejection | order theta | order a[j] | h for 1 % peak theta (s) "
+             "| h for 1 % peak a[j] (s) |", "|---|---|---|---:|---:|---:|---:|"]
+    s_th, s_a = step_for(rows, "peak_theta"), step_for(rows, "peak_a_floor")
+    for v in dict.fromkeys((r["scheme"], r["inputs"], r["reject"]) for r in rows):
+        sel = [r for r in rows if (r["scheme"], r["inputs"], r["reject"]) == v]
+        h = [r["step"] for r in sel]
+        lines.append(f"| {v[0]} | {v[1]} | {'yes' if v[2] else 'no'} | {slope(h, [r['theta'] for r in sel]):.2f} "
+                     f"| {slope(h, [r['a_floor'] for r in sel]):.2f} | {s_th[v]:g} | {s_a[v]:g} |")
+    return "\n".join(lines)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="python -m rocking.cosim.study", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--out", default="docs/img", help="folder for the plots and cosim_study.json")
+    ap.add_argument("--quick", action="store_true", help="a smaller sweep grid")
+    ap.add_argument("--workers", type=int, default=2)
+    args = ap.parse_args(argv)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    print("convergence ...", file=sys.stderr)
+    rows = convergence()
+    plot_convergence(rows, out / "cosim_convergence.png")
+    print(_table_convergence(rows))
+    mass = [1e-4, 1e-3, 1e-2, 0.05, 0.2, 0.5] if args.quick else [1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 0.03, 0.1, 0.2, 0.5]
+    freq = [0.3, 1.0, 3.0] if args.quick else [0.1, 0.3, 1.0, 3.0, 10.0]
+    sweep = coupling_sweep(mass, freq, workers=args.workers)
+    plot_sweep(sweep, out / "cosim_coupling.png")
+    print("\n| T1 p | " + " | ".join(f"mu = {m:g}" for m in mass) + " |")
+    print("|---|" + "---:|" * len(mass))
+    for fr in freq:
+        sel = sorted((r for r in sweep if r["freq_ratio"] == fr), key=lambda r: r["mass_ratio"])
+        print(f"| {fr:g} | " + " | ".join(f"{r['d_theta']:.2g} / {r['d_a_floor']:.2g}" for r in sel) + " |")
+    (out / "cosim_study.json").write_text(json.dumps({"convergence": rows, "sweep": sweep}, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
