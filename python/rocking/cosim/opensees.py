@@ -110,13 +110,15 @@ class OpenSeesStructure:
         self.ops.wipe()
 
 
-def shear_building(m, k, rayleigh):
+def shear_building(m, k, rayleigh=None, zeta=None):
     """A `build` function: the linear shear building of ShearFrame.fmu in OpenSees.
 
     Nodes 0 (the ground, fixed) to n on one horizontal degree of freedom, the
     floor masses m[i] (kg) on nodes 1..n, storey i a zeroLength spring of
-    stiffness k[i] (N/m) between nodes i-1 and i, Rayleigh damping
-    C = alpha M + beta K (rayleigh = (alpha 1/s, beta s)).
+    stiffness k[i] (N/m) between nodes i-1 and i; Rayleigh damping
+    C = alpha M + beta K (rayleigh = (alpha 1/s, beta s)) or the modal
+    damping ratio zeta in every mode (ShearFrame's `modal`, OpenSees'
+    modalDamping over all n modes).
     """
     def build(ops):
         ops.model("basic", "-ndm", 1, "-ndf", 1)
@@ -127,6 +129,10 @@ def shear_building(m, k, rayleigh):
             ops.mass(i, mi)
             ops.uniaxialMaterial("Elastic", i, ki)
             ops.element("zeroLength", i, i - 1, i, "-mat", i, "-dir", 1, "-doRayleigh", 1)
-        ops.rayleigh(rayleigh[0], 0.0, rayleigh[1], 0.0)
+        if zeta is not None:
+            ops.eigen("-fullGenLapack", len(m))
+            ops.modalDamping(zeta)
+        else:
+            ops.rayleigh(rayleigh[0], 0.0, rayleigh[1], 0.0)
 
     return build

@@ -158,7 +158,7 @@ def _typed(kind, text):
     return text
 
 
-def container_from_ssp(ssp, out_dir, step, signs="refuse", name="BlockOnFrame"):
+def container_from_ssp(ssp, out_dir, step, signs="gain", name="BlockOnFrame", sequential=False):
     """Build the container FMU `out_dir/name.fmu` from the SSP archive; returns (path, dropped)."""
     from fmu_manipulation_toolbox.assembly import AssemblyNode
 
@@ -168,15 +168,19 @@ def container_from_ssp(ssp, out_dir, step, signs="refuse", name="BlockOnFrame"):
         for source in components.values():
             (out_dir / Path(source).name).write_bytes(z.read(source))
     files = {c: Path(s).name for c, s in components.items()}
-    node = AssemblyNode(f"{name}.fmu", step_size=step, auto_link=False, auto_input=False, auto_output=False)
+    node = AssemblyNode(f"{name}.fmu", step_size=step, auto_link=False, auto_input=False, auto_output=False,
+                        sequential=sequential)
     for component in components:
         node.add_fmu(files[component])
-    dropped = []
+    dropped, gains = [], []
     for start, sconn, end, econn, factor in connections:
         if factor != 1.0:
             if signs == "refuse":
                 raise ValueError(f"{ssp}: the connection {start}.{sconn} -> {end}.{econn} has the factor "
                                  f"{factor}; the container runtime copies values as they are")
+            if signs == "gain":
+                gains.append((start, sconn, end, econn, factor))
+                continue
             dropped.append((start, sconn, end, econn, factor))
         if start and end:
             node.add_link(files[start], sconn, files[end], econn)
@@ -184,11 +188,72 @@ def container_from_ssp(ssp, out_dir, step, signs="refuse", name="BlockOnFrame"):
             node.add_input(sconn, files[end], econn)
         else:
             node.add_output(files[start], sconn, econn)
+    if gains:
+        gain_fmu(out_dir / "Gain.fmu", [g[4] for g in gains])
+        node.add_fmu("Gain.fmu")
+        for i, (start, sconn, end, econn, _) in enumerate(gains, start=1):
+            node.add_link(files[start], sconn, "Gain.fmu", f"u[{i}]")
+            node.add_link("Gain.fmu", f"y[{i}]", files[end], econn)
+            node.add_start_value("Gain.fmu", f"k[{i}]", repr(gains[i - 1][4]))
     for component, values in parameters.items():
         for key, value in values.items():
             node.add_start_value(files[component], key, _start_text(value))
     node.make_fmu(out_dir)
     return out_dir / f"{name}.fmu", dropped
+
+
+GAIN_C = Path(__file__).with_name("gain") / "gain.c"
+
+
+def gain_fmu(path, factors):
+    """Write Gain.fmu (gain/gain.c, compiled here with `cc`): outputs y[i] = k[i] u[i], k[i] = factors[i].
+
+    linux64 only (the container runtime of this machine); raises RuntimeError
+    without a C compiler.
+    """
+    import shutil
+    import subprocess
+    import tempfile
+
+    cc = shutil.which("cc")
+    if cc is None:
+        raise RuntimeError("Gain.fmu needs a C compiler (cc) to build gain/gain.c")
+    n = len(factors)
+    with tempfile.TemporaryDirectory() as tmp:
+        lib = Path(tmp) / "Gain.so"
+        subprocess.run([cc, "-O2", "-std=c99", "-Wall", "-Werror", "-shared", "-fPIC", "-fvisibility=hidden",
+                        f"-DGAIN_N={n}", "-DGAIN_K={" + ",".join(repr(float(k)) for k in factors) + "}",
+                        "-o", str(lib), str(GAIN_C)], check=True)
+        with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
+            z.writestr("modelDescription.xml", _gain_model_description(factors))
+            z.write(lib, "binaries/linux64/Gain.so")
+            z.write(GAIN_C, "sources/gain.c")
+    return Path(path)
+
+
+def _gain_model_description(factors):
+    n = len(factors)
+    rows = ['<?xml version="1.0" encoding="UTF-8"?>',
+            '<fmiModelDescription fmiVersion="2.0" modelName="Gain" guid="{rocking-gain-%d}"' % n,
+            '  description="y[i] = k[i] u[i]: the factor of an SSP connection" generationTool="rocking.cosim.ssp"'
+            ' variableNamingConvention="structured" numberOfEventIndicators="0">',
+            '  <CoSimulation modelIdentifier="Gain" canHandleVariableCommunicationStepSize="true"/>',
+            "  <ModelVariables>"]
+    for i, k in enumerate(factors, start=1):
+        rows.append(f'    <ScalarVariable name="k[{i}]" valueReference="{i - 1}" causality="parameter" '
+                    f'variability="fixed" initial="exact"><Real start="{float(k)!r}"/></ScalarVariable>')
+    for i in range(1, n + 1):
+        rows.append(f'    <ScalarVariable name="u[{i}]" valueReference="{n + i - 1}" causality="input" '
+                    'variability="continuous"><Real start="0.0"/></ScalarVariable>')
+    for i in range(1, n + 1):
+        rows.append(f'    <ScalarVariable name="y[{i}]" valueReference="{2 * n + i - 1}" causality="output" '
+                    'variability="continuous" initial="calculated"><Real/></ScalarVariable>')
+    rows += ["  </ModelVariables>", "  <ModelStructure>", "    <Outputs>"]
+    deps = [f'      <Unknown index="{2 * n + i}" dependencies="{n + i}" dependenciesKind="constant"/>'
+            for i in range(1, n + 1)]
+    rows += deps + ["    </Outputs>", "    <InitialUnknowns>"] + deps
+    rows += ["    </InitialUnknowns>", "  </ModelStructure>", "</fmiModelDescription>", ""]
+    return "\n".join(rows)
 
 
 def _start_text(value):
