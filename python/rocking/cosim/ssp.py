@@ -71,8 +71,13 @@ def _connection(start, sconn, end, econn, factor=None):
             "    </ssd:Connection>"]
 
 
-def system_structure(frame_parameters, block_parameters, floor, step):
-    """The text of SystemStructure.ssd for a block on floor `floor` of the frame."""
+def system_structure(frame_parameters, block_parameters, floor, step, explicit_gain=False):
+    """The text of SystemStructure.ssd for a block on floor `floor` of the frame.
+
+    explicit_gain: the -1 of the force connections as a third component,
+    resources/Gain.fmu (y = -u), instead of LinearTransformations: for hosts
+    that ignore those (fmpy's simulate_ssp).
+    """
     a, fx, fz = f"a[{floor}]", f"Fx[{floor}]", f"Fz[{floor}]"
     rows = ['<?xml version="1.0" encoding="UTF-8"?>',
             f'<ssd:SystemStructureDescription xmlns:ssd="{SSD_NS}" xmlns:ssc="{SSC_NS}" xmlns:ssv="{SSV_NS}"'
@@ -89,11 +94,19 @@ def system_structure(frame_parameters, block_parameters, floor, step):
     rows += _component("block", "resources/RockingBlock.fmu",
                        [("ag", "input"), ("theta", "output"), ("Fx", "output"), ("Fz", "output")],
                        block_parameters)
+    if explicit_gain:
+        rows += _component("gain", "resources/Gain.fmu",
+                           [("u[1]", "input"), ("u[2]", "input"), ("y[1]", "output"), ("y[2]", "output")],
+                           {"k[1]": -1.0, "k[2]": -1.0})
     rows += ["  </ssd:Elements>", "  <ssd:Connections>"]
     rows += _connection(None, "ag", "frame", "ag")
     rows += _connection("frame", a, "block", "ag")
-    rows += _connection("block", "Fx", "frame", fx, -1.0)
-    rows += _connection("block", "Fz", "frame", fz, -1.0)
+    if explicit_gain:
+        rows += _connection("block", "Fx", "gain", "u[1]") + _connection("gain", "y[1]", "frame", fx)
+        rows += _connection("block", "Fz", "gain", "u[2]") + _connection("gain", "y[2]", "frame", fz)
+    else:
+        rows += _connection("block", "Fx", "frame", fx, -1.0)
+        rows += _connection("block", "Fz", "frame", fz, -1.0)
     rows += _connection("block", "theta", None, "theta")
     rows += _connection("frame", a, None, "aFloor")
     rows += ["  </ssd:Connections>", "  </ssd:System>",
@@ -105,13 +118,33 @@ def system_structure(frame_parameters, block_parameters, floor, step):
     return "\n".join(rows)
 
 
-def write_ssp(path, frame_fmu, block_fmu, frame_parameters, block_parameters, floor, step):
-    """Write the SSP archive at `path` (the two FMUs copied into its resources/)."""
+def write_ssp(path, frame_fmu, block_fmu, frame_parameters, block_parameters, floor, step, explicit_gain=False):
+    """Write the SSP archive at `path` (the FMUs copied into its resources/)."""
+    import tempfile
+
     with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
-        z.writestr("SystemStructure.ssd", system_structure(frame_parameters, block_parameters, floor, step))
+        z.writestr("SystemStructure.ssd",
+                   system_structure(frame_parameters, block_parameters, floor, step, explicit_gain))
         z.write(frame_fmu, "resources/ShearFrame.fmu")
         z.write(block_fmu, "resources/RockingBlock.fmu")
+        if explicit_gain:
+            with tempfile.TemporaryDirectory() as tmp:
+                z.write(gain_fmu(Path(tmp) / "Gain.fmu", [-1.0, -1.0]), "resources/Gain.fmu")
     return Path(path)
+
+
+def fmpy_parameter_set(path):
+    """The archive's ParameterBindings as the `parameter_set` of fmpy's simulate_ssp
+    (which does not read them itself): one fmpy ParameterSet, names "component.variable"."""
+    from fmpy.ssp.ssd import Parameter, ParameterSet
+
+    _, _, parameters = read_ssp(path)
+    pset = ParameterSet(name="bindings")
+    for component, values in parameters.items():
+        for name, value in values.items():
+            kind = "Integer" if isinstance(value, int) and not isinstance(value, bool) else "Real"
+            pset.parameters.append(Parameter(name=f"{component}.{name}", type=kind, value=value))
+    return pset
 
 
 def read_ssp(path):
