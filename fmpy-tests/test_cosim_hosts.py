@@ -14,16 +14,17 @@
 
 import importlib.util
 import pathlib
-import shutil
-import subprocess
 
 import fmpy
 import numpy as np
 import pytest
 
+from rocking.cosim import hosts, ssp
 from rocking.cosim import opensees as osa
-from rocking.cosim import ssp
 from rocking.cosim.hostloop import ShearFrameFMU, Slave, couple, shear_frame_fmu
+from rocking.cosim.master import CoupledFMUs, sine_ground
+from rocking.cosim.reference import Reference
+from rocking.cosim.study import convergence_case, errors
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 M, K, FLOOR = [2e4] * 3, [2e7] * 3, 3
@@ -161,9 +162,9 @@ def test_the_ssp_file_reads_back_with_its_parameters_and_signs(ssp_system):
     assert factors[("frame", "a[3]", "block", "ag")] == 1.0
 
 
-def test_the_container_refuses_a_sign_it_cannot_apply(ssp_system, tmp_path):
+def test_the_container_refuses_a_sign_it_cannot_apply_unless_told_how(ssp_system, tmp_path):
     with pytest.raises(ValueError, match="factor -1.0"):
-        ssp.container_from_ssp(ssp_system[0], tmp_path, H)
+        ssp.container_from_ssp(ssp_system[0], tmp_path, H, signs="refuse")
 
 
 def test_the_container_fmu_reproduces_the_master_with_the_same_connections(ssp_system, fmus):
@@ -180,47 +181,87 @@ def test_the_container_fmu_reproduces_the_master_with_the_same_connections(ssp_s
     assert np.abs(got["aFloor"] - ref.a_floor).max() <= 1e-9
 
 
-def _c_host(fmus, work, force_sign):
-    if shutil.which("cc") is None:
-        pytest.skip("no C compiler (cc) on this machine")
-    exe = work / "coupled"
-    subprocess.run(["cc", "-O2", "-std=c99", "-Wall", "-Wextra", "-Werror", "-o", str(exe),
-                    str(ROOT / "fmu-rocking" / "tests" / "c_host" / "coupled.c"), "-ldl"], check=True)
-    lines = []
-    for name, fmu in (("block", fmus[1]), ("frame", fmus[0])):
-        md = fmpy.read_model_description(str(fmu))
-        unzipped = fmpy.extract(str(fmu), unzipdir=str(work / name))
-        lib = pathlib.Path(unzipped) / "binaries" / "linux64" / f"{md.coSimulation.modelIdentifier}.so"
-        lines.append(f"fmu {lib} {md.guid} file://{unzipped}/resources")
-    vr = {n: {v.name: v.valueReference for v in fmpy.read_model_description(str(f)).modelVariables}
-          for n, f in (("block", fmus[1]), ("frame", fmus[0]))}
-    lines.append("tolerance 0 1e-9")
-    lines.append(f"step {H!r} {int(round(T_END / H))}")
-    lines.append(f"integer 1 {vr['frame']['n']} 3")
-    lines.append(f"integer 1 {vr['frame']['damping']} 2")
-    lines.append(f"real 1 {vr['frame']['rayleighAlpha']} {RAYLEIGH[0]!r}")
-    lines.append(f"real 1 {vr['frame']['rayleighBeta']} {RAYLEIGH[1]!r}")
-    for i in range(3):
-        lines.append(f"real 1 {vr['frame'][f'm[{i + 1}]']} {M[i]!r}")
-        lines.append(f"real 1 {vr['frame'][f'k[{i + 1}]']} {K[i]!r}")
-    lines.append(f"link 1 {vr['frame'][f'a[{FLOOR}]']} 0 {vr['block']['ag']} 1")
-    lines.append(f"link 0 {vr['block']['Fx']} 1 {vr['frame'][f'Fx[{FLOOR}]']} {force_sign!r}")
-    lines.append(f"link 0 {vr['block']['Fz']} 1 {vr['frame'][f'Fz[{FLOOR}]']} {force_sign!r}")
-    lines.append(f"ground 1 {vr['frame']['ag']}")
-    lines.append(f"out 0 {vr['block']['theta']}")
-    lines.append(f"out 1 {vr['frame'][f'a[{FLOOR}]']}")
-    (work / "config").write_text("\n".join(lines) + "\n")
-    (work / "ground").write_text("\n".join(repr(float(a)) for a in RECORD_AG) + "\n")
-    r = subprocess.run([str(exe), str(work / "config"), str(work / "ground")], capture_output=True, text=True,
-                       timeout=120)
-    assert r.returncode == 0, r.stderr
-    return np.array([[float(x) for x in row.split()] for row in r.stdout.splitlines()])
-
-
-def test_the_c_host_reproduces_the_master(fmus, tmp_path):
-    got = _c_host(fmus, tmp_path, -1.0)
+def test_the_c_host_reproduces_the_same_scheme_bit_for_bit(fmus, tmp_path):
+    case = _case_of_this_file()
+    got = hosts.run_c_host(case, H, tmp_path, hosts.build_c_host(tmp_path))
     ref = _fmu_coupled(fmus, ground_mode="constant")
     assert np.abs(ref.theta).max() > 0.05
-    assert np.array_equal(got[:, 0], ref.t)
-    assert np.abs(got[:, 1] - ref.theta).max() <= 1e-12
-    assert np.abs(got[:, 2] - ref.a_floor).max() <= 1e-9
+    assert np.array_equal(got.time, ref.t)
+    assert np.abs(got.theta - ref.theta).max() <= 1e-12
+    assert np.abs(got.a_floor - ref.a_floor).max() <= 1e-9
+
+
+def _case_of_this_file():
+    params = {"n": 3, "damping": "rayleigh", "rayleighAlpha": RAYLEIGH[0], "rayleighBeta": RAYLEIGH[1]}
+    for i in range(3):
+        params[f"m[{i + 1}]"], params[f"k[{i + 1}]"] = M[i], K[i]
+    return dict(frame=params, block={}, floor=FLOOR, stop_time=T_END,
+                ground=lambda t: np.interp(t, RECORD_T, RECORD_AG))
+
+
+# -- every host on the convergence case of rocking.cosim.study, against its reference --
+
+@pytest.fixture(scope="module")
+def hosts_vs_reference(fmus, tmp_path_factory):
+    work = tmp_path_factory.mktemp("hosts")
+    case = convergence_case()
+    ref = Reference(**case)
+    exe = hosts.build_c_host(work)
+    out = {}
+    with CoupledFMUs(*fmus) as pair:
+        for h in (0.005, 0.0025):
+            runs = {"master": hosts.run_master(case, h, pair), "container": hosts.run_container(case, h, work),
+                    "c-host": hosts.run_c_host(case, h, work, exe), "opensees": hosts.run_opensees(case, h),
+                    "fmpy-ssp": hosts.run_fmpy_ssp(case, h, work)}
+            out[h] = {name: (res, errors(res, ref)) for name, res in runs.items()}
+    return out
+
+
+@pytest.mark.parametrize("host", ["master", "container", "c-host", "opensees", "fmpy-ssp"])
+def test_every_host_converges_to_the_reference_at_order_one(hosts_vs_reference, host):
+    coarse, fine = hosts_vs_reference[0.005][host][1], hosts_vs_reference[0.0025][host][1]
+    print(f"{host}: theta error {coarse['theta']:.2e} -> {fine['theta']:.2e}, peak theta "
+          f"{coarse['peak_theta']:.1e} -> {fine['peak_theta']:.1e}, peak a[3] {coarse['peak_a_floor']:.1e} -> "
+          f"{fine['peak_a_floor']:.1e}")
+    assert 1.6 < coarse["theta"] / fine["theta"] < 2.6
+    assert fine["peak_theta"] < 3e-3 and fine["peak_a_floor"] < 3e-3
+
+
+@pytest.mark.parametrize("host", ["container", "c-host", "opensees", "fmpy-ssp"])
+def test_every_host_agrees_with_the_master_within_the_coupling_error(hosts_vs_reference, host):
+    for h, runs in hosts_vs_reference.items():
+        master, got = runs["master"][0], runs[host][0]
+        n = min(len(master.time), len(got.time))
+        assert np.array_equal(master.time[:n], got.time[:n])
+        diff = np.abs(master.theta[:n] - got.theta[:n]).max() / np.abs(master.theta).max()
+        coupling = max(runs["master"][1]["theta"], runs[host][1]["theta"])  # each against the reference
+        print(f"{host}, h = {h}: theta differs from the master's by {diff:.2e} of its peak; the larger "
+              f"coupling error of the two {coupling:.2e}")
+        assert diff <= 1.5 * coupling
+
+
+def test_the_container_ends_cleanly_where_the_block_overturns(fmus, tmp_path):
+    case = dict(convergence_case(), ground=sine_ground(9.0, 2.0, cycles=3))
+    with CoupledFMUs(*fmus) as pair:
+        master = hosts.run_master(case, H, pair)
+    got = hosts.run_container(case, H, tmp_path)
+    assert master.overturned and got.overturned
+    # the container stops at the communication point before the overturning
+    assert master.t_overturn - H <= got.time[-1] < master.t_overturn
+
+
+def test_fmpy_simulate_ssp_ignores_bindings_and_factors_as_documented(fmus, tmp_path):
+    """What docs/cosimulation-hosts.md says of fmpy's SSP support, measured."""
+    from fmpy.ssp.simulation import simulate_ssp
+
+    frame, block = fmus
+    path = ssp.write_ssp(tmp_path / "s.ssp", frame, block, {"n": 3}, {"B": 0.4}, FLOOR, H)
+    plain = simulate_ssp(str(path), stop_time=0.2, step_size=H, input={"ag": lambda t: 3.0})
+    bound = simulate_ssp(str(path), stop_time=0.2, step_size=H, input={"ag": lambda t: 3.0},
+                         parameter_set=ssp.fmpy_parameter_set(path))
+    weight = lambda b: 1800 * 9.81 * b * 1.0 * 2.5  # the default prism, rho g B L H
+    assert plain["block.Fz"][0] == pytest.approx(weight(0.5), rel=1e-12)  # B = 0.4 not applied
+    assert bound["block.Fz"][0] == pytest.approx(weight(0.4), rel=1e-12)
+    # the -1 factor is not applied: the frame receives the block's Fx itself
+    assert np.abs(bound["block.Fx"]).max() > 0
+    assert np.array_equal(bound["frame.Fx[3]"], bound["block.Fx"])
