@@ -25,9 +25,8 @@ import math
 import numpy as np
 
 from rocking import groundmotion as gm
-from rocking import paths
 from rocking.cosim import opensees as osa
-from rocking.cosim.hostloop import Slave, couple
+from rocking.cosim.hostloop import couple, open_block
 
 BAY, STOREY, FLOORS = 6.0, 3.5, 3
 FLOOR_MASS = 30e3  # kg per floor
@@ -122,8 +121,8 @@ def run(scale=3.0, h=0.01, t_end=20.0, two_way=True, fmu=None):
     rec = gm.katnp()
     keep = rec.time <= t_end + 1e-9
     record_t, record_ag = rec.time[keep], scale * rec.acc[keep]
-    block = Slave(fmu or paths.default_fmu(), "block", {}, tolerance=1e-9)
-    weight = block.get("weight")[0]
+    block = open_block(fmu=fmu)
+    weight = block.get(block.refs(["weight"]))[0]
 
     def frame(ops):
         build(ops, weight_on_roof=weight if two_way else 0.0)

@@ -21,7 +21,7 @@ import pytest
 
 from rocking.cosim import hosts, ssp
 from rocking.cosim import opensees as osa
-from rocking.cosim.hostloop import ShearFrameFMU, Slave, couple, shear_frame_fmu
+from rocking.cosim.hostloop import ShearFrameFMU, couple, open_block, shear_frame_fmu
 from rocking.cosim.master import CoupledFMUs, sine_ground
 from rocking.cosim.reference import Reference
 from rocking.cosim.study import convergence_case, errors
@@ -43,7 +43,7 @@ def fmus(fmu_path):
 
 
 def _block(fmu, **parameters):
-    return Slave(fmu, "block", parameters, tolerance=1e-9)
+    return open_block(parameters, fmu=fmu)
 
 
 def _fmu_coupled(fmus, h=H, **kw):

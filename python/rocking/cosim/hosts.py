@@ -31,7 +31,7 @@ import numpy as np
 from .. import paths
 from . import opensees as osa
 from . import ssp
-from .hostloop import Slave, couple, shear_frame_fmu
+from .hostloop import couple, open_block, shear_frame_fmu
 from .master import CoupledFMUs
 from .reference import Reference
 from .study import convergence_case, errors
@@ -73,7 +73,7 @@ def run_master(case, h, fmus):
 def run_container(case, h, work):
     """The SSP system in the container FMU, inputs sampled at the communication points.
 
-    The loop is fmpy's FMU2Slave stepped here rather than fmpy.simulate_fmu,
+    The loop is slave.Slave (fmpy's FMU2Slave) stepped here rather than fmpy.simulate_fmu,
     which raises at the step where the block overturns and returns nothing: the
     container runtime turns the block's fmi2Discard into fmi2Error. That error,
     after a message of status Discard (the block's overturning, passed on by the
@@ -81,7 +81,7 @@ def run_container(case, h, work):
     any other error raises.
     """
     from .. import fmu as _fmu
-    from .slave import Slave as RawSlave
+    from .slave import Slave
 
     work = Path(tempfile.mkdtemp(dir=work))
     frame = enumerated(shear_frame_fmu(), case["frame"])
@@ -90,7 +90,7 @@ def run_container(case, h, work):
                          case["floor"], h)
     container, _ = ssp.container_from_ssp(path, work, h)
     t, ag = _samples(case, h)
-    fmu = RawSlave(container)
+    fmu = Slave(container)
     rows, overturned = [], False
     try:
         fmu.instantiate({}, 0.0, case["stop_time"])
@@ -192,7 +192,7 @@ def run_opensees(case, h, substeps=10):
     t, ag = _samples(case, h)
     structure = osa.OpenSeesStructure(osa.shear_building(m, k, zeta=frame["zeta"]), case["floor"], t, ag,
                                       substeps=substeps)
-    block = Slave(paths.default_fmu(), "block", case["block"], tolerance=1e-9)
+    block = open_block(case["block"])
     try:
         res = couple(structure, block, t, ag, h, case["stop_time"])
     finally:
