@@ -265,3 +265,25 @@ def test_fmpy_simulate_ssp_ignores_bindings_and_factors_as_documented(fmus, tmp_
     # the -1 factor is not applied: the frame receives the block's Fx itself
     assert np.abs(bound["block.Fx"]).max() > 0
     assert np.array_equal(bound["frame.Fx[3]"], bound["block.Fx"])
+
+
+def test_the_gain_fmu_multiplies_and_validates(tmp_path):
+    from fmpy.fmi2 import FMU2Slave
+    from fmpy.validation import validate_fmu
+
+    path = ssp.gain_fmu(tmp_path / "Gain.fmu", [-1.0, 2.5])
+    assert validate_fmu(str(path)) == []
+    md = fmpy.read_model_description(str(path))
+    gain = FMU2Slave(guid=md.guid, unzipDirectory=fmpy.extract(str(path), unzipdir=str(tmp_path / "g")),
+                     modelIdentifier="Gain", instanceName="gain")
+    gain.instantiate()
+    gain.setupExperiment(startTime=0.0)
+    gain.enterInitializationMode()
+    gain.exitInitializationMode()
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    gain.setReal([vr["u[1]"], vr["u[2]"]], [3.0, 4.0])
+    assert gain.getReal([vr["y[1]"], vr["y[2]"]]) == [-3.0, 10.0]  # before any step: direct feedthrough
+    gain.doStep(0.0, 0.1)
+    assert gain.getReal([vr["k[1]"], vr["k[2]"], vr["y[1]"], vr["y[2]"]]) == [-1.0, 2.5, -3.0, 10.0]
+    gain.terminate()
+    gain.freeInstance()

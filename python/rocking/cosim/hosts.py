@@ -36,7 +36,6 @@ from .master import CoupledFMUs
 from .reference import Reference
 from .study import convergence_case, errors
 
-C_HOST = Path(__file__).resolve().parents[3] / "fmu-rocking" / "tests" / "c_host" / "coupled.c"
 HOSTS = ("master", "container", "c-host", "opensees", "fmpy-ssp")
 STEPS = (0.01, 0.005, 0.0025, 0.00125)
 
@@ -142,7 +141,8 @@ def build_c_host(work):
     if shutil.which("cc") is None:
         raise RuntimeError("the C host needs a C compiler (cc)")
     exe = Path(work) / "coupled"
-    subprocess.run(["cc", "-O2", "-std=c99", "-Wall", "-Wextra", "-Werror", "-o", str(exe), str(C_HOST),
+    source = paths.repo() / "fmu-rocking" / "tests" / "c_host" / "coupled.c"
+    subprocess.run(["cc", "-O2", "-std=c99", "-Wall", "-Wextra", "-Werror", "-o", str(exe), str(source),
                     "-ldl"], check=True)
     return exe
 
