@@ -21,10 +21,10 @@ CASE.toml (or .json, the same tables):
     floor = 3
     step = 0.001             # communication step (s)
     stop_time = 3.0          # default: the record's end, or the sine's end + 2 s
-    scheme = "gauss-seidel"  # or "jacobi"
+    scheme = "jacobi"        # or "gauss-seidel"
     inputs = "extrapolate"   # or "constant"
     coupling = "two-way"     # or "one-way"
-    reject = true            # step rejection at impacts and contact changes
+    reject = true            # step rejection at impacts and contact changes (default)
     rtol = 1e-10             # the block's integrator tolerance
 
 Writes DIR/timehistory.csv (time, ag, theta, omega, a_floor, Fx, Fz, u[1..n]),

@@ -224,7 +224,7 @@ def plot_sweep(rows, path):
 
 def _table_convergence(rows):
     lines = ["| scheme | inputs | rejection | order theta | order a[j] | 1 % peak theta | 1 % peak a[j] "
-             "| 1 % theta(t) | 1 % a[j](t) |", "|---|---|---|---:|---:|---:|---:|---:|---:|"]
+             "| 1 % theta history | 1 % a[j] history |", "|---|---|---|---:|---:|---:|---:|---:|---:|"]
     need = [step_for(rows, k) for k in ("peak_theta", "peak_a_floor", "theta", "a_floor")]
     for v in dict.fromkeys((r["scheme"], r["inputs"], r["reject"]) for r in rows):
         sel = [r for r in rows if (r["scheme"], r["inputs"], r["reject"]) == v]
@@ -239,18 +239,31 @@ def main(argv=None):
     ap = argparse.ArgumentParser(prog="python -m rocking.cosim.study", description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", default="docs/img", help="folder for the plots and cosim_study.json")
     ap.add_argument("--quick", action="store_true", help="a smaller sweep grid")
+    ap.add_argument("--part", choices=("all", "convergence", "sweep"), default="all",
+                    help="run one study only (the other's figures in cosim_study.json are kept)")
     ap.add_argument("--workers", type=int, default=2)
     args = ap.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    print("convergence ...", file=sys.stderr)
-    rows = convergence()
-    plot_convergence(rows, out / "cosim_convergence.png")
-    print(_table_convergence(rows))
-    mass = [1e-4, 1e-3, 1e-2, 0.05, 0.2, 0.5] if args.quick else [1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 0.03, 0.1, 0.2, 0.5]
-    freq = [0.3, 1.0, 3.0] if args.quick else [0.1, 0.3, 1.0, 3.0, 10.0]
-    sweep = coupling_sweep(mass, freq, workers=args.workers)
-    plot_sweep(sweep, out / "cosim_coupling.png")
+    store = out / "cosim_study.json"
+    data = json.loads(store.read_text()) if store.is_file() else {}
+    if args.part in ("all", "convergence"):
+        print("convergence ...", file=sys.stderr)
+        data["convergence"] = convergence()
+        plot_convergence(data["convergence"], out / "cosim_convergence.png")
+        print(_table_convergence(data["convergence"]))
+    if args.part in ("all", "sweep"):
+        mass = [1e-4, 1e-3, 1e-2, 0.05, 0.2, 0.5] if args.quick else \
+            [1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 0.03, 0.1, 0.2, 0.5]
+        freq = [0.3, 1.0, 3.0] if args.quick else [0.1, 0.3, 1.0, 3.0, 10.0]
+        data["sweep"] = sweep = coupling_sweep(mass, freq, workers=args.workers)
+        plot_sweep(sweep, out / "cosim_coupling.png")
+        _print_sweep(sweep, mass, freq)
+    store.write_text(json.dumps(data, indent=1))
+    return 0
+
+
+def _print_sweep(sweep, mass, freq):
     print("\n| T1 p | " + " | ".join(f"mu = {m:g}" for m in mass) + " |")
     print("|---|" + "---:|" * len(mass))
     for fr in freq:
@@ -260,8 +273,6 @@ def main(argv=None):
     print("\none-way peak theta / thetaOv and ground amplitude (m/s2): " + ", ".join(
         f"T1 p = {fr:g}: {r['one-way']['peak_theta'] / theta_ov:.3f}, {r['amplitude']:.3g}"
         for fr in freq for r in sweep if r["freq_ratio"] == fr and r["mass_ratio"] == mass[0]))
-    (out / "cosim_study.json").write_text(json.dumps({"convergence": rows, "sweep": sweep}, indent=1))
-    return 0
 
 
 if __name__ == "__main__":
