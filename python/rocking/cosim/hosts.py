@@ -183,8 +183,9 @@ def run_c_host(case, h, work, exe, force_sign=-1.0, tolerance=1e-9):
     return SimpleNamespace(time=out[:, 0], theta=out[:, 1], a_floor=out[:, 2])
 
 
-def run_opensees(case, h, substeps=10):
-    """The frame in OpenSees (modal damping) under the block, hostloop's Jacobi loop."""
+def run_opensees(case, h, substeps=10, hold="constant"):
+    """The frame in OpenSees (modal damping) under the block, hostloop's Jacobi loop
+    (`hold`: "constant" or "linear", see hostloop.couple)."""
     frame = case["frame"]
     n = int(frame["n"])
     m = [frame[f"m[{i}]"] for i in range(1, n + 1)]
@@ -194,7 +195,7 @@ def run_opensees(case, h, substeps=10):
                                       substeps=substeps)
     block = open_block(case["block"])
     try:
-        res = couple(structure, block, t, ag, h, case["stop_time"])
+        res = couple(structure, block, t, ag, h, case["stop_time"], hold=hold)
     finally:
         block.close(), structure.close()
     return SimpleNamespace(time=res.t, theta=res.theta, a_floor=res.a_floor)
