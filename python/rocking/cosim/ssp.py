@@ -1,0 +1,301 @@
+"""The frame + block system described once as an SSP file, and a container FMU from it.
+
+`write_ssp` writes an SSP 1.0 archive (a zip): `SystemStructure.ssd` with the
+two components (ShearFrame.fmu, RockingBlock.fmu under resources/), the
+system's input `ag` and outputs `theta`, `aFloor`, the connections
+
+    frame.a[i]   -> block.ag
+    block.Fx     -> frame.Fx[i]   (LinearTransformation factor -1)
+    block.Fz     -> frame.Fz[i]   (LinearTransformation factor -1)
+
+and every parameter value as an inline ParameterSet (ssv) in each
+component's ParameterBindings.
+
+`container_from_ssp` reads that description with fmpy's SSD parser (an
+independent reader of the standard) and hands components, connections and
+parameter values to fmu-manipulation-toolbox's `AssemblyNode`, which writes
+the container FMU. The toolbox's runtime copies a connection's value as it
+is: it has no gain, so a connection with a factor other than 1 cannot be
+represented. `signs="refuse"` (the default) raises then; `signs="drop"`
+builds the container with the factors left out (a system with the body's
+reaction acting the wrong way) and returns the dropped connections, which is
+how docs/cosimulation-hosts.md checks the runtime's coupling against our
+master run with the same signs. The toolbox's own `.ssp` reader
+(`Assembly("x.ssp")`) ignores ParameterBindings and LinearTransformations
+alike; this module passes the parameters as the container's start values.
+"""
+
+import io
+import zipfile
+from pathlib import Path
+from xml.sax.saxutils import quoteattr
+
+SSD_NS = "http://ssp-standard.org/SSP1/SystemStructureDescription"
+SSC_NS = "http://ssp-standard.org/SSP1/SystemStructureCommon"
+SSV_NS = "http://ssp-standard.org/SSP1/SystemStructureParameterValues"
+
+
+def _value(name, value):
+    if isinstance(value, bool):
+        return f'<ssv:Parameter name={quoteattr(name)}><ssv:Boolean value="{str(value).lower()}"/></ssv:Parameter>'
+    if isinstance(value, int):
+        return f'<ssv:Parameter name={quoteattr(name)}><ssv:Integer value="{value}"/></ssv:Parameter>'
+    return f'<ssv:Parameter name={quoteattr(name)}><ssv:Real value="{float(value)!r}"/></ssv:Parameter>'
+
+
+def _component(name, source, connectors, parameters):
+    rows = [f'    <ssd:Component name="{name}" source="{source}" type="application/x-fmu-sharedlibrary">',
+            "      <ssd:Connectors>"]
+    for cname, kind in connectors:
+        rows.append(f'        <ssd:Connector name={quoteattr(cname)} kind="{kind}"><ssc:Real/></ssd:Connector>')
+    rows.append("      </ssd:Connectors>")
+    if parameters:
+        rows += ["      <ssd:ParameterBindings>", "        <ssd:ParameterBinding>",
+                 "          <ssd:ParameterValues>",
+                 f'            <ssv:ParameterSet version="1.0" name="{name}">', "              <ssv:Parameters>"]
+        rows += [f"                {_value(k, v)}" for k, v in parameters.items()]
+        rows += ["              </ssv:Parameters>", "            </ssv:ParameterSet>",
+                 "          </ssd:ParameterValues>", "        </ssd:ParameterBinding>",
+                 "      </ssd:ParameterBindings>"]
+    rows.append("    </ssd:Component>")
+    return rows
+
+
+def _connection(start, sconn, end, econn, factor=None):
+    s = f' startElement="{start}"' if start else ""
+    e = f' endElement="{end}"' if end else ""
+    head = f"    <ssd:Connection{s} startConnector={quoteattr(sconn)}{e} endConnector={quoteattr(econn)}"
+    if factor is None:
+        return [head + "/>"]
+    return [head + ">", f'      <ssc:LinearTransformation factor="{factor!r}" offset="0.0"/>',
+            "    </ssd:Connection>"]
+
+
+def system_structure(frame_parameters, block_parameters, floor, step, explicit_gain=False):
+    """The text of SystemStructure.ssd for a block on floor `floor` of the frame.
+
+    explicit_gain: the -1 of the force connections as a third component,
+    resources/Gain.fmu (y = -u), instead of LinearTransformations: for hosts
+    that ignore those (fmpy's simulate_ssp).
+    """
+    a, fx, fz = f"a[{floor}]", f"Fx[{floor}]", f"Fz[{floor}]"
+    rows = ['<?xml version="1.0" encoding="UTF-8"?>',
+            f'<ssd:SystemStructureDescription xmlns:ssd="{SSD_NS}" xmlns:ssc="{SSC_NS}" xmlns:ssv="{SSV_NS}"'
+            ' version="1.0" name="BlockOnFrame">',
+            '  <ssd:System name="BlockOnFrame" description="A rocking block on a floor of a shear frame">',
+            "  <ssd:Connectors>",
+            '    <ssd:Connector name="ag" kind="input"><ssc:Real/></ssd:Connector>',
+            '    <ssd:Connector name="theta" kind="output"><ssc:Real/></ssd:Connector>',
+            '    <ssd:Connector name="aFloor" kind="output"><ssc:Real/></ssd:Connector>',
+            "  </ssd:Connectors>",
+            "  <ssd:Elements>"]
+    rows += _component("frame", "resources/ShearFrame.fmu",
+                       [("ag", "input"), (fx, "input"), (fz, "input"), (a, "output")], frame_parameters)
+    rows += _component("block", "resources/RockingBlock.fmu",
+                       [("ag", "input"), ("theta", "output"), ("Fx", "output"), ("Fz", "output")],
+                       block_parameters)
+    if explicit_gain:
+        rows += _component("gain", "resources/Gain.fmu",
+                           [("u[1]", "input"), ("u[2]", "input"), ("y[1]", "output"), ("y[2]", "output")],
+                           {"k[1]": -1.0, "k[2]": -1.0})
+    rows += ["  </ssd:Elements>", "  <ssd:Connections>"]
+    rows += _connection(None, "ag", "frame", "ag")
+    rows += _connection("frame", a, "block", "ag")
+    if explicit_gain:
+        rows += _connection("block", "Fx", "gain", "u[1]") + _connection("gain", "y[1]", "frame", fx)
+        rows += _connection("block", "Fz", "gain", "u[2]") + _connection("gain", "y[2]", "frame", fz)
+    else:
+        rows += _connection("block", "Fx", "frame", fx, -1.0)
+        rows += _connection("block", "Fz", "frame", fz, -1.0)
+    rows += _connection("block", "theta", None, "theta")
+    rows += _connection("frame", a, None, "aFloor")
+    rows += ["  </ssd:Connections>", "  </ssd:System>",
+             "  <ssd:DefaultExperiment startTime=\"0.0\">",
+             f'    <ssd:Annotations><ssc:Annotation type="org.rocking.step"><Step value="{step!r}"/></ssc:Annotation>'
+             "</ssd:Annotations>",
+             "  </ssd:DefaultExperiment>",
+             "</ssd:SystemStructureDescription>", ""]
+    return "\n".join(rows)
+
+
+def write_ssp(path, frame_fmu, block_fmu, frame_parameters, block_parameters, floor, step, explicit_gain=False):
+    """Write the SSP archive at `path` (the FMUs copied into its resources/)."""
+    import tempfile
+
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
+        z.writestr("SystemStructure.ssd",
+                   system_structure(frame_parameters, block_parameters, floor, step, explicit_gain))
+        z.write(frame_fmu, "resources/ShearFrame.fmu")
+        z.write(block_fmu, "resources/RockingBlock.fmu")
+        if explicit_gain:
+            with tempfile.TemporaryDirectory() as tmp:
+                z.write(gain_fmu(Path(tmp) / "Gain.fmu", [-1.0, -1.0]), "resources/Gain.fmu")
+    return Path(path)
+
+
+def fmpy_parameter_set(path):
+    """The archive's ParameterBindings as the `parameter_set` of fmpy's simulate_ssp
+    (which does not read them itself): one fmpy ParameterSet, names "component.variable"."""
+    from fmpy.ssp.ssd import Parameter, ParameterSet
+
+    _, _, parameters = read_ssp(path)
+    pset = ParameterSet(name="bindings")
+    for component, values in parameters.items():
+        for name, value in values.items():
+            kind = "Integer" if isinstance(value, int) and not isinstance(value, bool) else "Real"
+            pset.parameters.append(Parameter(name=f"{component}.{name}", type=kind, value=value))
+    return pset
+
+
+def read_ssp(path):
+    """(components, connections, parameters) of an SSP archive.
+
+    components: {name: source}; connections: [(start element or None, start
+    connector, end element or None, end connector, factor)]; parameters:
+    {component: {name: value}} from the inline ParameterSets. fmpy's SSD
+    parser (which validates the file against the standard's schema) reads
+    components and parameters; it drops a connection's LinearTransformation,
+    so connections are read here with ElementTree.
+    """
+    import xml.etree.ElementTree as ET
+
+    from fmpy.ssp.ssd import read_ssd
+
+    ssd = read_ssd(str(path))
+    components = {e.name: e.source for e in ssd.system.elements}
+    parameters = {}
+    for e in ssd.system.elements:
+        values = parameters.setdefault(e.name, {})
+        for binding in e.parameterBindings:
+            for pset in binding.parameterValues:
+                for p in pset.parameters:
+                    values[p.name] = _typed(p.type, p.value)
+    ns = {"ssd": SSD_NS, "ssc": SSC_NS}
+    root = ET.fromstring(ssd_text(path))
+    connections = []
+    for c in root.findall("ssd:System/ssd:Connections/ssd:Connection", ns):
+        t = c.find("ssc:LinearTransformation", ns)
+        factor = float(t.get("factor", "1")) if t is not None else 1.0
+        connections.append((c.get("startElement"), c.get("startConnector"), c.get("endElement"),
+                            c.get("endConnector"), factor))
+    return components, connections, parameters
+
+
+def _typed(kind, text):
+    if kind == "Real":
+        return float(text)
+    if kind == "Integer":
+        return int(text)
+    if kind == "Boolean":
+        return text == "true"
+    return text
+
+
+def container_from_ssp(ssp, out_dir, step, signs="gain", name="BlockOnFrame", sequential=False):
+    """Build the container FMU `out_dir/name.fmu` from the SSP archive; returns (path, dropped)."""
+    from fmu_manipulation_toolbox.assembly import AssemblyNode
+
+    out_dir = Path(out_dir)
+    components, connections, parameters = read_ssp(ssp)
+    with zipfile.ZipFile(ssp) as z:
+        for source in components.values():
+            (out_dir / Path(source).name).write_bytes(z.read(source))
+    files = {c: Path(s).name for c, s in components.items()}
+    node = AssemblyNode(f"{name}.fmu", step_size=step, auto_link=False, auto_input=False, auto_output=False,
+                        sequential=sequential)
+    for component in components:
+        node.add_fmu(files[component])
+    dropped, gains = [], []
+    for start, sconn, end, econn, factor in connections:
+        if factor != 1.0:
+            if signs == "refuse":
+                raise ValueError(f"{ssp}: the connection {start}.{sconn} -> {end}.{econn} has the factor "
+                                 f"{factor}; the container runtime copies values as they are")
+            if signs == "gain":
+                gains.append((start, sconn, end, econn, factor))
+                continue
+            dropped.append((start, sconn, end, econn, factor))
+        if start and end:
+            node.add_link(files[start], sconn, files[end], econn)
+        elif end:
+            node.add_input(sconn, files[end], econn)
+        else:
+            node.add_output(files[start], sconn, econn)
+    if gains:
+        gain_fmu(out_dir / "Gain.fmu", [g[4] for g in gains])
+        node.add_fmu("Gain.fmu")
+        for i, (start, sconn, end, econn, _) in enumerate(gains, start=1):
+            node.add_link(files[start], sconn, "Gain.fmu", f"u[{i}]")
+            node.add_link("Gain.fmu", f"y[{i}]", files[end], econn)
+            node.add_start_value("Gain.fmu", f"k[{i}]", repr(gains[i - 1][4]))
+    for component, values in parameters.items():
+        for key, value in values.items():
+            node.add_start_value(files[component], key, _start_text(value))
+    node.make_fmu(out_dir)
+    return out_dir / f"{name}.fmu", dropped
+
+
+GAIN_C = Path(__file__).with_name("gain") / "gain.c"
+
+
+def gain_fmu(path, factors):
+    """Write Gain.fmu (gain/gain.c, compiled here with `cc`): outputs y[i] = k[i] u[i], k[i] = factors[i].
+
+    linux64 only (the container runtime of this machine); raises RuntimeError
+    without a C compiler.
+    """
+    import shutil
+    import subprocess
+    import tempfile
+
+    cc = shutil.which("cc")
+    if cc is None:
+        raise RuntimeError("Gain.fmu needs a C compiler (cc) to build gain/gain.c")
+    n = len(factors)
+    with tempfile.TemporaryDirectory() as tmp:
+        lib = Path(tmp) / "Gain.so"
+        subprocess.run([cc, "-O2", "-std=c99", "-Wall", "-Werror", "-shared", "-fPIC", "-fvisibility=hidden",
+                        f"-DGAIN_N={n}", "-DGAIN_K={" + ",".join(repr(float(k)) for k in factors) + "}",
+                        "-o", str(lib), str(GAIN_C)], check=True)
+        with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
+            z.writestr("modelDescription.xml", _gain_model_description(factors))
+            z.write(lib, "binaries/linux64/Gain.so")
+            z.write(GAIN_C, "sources/gain.c")
+    return Path(path)
+
+
+def _gain_model_description(factors):
+    n = len(factors)
+    rows = ['<?xml version="1.0" encoding="UTF-8"?>',
+            '<fmiModelDescription fmiVersion="2.0" modelName="Gain" guid="{rocking-gain-%d}"' % n,
+            '  description="y[i] = k[i] u[i]: the factor of an SSP connection" generationTool="rocking.cosim.ssp"'
+            ' variableNamingConvention="structured" numberOfEventIndicators="0">',
+            '  <CoSimulation modelIdentifier="Gain" canHandleVariableCommunicationStepSize="true"/>',
+            "  <ModelVariables>"]
+    for i, k in enumerate(factors, start=1):
+        rows.append(f'    <ScalarVariable name="k[{i}]" valueReference="{i - 1}" causality="parameter" '
+                    f'variability="fixed" initial="exact"><Real start="{float(k)!r}"/></ScalarVariable>')
+    for i in range(1, n + 1):
+        rows.append(f'    <ScalarVariable name="u[{i}]" valueReference="{n + i - 1}" causality="input" '
+                    'variability="continuous"><Real start="0.0"/></ScalarVariable>')
+    for i in range(1, n + 1):
+        rows.append(f'    <ScalarVariable name="y[{i}]" valueReference="{2 * n + i - 1}" causality="output" '
+                    'variability="continuous" initial="calculated"><Real/></ScalarVariable>')
+    rows += ["  </ModelVariables>", "  <ModelStructure>", "    <Outputs>"]
+    deps = [f'      <Unknown index="{2 * n + i}" dependencies="{n + i}" dependenciesKind="constant"/>'
+            for i in range(1, n + 1)]
+    rows += deps + ["    </Outputs>", "    <InitialUnknowns>"] + deps
+    rows += ["    </InitialUnknowns>", "  </ModelStructure>", "</fmiModelDescription>", ""]
+    return "\n".join(rows)
+
+
+def _start_text(value):
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return repr(value)
+
+
+def ssd_text(path):
+    """SystemStructure.ssd of an archive, as text."""
+    with zipfile.ZipFile(path) as z:
+        return io.TextIOWrapper(z.open("SystemStructure.ssd"), encoding="utf-8").read()
