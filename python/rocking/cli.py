@@ -3,6 +3,7 @@
     rocking simulate [RECORD] [--scale 1.5] [--component LABEL] [--preset NAME]
                      [--PARAM VALUE ...] [--fmu PATH] --out DIR
     rocking sweep CASES.toml --records DIR [--scales 0.5:3:0.25] --out results.parquet
+    rocking ida|msa SUITE_OR_TOML [--preset NAME] [--im PGV] --out DIR   (rocking.ida_cli)
     rocking info [--presets]
     rocking record FILE [--plot out.png]
     rocking corner ARGS...          (the Rust binary rocking-corner)
@@ -752,6 +753,9 @@ def build_parser():
     p.add_argument("--component", help="only this component (label or index)")
     p.add_argument("--plot", metavar="PNG", help="plot acceleration and velocity of each component")
     p.set_defaults(func=cmd_record)
+
+    from .ida_cli import register as register_studies
+    register_studies(sub, common)
 
     sub.add_parser("corner", help="forward the arguments to the Rust binary rocking-corner", add_help=False)
     return parser
