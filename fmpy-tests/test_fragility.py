@@ -189,7 +189,7 @@ def _study(method, **kw):
 
 @pytest.fixture(scope="module")
 def client(fmu_path):
-    with cluster.open_client(workers=2, quiet=True) as c:
+    with cluster.open_client(workers=2, quiet=True, dashboard=":0") as c:
         c.wait_for_workers(2, timeout=60)
         yield c
 

@@ -71,16 +71,17 @@ def dashboard_text(client):
 
 
 @contextlib.contextmanager
-def open_client(scheduler=None, workers=None, quiet=False):
+def open_client(scheduler=None, workers=None, quiet=False, dashboard=":8787"):
     """A Client on `scheduler` (an address), else on a LocalCluster of `workers` processes
-    (default: one per core), one thread each."""
+    (default: one per core), one thread each, its dashboard at `dashboard` (another port if
+    that one is taken)."""
     if scheduler:
         client = Client(scheduler)
         cluster = None
     else:
         n = workers or os.cpu_count() or 1
         cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                               dashboard_address=":0" if importlib.util.find_spec("bokeh") else None,
+                               dashboard_address=dashboard if importlib.util.find_spec("bokeh") else None,
                                silence_logs=40)
         client = Client(cluster)
     try:
