@@ -168,6 +168,20 @@ def test_bootstrap_interval_of_the_median():
     assert f.median_ci[0] < MEDIAN < f.median_ci[1] and f.beta_ci[0] < BETA < f.beta_ci[1]
 
 
+def test_analysis_leaves_out_a_hunt_that_failed():
+    import pandas as pd
+    rows = [dict(method="ida", body="b", record=r, im=im, overturned=im >= c, error="")
+            for r, c in (("r1", 1.0), ("r2", 2.0), ("r3", 4.0)) for im in (0.5, 0.9, 1.1, 1.9, 2.1, 3.0)]
+    rows.append(dict(method="ida", body="b", record="r4", im=0.5, overturned=None, error="FMU said no"))
+    study = Study(bodies={"b": {}}, suite={}, im=intensity.parse("PGA"))
+    entry = study.analyse(pd.DataFrame(rows), n_boot=0)["b"]
+    assert entry["records"]["r4"]["error"] == "FMU said no"
+    assert entry["records"]["r3"]["censored"] and entry["records"]["r3"]["capacity"] == 3.0
+    assert entry["records"]["r1"]["capacity"] == pytest.approx(math.sqrt(0.9 * 1.1))
+    frag = entry["fragility"]
+    assert frag.n == 3 and frag.censored == 1  # r4 is not a record of the fit
+
+
 # ---------------------------------------------------------------------------
 # The sweep on Dask
 
@@ -276,26 +290,42 @@ def _write_at2(path, rec, title):
     path.write_text("\n".join(lines) + "\n")
 
 
-def test_rocking_ida_command_runs_and_resumes(fmu_path, tmp_path):
+def test_rocking_ida_command_runs_and_resumes(client, fmu_path, tmp_path, capsys):
+    """The command on a folder of PEER AT2 files, through --scheduler (the module's
+    two-worker LocalCluster: no second cluster to start), then again: nothing left to run."""
+    from rocking.cli import main
     suite = tmp_path / "suite"
     suite.mkdir()
     _write_at2(suite / "pulse_H1.AT2", _pulse(0.5), "H1")
     _write_at2(suite / "pulse_H2.AT2", _pulse(0.8), "H2")
     body = tmp_path / "block.json"
     body.write_text(json.dumps(BLOCK))
-    exe = Path(sys.executable).parent / "rocking"
-    cmd = [str(exe), "ida", str(suite), "--params", str(body), "--im", "PGA", "--tail", "0.5",
-           "--workers", "1", "--boot", "100", "--fmu", fmu_path, "--out", str(tmp_path / "out")]
-    t0 = time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=180)
-    assert proc.returncode == 0, proc.stderr
-    assert "dashboard" in proc.stderr and "run/s" in proc.stderr
+    argv = ["ida", str(suite), "--params", str(body), "--im", "PGA", "--tail", "0.5", "--boot", "100",
+            "--scheduler", client.scheduler.address, "--fmu", fmu_path, "--out", str(tmp_path / "out")]
+    assert main(argv) == 0
+    err = capsys.readouterr().err
+    assert "dashboard" in err and "run/s" in err and "runs in" in err
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     entry = summary["bodies"]["block"]
     assert entry["median"] > 0 and entry["n"] == 2 and set(entry["records"]) == {"pulse_H1.AT2[H1]", "pulse_H2.AT2[H2]"}
     for name in ("fragility.png", "ida-block.png"):
         assert (tmp_path / "out" / name).stat().st_size > 10_000
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=180)
-    assert proc.returncode == 0 and "2 tasks, 2 already" in proc.stderr and "runs in" not in proc.stderr
+    assert main(argv) == 0
+    err = capsys.readouterr().err
+    assert "2 tasks, 2 already" in err and "runs in" not in err
     assert json.loads((tmp_path / "out" / "summary.json").read_text())["bodies"]["block"]["median"] == entry["median"]
-    assert time.perf_counter() - t0 < 120
+
+
+def test_rocking_ida_errors_are_one_line(fmu_path, tmp_path, capsys):
+    from rocking.cli import main
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(dict(BLOCK, interface="elastic", kn=1.0)))  # kn Is < W hG: refused
+    suite = REPO / "data" / "ground-motions" / "katnp-standin"
+    for extra, expected in ((["--params", str(bad)], "body bad: "),
+                            (["--preset", "dharahara-rigid", "--im", "PGD"], "--im: intensity measure 'PGD'"),
+                            (["--preset", "dharahara-rigid", "--stripes", "0:1:0.5"], "must be positive"),
+                            (["--preset", "nope"], "unknown preset 'nope'")):
+        method = "msa" if "--stripes" in extra else "ida"
+        status = main([method, str(suite), *extra, "--fmu", fmu_path, "--out", str(tmp_path / "o")])
+        lines = capsys.readouterr().err.strip().splitlines()
+        assert status == 2 and len(lines) == 1 and expected in lines[0], lines

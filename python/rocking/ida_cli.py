@@ -199,7 +199,10 @@ def cmd_study(args, _params):
         else:
             study.hunt = HuntOptions(max_runs=opts["max_runs"], tol=opts["tol"])
         store = ResultStore(out / "runs")
-        tasks = study.tasks(fmu, cluster.fmu_digest(path))
+        try:
+            tasks = study.tasks(fmu, cluster.fmu_digest(path))
+        except ValueError as exc:
+            raise CLIError(str(exc)) from None
         done = store.done()
         todo = [t for t in tasks if t[0] not in done]
         print(f"{args.method}: {len(bodies)} body(ies) x {len(suite)} record(s), IM {im.name}: "
@@ -272,8 +275,9 @@ def write_outputs(out, study, df, result, args):
             alpha=float(rows["alpha"].iloc[0]) if len(rows) else None, parameters=study.bodies[body],
             records=entry["records"], runs=int(len(rows)))
         if study.method == "ida":
-            caps = [r["capacity"] for r in entry["records"].values() if not r["censored"]]
-            cens_n = sum(r["censored"] for r in entry["records"].values())
+            fine = [r for r in entry["records"].values() if "error" not in r]
+            caps = [r["capacity"] for r in fine if not r["censored"]]
+            cens_n = sum(r["censored"] for r in fine)
             fits[body] = (f, (caps, cens_n))
             plots.plot_ida(out / f"ida-{_safe(body)}.png", rows, entry, im, f"IDA: {body}")
         else:

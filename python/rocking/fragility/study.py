@@ -54,7 +54,10 @@ class Study:
         """{body: (alpha, g)} from the FMU's calculated parameters."""
         facts = {}
         for name, params in self.bodies.items():
-            calc = fmu.calculated(params)
+            try:
+                calc = fmu.calculated(params)
+            except Exception as exc:  # noqa: BLE001 - FMUError: name the body
+                raise ValueError(f"body {name}: {exc}") from None
             facts[name] = (calc["alpha"], calc["weight"] / calc["mass"])
         return facts
 
@@ -66,6 +69,8 @@ class Study:
             alpha, g = facts[bname]
             for rname, rec in self.suite.items():
                 im_rec = self.im.of(rec, alpha=alpha, g=g)
+                if not im_rec > 0:
+                    raise ValueError(f"record {rname}: its {self.im.name} is {im_rec:g}; it cannot be scaled")
                 meta = dict(method=self.method, body=bname, record=rname, im_name=self.im.name,
                             im_record=im_rec, alpha=alpha)
                 tag = f"{bname}#{_hash(params)}|{record_id(rname, rec)}|{self.im.name}"
@@ -99,7 +104,9 @@ class Study:
     def analyse(self, df, n_boot=1000, seed=0):
         """{body: {"fragility": Fragility or None, "error": text, "records": {...}}} from the
         rows of this study's method (failed runs left out)."""
-        df = df[(df["method"] == self.method) & (df["error"] == "")]
+        df = df[df["method"] == self.method]
+        failed = df[df["error"] != ""]
+        df = df[df["error"] == ""]
         out = {}
         for body in self.bodies:
             rows = df[df["body"] == body]
@@ -107,7 +114,10 @@ class Study:
             try:
                 if self.method == "ida":
                     caps, cens = [], []
-                    for rname, r in rows.groupby("record"):
+                    broken = failed[failed["body"] == body].groupby("record")["error"].first()
+                    for rname, err in broken.items():  # a hunt that stopped on an error
+                        entry["records"][rname] = dict(capacity=math.nan, censored=True, runs=0, error=err)
+                    for rname, r in rows[~rows["record"].isin(broken.index)].groupby("record"):
                         trace = list(zip(r["im"], r["overturned"].astype(bool)))
                         cap, censored = capacity(trace)
                         entry["records"][rname] = dict(capacity=cap, censored=censored, runs=len(r))
