@@ -256,6 +256,7 @@ def test_resume_skips_finished_tasks(client, fmu_path, local_fmu, tmp_path):
     store = ResultStore(tmp_path / "runs")
     finished, _, _ = cluster.execute(client, tasks, store, stop_after=3)  # interrupted
     assert finished == 3 and len(store.done()) == 3
+    assert store.finished(t[0] for t in tasks) == store.done()  # file names match contents
     first = {f.name: f.stat().st_mtime_ns for f in store.files()}
     finished, _, failures = cluster.execute(client, tasks, store)
     assert not failures and finished == len(tasks) - 3

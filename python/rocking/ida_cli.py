@@ -203,7 +203,7 @@ def cmd_study(args, _params):
             tasks = study.tasks(fmu, cluster.fmu_digest(path))
         except ValueError as exc:
             raise CLIError(str(exc)) from None
-        done = store.done()
+        done = store.finished(t[0] for t in tasks)
         todo = [t for t in tasks if t[0] not in done]
         print(f"{args.method}: {len(bodies)} body(ies) x {len(suite)} record(s), IM {im.name}: "
               f"{len(tasks)} tasks, {len(tasks) - len(todo)} already in {store.path} (skipped)",

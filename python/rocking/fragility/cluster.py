@@ -107,7 +107,7 @@ def execute(client, tasks, store, progress=None, stop_after=None):
     one's rows as it finishes. progress(runs_done, row_count, expected_runs) after each task.
     stop_after: return after that many tasks (tests of resuming). Returns
     (tasks run, rows written, {key: error} of the tasks that failed)."""
-    done = store.done()
+    done = store.finished(t[0] for t in tasks)
     todo = [t for t in tasks if t[0] not in done]
     failures, written, finished = {}, 0, 0
     if not todo:

@@ -38,8 +38,13 @@ class ResultStore:
     def files(self):
         return sorted(self.path.glob("part-*.parquet"))
 
+    def finished(self, keys):
+        """The keys among `keys` whose file is on disk (by name: no file is read)."""
+        present = {f.name for f in self.files()}
+        return {k for k in keys if _file_name(k) in present}
+
     def done(self):
-        """Keys of the tasks whose rows are on disk."""
+        """Keys of the tasks whose rows are on disk, read from the files."""
         if not self.files():
             return set()
         keys = ds.dataset(self.files(), format="parquet", schema=SCHEMA).to_table(columns=["task"])
