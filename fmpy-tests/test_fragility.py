@@ -118,6 +118,12 @@ def test_hunt_and_fill_brackets_the_collapse_of_an_oracle():
             continue
         steps = np.diff(ims) / 0.5
         assert np.allclose(steps, options.step + options.grow * np.arange(steps.size))
+    # a collapse window below a stable range (rocking is not monotonic): when a fill run
+    # finds it, the new bracket around its lower edge is narrowed too
+    window = lambda im: (0.70 <= im < 0.8 or im >= 2.9, im)  # noqa: E731
+    trace = hunt.hunt_and_fill(window, 0.5, hunt.HuntOptions(max_runs=30, tol=0.05))
+    lo, hi = hunt.bracket(trace)
+    assert lo < 0.70 <= hi and hi / lo < 1.05, trace
     trace = hunt.hunt_and_fill(lambda im: (False, im), 0.5, options)
     assert hunt.capacity(trace) == (max(t[0] for t in trace), True)
     trace = hunt.hunt_and_fill(lambda im: (im >= 0.2, im), 1.0, options)  # the first run collapses

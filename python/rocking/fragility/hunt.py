@@ -11,7 +11,8 @@ the intensities at which one record is run, chosen from the outcomes so far.
 2. bracket: bisection (in log) between the highest non-collapse below the
    lowest collapse and that collapse, until hi / lo < 1 + tol;
 3. fill: the runs left of the budget go in the largest gaps (in log) below the
-   bracket, for the shape of the IDA curve.
+   bracket, for the shape of the IDA curve; a fill run that overturns makes a new,
+   lower bracket, which is narrowed first.
 
 A rocking body may overturn at one intensity and stand at a higher one; the
 bracket is always the first collapse found from below (the "first flatline").
@@ -82,15 +83,12 @@ def hunt_and_fill(collapses, start, options=HuntOptions()):
                 break
             if run(im, "hunt"):
                 break
-    # 2. bracket
+    # 2. bracket, 3. fill: the bracket first, also when a fill run collapsed below it
     while len(trace) < o.max_runs:
         lo, hi = bracket(trace)
-        if lo is None or hi is None or hi / lo < 1 + o.tol:
-            break
-        run(math.sqrt(lo * hi), "bracket")
-    # 3. fill
-    while len(trace) < o.max_runs:
-        lo, hi = bracket(trace)
+        if lo is not None and hi is not None and hi / lo >= 1 + o.tol:
+            run(math.sqrt(lo * hi), "bracket")
+            continue
         top = lo if hi is not None else None
         ims = sorted({t[0] for t in trace if top is None or t[0] <= top})
         if len(ims) < 2:
