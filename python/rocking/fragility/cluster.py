@@ -17,7 +17,6 @@ import hashlib
 import importlib.util
 import os
 import sys
-import time
 from pathlib import Path
 
 from distributed import Client, LocalCluster, WorkerPlugin, as_completed
@@ -140,9 +139,3 @@ def execute(client, tasks, store, progress=None, stop_after=None):
             client.cancel(list(by_future))
     return finished, written, failures
 
-
-def wait_for_workers(client, n, timeout=60):
-    """Block until `n` workers are up (a LocalCluster's start)."""
-    t0 = time.monotonic()
-    client.wait_for_workers(n, timeout=timeout)
-    return time.monotonic() - t0

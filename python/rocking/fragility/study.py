@@ -87,8 +87,7 @@ class Study:
             if self.method == "ida":
                 hunt = dict(vars(self.hunt))
                 # first run where the rigid body would just uplift: PGA = g tan(alpha)
-                start = self.im.of(job["record"], alpha=meta["alpha"], g=g) \
-                    * g * math.tan(meta["alpha"]) / job["record"].pga
+                start = meta["im_record"] * g * math.tan(meta["alpha"]) / job["record"].pga
                 key = f"ida|{tag}|{_hash(hunt)}|{salt}"
                 meta["task"] = key
                 out.append((key, runner.run_hunt, (digest, job, start, hunt, opts), self.hunt.max_runs))
