@@ -12,7 +12,8 @@ built by `cargo xtask fmu`) through fmpy, read strong-motion records, and the
 - `parametric`: `run_grid` (cases x records x scales -> pandas DataFrame);
 - `cases`: the Dharahara Tower (docs/model.md §4) and the blocks of the paper's Fig. 15;
 - `presets`: those cases by name (`dharahara-F170-fm5`, `fig15-alpha0.20-costa`, ...);
-- `cli`: the `rocking` command (simulate, sweep, info, record, corner);
+- `fragility`: IDA (hunt-and-fill) and multiple stripes on Dask, lognormal fragility fits;
+- `cli`: the `rocking` command (simulate, sweep, ida, msa, info, record, corner);
 - `paths`: where the repository's records and FMU are.
 """
 

@@ -3,6 +3,7 @@
     rocking simulate [RECORD] [--scale 1.5] [--component LABEL] [--preset NAME]
                      [--PARAM VALUE ...] [--fmu PATH] --out DIR
     rocking sweep CASES.toml --records DIR [--scales 0.5:3:0.25] --out results.parquet
+    rocking ida|msa SUITE_OR_TOML [--preset NAME] [--im PGV] --out DIR   (fragility on Dask)
     rocking info [--presets]
     rocking record FILE [--plot out.png]
     rocking corner ARGS...          (the Rust binary rocking-corner)
@@ -27,6 +28,7 @@ COMMANDS = (
     "sweep",
     "info",
     "record",
+    "ida",  # registers both `ida` and `msa`
     "corner",
     "cosim",
 )

@@ -1,0 +1,93 @@
+"""The runs of a study, as they execute in a worker: one FMU per process, rows out.
+
+`run_once` is the one place a study calls the FMU (`RockingFMU.simulate`); a
+faster stepping loop behind that method serves the studies unchanged. The
+rows carry only what a fragility needs (no time histories): overturned,
+t_overturn, peak |theta| / alpha, and the run's wall time and error.
+
+A chunk of stripe runs (`run_stripes`) and one record's hunt-and-fill
+(`run_hunt`, sequential by nature) are the tasks; both never raise for a
+failed run (the error is in the row).
+"""
+
+import math
+import os
+import socket
+import threading
+import time
+
+from .hunt import HuntOptions, hunt_and_fill
+
+_FMUS = {}  # the RockingFMU of this process, by FMU digest
+_LOCK = threading.Lock()  # one run at a time per process (RockingFMU is not thread-safe)
+
+
+def install_fmu(digest, fmu):
+    """Make `fmu` (a RockingFMU) the one this process runs for `digest`."""
+    _FMUS[digest] = fmu
+
+
+def process_fmu(digest, path=None):
+    """The RockingFMU of this process for `digest`, opened from `path` on first use."""
+    fmu = _FMUS.get(digest)
+    if fmu is None:
+        if path is None:
+            raise RuntimeError("the FMU was not loaded in this worker (the study's worker plugin is missing)")
+        from ..fmu import RockingFMU
+        fmu = _FMUS[digest] = RockingFMU(path)
+    return fmu
+
+
+def run_once(fmu, params, record, scale, opts):
+    """One run: (overturned, t_overturn, peak |theta|/alpha, calculated) of `params` under
+    `record` x `scale`, simulated to the record's end plus opts['tail'] s."""
+    stop = record.duration + opts.get("tail", 0.0)
+    run = fmu.simulate(params, record=record, scale=scale, stop_time=stop, rtol=opts.get("rtol"),
+                       outputs=("thetaOverAlpha",))
+    return run.overturned, run.t_overturn, run.peak_theta_over_alpha, run.calculated
+
+
+def _row(job, scale, im, phase, fmu, opts):
+    t0 = time.perf_counter()
+    row = dict(job["meta"], scale=float(scale), im=float(im), phase=phase, overturned=None,
+               t_overturn=math.nan, peak_theta_over_alpha=math.nan, error="",
+               worker=f"{socket.gethostname()}:{os.getpid()}")
+    try:
+        with _LOCK:
+            overturned, t_ov, peak, _ = run_once(fmu, job["params"], job["record"], scale, opts)
+        row.update(overturned=bool(overturned), t_overturn=float(t_ov), peak_theta_over_alpha=float(peak))
+    except Exception as exc:  # noqa: BLE001 - the row says what failed
+        row["error"] = " ".join(str(exc).split())[:500]
+    row["wall_s"] = time.perf_counter() - t0
+    return row
+
+
+def run_stripes(digest, job, stripes, opts):
+    """Rows of `job` (params, record, meta with im_record) at the intensities `stripes`."""
+    fmu = process_fmu(digest, opts.get("fmu_path"))
+    return [_row(job, im / job["meta"]["im_record"], im, "stripe", fmu, opts) for im in stripes]
+
+
+def run_hunt(digest, job, start, hunt, opts):
+    """Rows of one record's hunt-and-fill from intensity `start` (HuntOptions fields in `hunt`)."""
+    fmu = process_fmu(digest, opts.get("fmu_path"))
+    rows = []
+
+    def collapses(im):
+        row = _row(job, im / job["meta"]["im_record"], im, "", fmu, opts)
+        rows.append(row)
+        if row["error"]:
+            raise _RunFailed(row["error"])
+        return row["overturned"], row["peak_theta_over_alpha"]
+
+    try:
+        trace = hunt_and_fill(collapses, start, HuntOptions(**hunt))
+        for row, (_, _, _, phase) in zip(rows, trace):
+            row["phase"] = phase
+    except _RunFailed:
+        pass  # the failed row ends the hunt; it is kept and reported
+    return rows
+
+
+class _RunFailed(Exception):
+    pass
