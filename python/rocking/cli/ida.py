@@ -104,7 +104,7 @@ def _read_study_file(path):
 
 
 def _body(fmu, table, where):
-    from . import presets as presets_module
+    from .. import presets as presets_module
     params = {}
     preset_name = table.get("preset")
     if preset_name is not None:
@@ -120,8 +120,8 @@ def _body(fmu, table, where):
 
 def gather(args, fmu):
     """(bodies, suite, im, options) from the command line and the study file."""
-    from .fragility import intensity
-    from .fragility.suite import load_suite
+    from ..fragility import intensity
+    from ..fragility.suite import load_suite
     from .common import read_params_file
 
     source = Path(args.source)
@@ -185,10 +185,10 @@ def _pick(args, data, name, default):
 # The command
 
 def cmd_study(args, _params):
-    from .fragility import cluster
-    from .fragility.hunt import HuntOptions
-    from .fragility.store import ResultStore
-    from .fragility.study import Study
+    from ..fragility import cluster
+    from ..fragility.hunt import HuntOptions
+    from ..fragility.store import ResultStore
+    from ..fragility.study import Study
 
     out = Path(args.out)
     path = fmu_path(args.fmu)
@@ -225,7 +225,7 @@ def run_tasks(args, fmu_file, todo, store):
     """Run `todo` on the cluster with a progress bar; {key: error} of the tasks that failed."""
     from tqdm import tqdm
 
-    from .fragility import cluster
+    from ..fragility import cluster
 
     with cluster.open_client(args.scheduler, args.workers) as client:
         cluster.register_fmu(client, fmu_file)
@@ -252,7 +252,7 @@ def _safe(name):
 
 def write_outputs(out, study, df, result, args):
     """summary.json, the plots; returns the printed summary."""
-    from .fragility import plots
+    from ..fragility import plots
 
     failed = df[df["error"] != ""]
     lines, bodies_json, fits = [], {}, {}
