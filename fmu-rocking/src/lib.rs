@@ -11,6 +11,7 @@
 //! the same file and generates the XML and its [`GUID`] from it.
 
 pub mod description;
+pub mod params;
 pub mod slave;
 
 #[cfg(test)]
