@@ -13,7 +13,8 @@
 //! - [`logging`]: the host logger, categories and `fmi2SetDebugLogging`;
 //! - [`bytes`]: the checked byte format of serialized FMU states;
 //! - [`ffi`]: pointer checks, panic barriers and the C-facing functions;
-//! - [`uri`]: the resource location as a path.
+//! - [`uri`]: the resource location as a path;
+//! - `test_host` (feature `test-host`): an in-process host for FMU tests.
 //!
 //! Instances share nothing (no global mutable state), so any number of them
 //! can run in any threads.
@@ -27,6 +28,8 @@ pub mod logging;
 pub mod machine;
 pub mod slave;
 pub mod step;
+#[cfg(feature = "test-host")]
+pub mod test_host;
 pub mod types;
 pub mod uri;
 pub mod values;
