@@ -14,9 +14,6 @@ pub mod description;
 pub mod params;
 pub mod slave;
 
-#[cfg(test)]
-mod tests;
-
 pub use slave::RockingSlave;
 
 /// The GUID of the `modelDescription.xml` this binary ships with (generated
