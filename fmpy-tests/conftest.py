@@ -1,7 +1,7 @@
 """Fixtures for the RockingBlock FMU tests.
 
 Nothing is built here: the test command runs `cargo xtask fmu` first, which
-writes target/fmu/RockingBlock.fmu and target/release/examples/run_direct.
+writes target/fmu/RockingBlock.fmu and target/release/run_direct.
 """
 
 import os
@@ -14,7 +14,7 @@ TARGET = pathlib.Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target"))
 if not TARGET.is_absolute():
     TARGET = ROOT / TARGET
 FMU = TARGET / "fmu" / "RockingBlock.fmu"
-RUN_DIRECT = TARGET / "release" / "examples" / "run_direct"
+RUN_DIRECT = TARGET / "release" / "run_direct"
 
 
 def _require(path: pathlib.Path, what: str) -> pathlib.Path:

@@ -11,8 +11,8 @@
 #       default 1 x 400). Fails on any memcheck error or definite/indirect
 #       leak. This is what tools/test.sh runs (about 1 minute).
 #   tools/memcheck.sh --suites
-#       every test binary of fmu-rocking and fmi2-export, and the root crate's
-#       tests/fmu_import.rs (which dlopens the packaged FMU), under memcheck
+#       every test binary of fmu-rocking (fmu_import among them, which dlopens
+#       the packaged FMU) and fmi2-export, under memcheck
 #       (release profile, each in its package's directory; PROPTEST_CASES=16;
 #       at most SUITE_TIMEOUT=1800 s each; about 6 minutes).
 #   tools/memcheck.sh --fmpy
@@ -55,7 +55,7 @@ for line in sys.stdin:
 status=0
 case "${1:-}" in
 --suites)
-  cargo xtask fmu >/dev/null # tests/fmu_import.rs loads the packaged FMU
+  cargo xtask fmu >/dev/null # fmu-rocking/tests/fmu_import.rs loads the packaged FMU
   export PROPTEST_CASES=${PROPTEST_CASES:-16}
   root=$PWD
   while read -r name exe dir; do
@@ -69,7 +69,7 @@ case "${1:-}" in
     fi
     echo "-- $name: $verdict in $(($(date +%s) - start)) s ($(grep -h "test result" "$log.out" | head -1))"
     summary "$log"
-  done < <(test_binaries -p fmu-rocking -p fmi2-export; test_binaries -p rocking --test fmu_import)
+  done < <(test_binaries -p fmu-rocking -p fmi2-export)
   ;;
 --fmpy)
   tools/venv.sh

@@ -1,13 +1,12 @@
 //! The rocking model as an FMI 2.0 co-simulation slave: parameters from the
 //! stored values, outputs from `rocking::dynamics`, one `advance` per step.
 
+use crate::description::{vr, ROCKING_BLOCK};
 use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
-use fmi2_export::model_description::rocking_block::{enums, vr, ROCKING_BLOCK};
 use fmi2_export::model_description::ModelDescription;
 use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Values};
 use rocking::dynamics::{GroundInput, OutputRates, Outputs, Simulator, State};
-use rocking::model::{LawKind, MassKind, ShapeKind};
-use rocking::{Formulation, Params, Regime, Restitution};
+use rocking::{Params, Regime};
 
 /// Largest |ag| a step accepts, m/s2 (far beyond any ground motion; the
 /// arithmetic of the equations of motion overflows around 1e200).
@@ -26,75 +25,9 @@ pub struct RockingSlave {
     rates: Option<(u64, u64, OutputRates)>,
 }
 
-fn enum_value<T>(name: &str, x: i32, table: &[(i32, T)]) -> Result<T, String>
-where
-    T: Copy,
-{
-    table
-        .iter()
-        .find(|(v, _)| *v == x)
-        .map(|(_, t)| *t)
-        .ok_or_else(|| format!("{name} = {x}: not an item of its enumeration"))
-}
-
-/// The physics parameters from the stored values.
+/// The physics parameters from the stored values (table: [`crate::params`]).
 pub fn params(v: Values<'_>) -> Result<Params, String> {
-    use enums::*;
-    Ok(Params {
-        shape: enum_value(
-            "shape",
-            v.integer(vr::SHAPE),
-            &[
-                (SOLID_RECTANGLE, ShapeKind::SolidRectangle),
-                (HOLLOW_RECTANGLE, ShapeKind::HollowRectangle),
-                (SOLID_CIRCLE, ShapeKind::SolidCircle),
-                (HOLLOW_CIRCLE, ShapeKind::HollowCircle),
-            ],
-        )?,
-        b: v.real(vr::B),
-        l: v.real(vr::L),
-        t: v.real(vr::T),
-        ro: v.real(vr::RO),
-        ri: v.real(vr::RI),
-        mass_model: enum_value(
-            "massModel",
-            v.integer(vr::MASS_MODEL),
-            &[(PRISM, MassKind::Prism), (LUMPED, MassKind::Lumped)],
-        )?,
-        h: v.real(vr::H),
-        rho: v.real(vr::RHO),
-        w: v.real(vr::W),
-        hg: v.real(vr::HG),
-        ic: v.real(vr::IC),
-        interface: enum_value(
-            "interface",
-            v.integer(vr::INTERFACE),
-            &[
-                (RIGID, LawKind::Rigid),
-                (ELASTIC, LawKind::Elastic),
-                (ELASTO_PLASTIC, LawKind::ElastoPlastic),
-            ],
-        )?,
-        kn: v.real(vr::KN),
-        fm: v.real(vr::FM),
-        formulation: enum_value(
-            "formulation",
-            v.integer(vr::FORMULATION),
-            &[
-                (COSTA, Formulation::Costa),
-                (SHIFTING_PIVOT, Formulation::ShiftingPivot),
-            ],
-        )?,
-        restitution: enum_value(
-            "restitution",
-            v.integer(vr::RESTITUTION),
-            &[(HOUSNER, Restitution::Housner), (GIVEN, Restitution::Given)],
-        )?,
-        eta: v.real(vr::ETA),
-        g: v.real(vr::G),
-        theta0: v.real(vr::THETA),
-        omega0: v.real(vr::OMEGA),
-    })
+    crate::params::params(|r| v.real(r), |r| v.integer(r))
 }
 
 fn regime_name(r: Regime) -> &'static str {

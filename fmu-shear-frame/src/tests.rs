@@ -3,68 +3,14 @@
 //! The physics is checked in `shear-frame/tests` and, through the packaged
 //! FMU, in `fmpy-tests/test_shear_frame.py`.
 
-use std::ffi::{c_char, c_void, CStr, CString};
-use std::ptr;
-use std::sync::Mutex;
-
-use fmi2_export::model_description::shear_frame::vr;
+use crate::description::vr;
+use fmi2_export::test_host::{self, logged, LOG};
 use fmi2_export::types::*;
 
 use crate::*;
 
-static LOG: Mutex<Vec<(i32, String)>> = Mutex::new(Vec::new());
-
-extern "C" fn logger(
-    _env: *mut c_void,
-    _name: *const c_char,
-    status: fmi2Status,
-    _category: *const c_char,
-    message: *const c_char,
-) {
-    let m = unsafe { CStr::from_ptr(message) }
-        .to_string_lossy()
-        .into_owned();
-    LOG.lock().unwrap().push((status, m));
-}
-
 fn instantiate() -> fmi2Component {
-    let name = CString::new("frame").unwrap();
-    let guid = CString::new(GUID).unwrap();
-    let callbacks = Box::leak(Box::new(fmi2CallbackFunctions {
-        // SAFETY: same ABI for calls without variadic arguments (x86-64 SysV).
-        logger: Some(unsafe {
-            std::mem::transmute::<
-                extern "C" fn(*mut c_void, *const c_char, fmi2Status, *const c_char, *const c_char),
-                fmi2CallbackLogger,
-            >(logger)
-        }),
-        allocateMemory: None,
-        freeMemory: None,
-        stepFinished: None,
-        componentEnvironment: ptr::null_mut(),
-    }));
-    let c = unsafe {
-        fmi2Instantiate(
-            name.as_ptr(),
-            fmi2CoSimulation,
-            guid.as_ptr(),
-            ptr::null(),
-            callbacks,
-            0,
-            0,
-        )
-    };
-    assert!(!c.is_null());
-    c
-}
-
-/// Whether an error message containing `s` was logged (tests run in
-/// parallel and share the log).
-fn logged(s: &str) -> bool {
-    LOG.lock()
-        .unwrap()
-        .iter()
-        .any(|(st, m)| *st == fmi2Error && m.contains(s))
+    test_host::instantiate::<crate::ShearFrameSlave>("frame")
 }
 
 fn set_real(c: fmi2Component, r: u32, x: f64) {

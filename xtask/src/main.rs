@@ -19,7 +19,7 @@
 //!   mingw-w64. Without that Rust target or `x86_64-w64-mingw32-gcc` the FMU
 //!   has no win64 folder and a line says so.
 //!
-//! The native build (`target/release`) also makes the `run_direct` example
+//! The native build (`target/release`) also makes the `run_direct` binary
 //! (the Rust engine run directly, for the fmpy tests' comparisons).
 
 use std::env;
@@ -40,22 +40,22 @@ struct Model {
     lib: &'static str,
     /// `modelIdentifier`: the archive and binary names.
     identifier: &'static str,
-    /// Examples built with the native release library.
-    examples: &'static [&'static str],
+    /// Binaries built with the native release library.
+    bins: &'static [&'static str],
 }
 
 const ROCKING_BLOCK: Model = Model {
     package: "fmu-rocking",
     lib: "fmu_rocking",
     identifier: "RockingBlock",
-    examples: &["run_direct"],
+    bins: &["run_direct"],
 };
 
 const SHEAR_FRAME: Model = Model {
     package: "fmu-shear-frame",
     lib: "fmu_shear_frame",
     identifier: "ShearFrame",
-    examples: &[],
+    bins: &[],
 };
 
 /// The FMUs `cargo xtask fmu` writes.
@@ -93,7 +93,7 @@ fn usage() {
          tasks:\n  \
          fmu          build the release libraries for linux64 (glibc 2.17) and win64 and write\n               \
          target/fmu/RockingBlock.fmu, target/fmu/ShearFrame.fmu (and\n               \
-         target/release/examples/run_direct)\n  \
+         target/release/run_direct)\n  \
          shear-frame  only target/fmu/ShearFrame.fmu\n  \
          crosscheck   the FMUs, then RockingBlock's FMI cross-check artefacts (FMU, input,\n               \
          reference results from the engine run directly, options, README) under\n               \
@@ -191,8 +191,8 @@ fn cargo() -> Command {
 fn build(model: &Model) -> Res<Built> {
     let mut cmd = cargo();
     cmd.args(["build", "--release", "--package", model.package, "--lib"]);
-    for e in model.examples {
-        cmd.args(["--example", e]);
+    for b in model.bins {
+        cmd.args(["--bin", b]);
     }
     let messages = cargo_messages(cmd, model)?;
     let out_dir = messages

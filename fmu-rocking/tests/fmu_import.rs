@@ -2,7 +2,8 @@
 //! master does, independently of the FMU's own crates: unzip, read
 //! `modelDescription.xml`, `dlopen` the binary, resolve every FMI 2.0
 //! co-simulation function, and run a free-rocking case, which must equal the
-//! engine run directly (this crate) bit for bit.
+//! engine run directly (crate `rocking`) bit for bit. It uses neither
+//! `fmu_rocking` nor `fmi2-export`.
 //!
 //! The test packages the FMU itself first (`cargo xtask fmu`, a no-op when
 //! it is up to date), so it never runs against a stale archive and needs no
@@ -14,7 +15,7 @@
 //! depends on `fmi-sys`, whose build script runs bindgen and needs libclang
 //! (`tools/test.sh` installs Debian's libclang-dev), and it would add bindgen,
 //! clang-sys, its own zip and an XML stack to every `cargo test` of the
-//! physics crate. This libloading host stays: it runs without libclang,
+//! workspace. This libloading host stays: it runs without libclang,
 //! checks that every FMI 2.0 co-simulation function is exported (the `fmi`
 //! crate's binding tolerates a missing symbol until it is called, and it
 //! wraps neither `fmi2SetRealInputDerivatives`, `fmi2GetRealOutputDerivatives`
@@ -77,7 +78,10 @@ extern "C" fn logger(
 
 /// Packages the FMU (`cargo xtask fmu`) and returns the archive's path.
 fn fmu_path() -> PathBuf {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    // the workspace root, where `cargo xtask` is defined and `target/` lives
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("fmu-rocking is a folder of the workspace");
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let status = std::process::Command::new(cargo)
         .current_dir(root)

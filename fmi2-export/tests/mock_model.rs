@@ -2,12 +2,12 @@
 //! needs nothing of rocking, and to test what the real model never does:
 //! panics inside the model.
 
-use std::ffi::{c_char, c_void, CStr, CString};
+use std::ffi::CString;
 use std::ptr;
-use std::sync::Mutex;
 
 use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
 use fmi2_export::model_description::*;
+use fmi2_export::test_host::{self, logged};
 use fmi2_export::types::*;
 use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Values};
 
@@ -180,59 +180,8 @@ impl Slave for Mock {
 
 fmi2_export::export_fmi2!(Mock);
 
-static LOG: Mutex<Vec<(i32, String)>> = Mutex::new(Vec::new());
-
-extern "C" fn logger(
-    _env: *mut c_void,
-    _name: *const c_char,
-    status: fmi2Status,
-    _category: *const c_char,
-    message: *const c_char,
-) {
-    let m = unsafe { CStr::from_ptr(message) }
-        .to_string_lossy()
-        .into_owned();
-    LOG.lock().unwrap().push((status, m));
-}
-
 fn instantiate() -> fmi2Component {
-    let name = CString::new("mock").unwrap();
-    let guid = CString::new(GUID).unwrap();
-    let callbacks = Box::leak(Box::new(fmi2CallbackFunctions {
-        // SAFETY: same ABI for calls without variadic arguments (x86-64 SysV).
-        logger: Some(unsafe {
-            std::mem::transmute::<
-                extern "C" fn(*mut c_void, *const c_char, fmi2Status, *const c_char, *const c_char),
-                fmi2CallbackLogger,
-            >(logger)
-        }),
-        allocateMemory: None,
-        freeMemory: None,
-        stepFinished: None,
-        componentEnvironment: ptr::null_mut(),
-    }));
-    let c = unsafe {
-        fmi2Instantiate(
-            name.as_ptr(),
-            fmi2CoSimulation,
-            guid.as_ptr(),
-            ptr::null(),
-            callbacks,
-            0,
-            0,
-        )
-    };
-    assert!(!c.is_null());
-    c
-}
-
-/// Whether an error message containing `s` was logged (tests run in
-/// parallel and share the log).
-fn logged(s: &str) -> bool {
-    LOG.lock()
-        .unwrap()
-        .iter()
-        .any(|(st, m)| *st == fmi2Error && m.contains(s))
+    test_host::instantiate::<Mock>("mock")
 }
 
 #[test]

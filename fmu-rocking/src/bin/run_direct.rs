@@ -1,4 +1,5 @@
-//! The Rust engine run directly (no FMI), for comparisons with the FMU.
+//! The Rust engine run directly (no FMI), for comparisons with the FMU: the
+//! same parameter table as the FMU (`fmu_rocking::params`).
 //!
 //! ```text
 //! run_direct [NAME=VALUE ...] [--tolerance RTOL] [--start T0] --steps FILE
@@ -17,11 +18,11 @@ use std::env;
 use std::fs;
 use std::process::exit;
 
-use fmi2_export::model_description::rocking_block::{enums, ROCKING_BLOCK};
 use fmi2_export::model_description::Type;
+use fmu_rocking::description::ROCKING_BLOCK;
+use fmu_rocking::params::{self, Field};
 use rocking::dynamics::{GroundInput, Simulator, State};
-use rocking::model::{LawKind, MassKind, ShapeKind};
-use rocking::{Formulation, Params, Restitution};
+use rocking::Params;
 
 fn die(msg: String) -> ! {
     eprintln!("run_direct: {msg}");
@@ -39,9 +40,7 @@ fn number(name: &str, s: &str) -> f64 {
 
 /// An enumeration value by item name or number, checked against the table.
 fn item(name: &str, s: &str) -> i32 {
-    let v = ROCKING_BLOCK
-        .variable(name)
-        .unwrap_or_else(|| die(format!("unknown variable {name}")));
+    let v = ROCKING_BLOCK.variable(name).expect("a field's variable");
     let Type::Enumeration { declared_type, .. } = v.ty else {
         die(format!("{name} is no enumeration"))
     };
@@ -53,59 +52,14 @@ fn item(name: &str, s: &str) -> i32 {
         .unwrap_or_else(|| die(format!("{name} = {s}: not an item of {declared_type}")))
 }
 
+/// `NAME=VALUE`: the field of the parameter or start value `name`.
 fn set(p: &mut Params, name: &str, s: &str) {
-    use enums::*;
-    match name {
-        "shape" => {
-            p.shape = match item(name, s) {
-                SOLID_RECTANGLE => ShapeKind::SolidRectangle,
-                HOLLOW_RECTANGLE => ShapeKind::HollowRectangle,
-                SOLID_CIRCLE => ShapeKind::SolidCircle,
-                _ => ShapeKind::HollowCircle,
-            }
+    match params::field(name) {
+        Some((_, Field::Real(set))) => set(p, number(name, s)),
+        Some((_, Field::Enumeration(set))) => {
+            set(p, item(name, s)).expect("an item of the table");
         }
-        "massModel" => {
-            p.mass_model = match item(name, s) {
-                PRISM => MassKind::Prism,
-                _ => MassKind::Lumped,
-            }
-        }
-        "interface" => {
-            p.interface = match item(name, s) {
-                RIGID => LawKind::Rigid,
-                ELASTIC => LawKind::Elastic,
-                _ => LawKind::ElastoPlastic,
-            }
-        }
-        "formulation" => {
-            p.formulation = match item(name, s) {
-                COSTA => Formulation::Costa,
-                _ => Formulation::ShiftingPivot,
-            }
-        }
-        "restitution" => {
-            p.restitution = match item(name, s) {
-                HOUSNER => Restitution::Housner,
-                _ => Restitution::Given,
-            }
-        }
-        "B" => p.b = number(name, s),
-        "L" => p.l = number(name, s),
-        "t" => p.t = number(name, s),
-        "Ro" => p.ro = number(name, s),
-        "Ri" => p.ri = number(name, s),
-        "H" => p.h = number(name, s),
-        "rho" => p.rho = number(name, s),
-        "W" => p.w = number(name, s),
-        "hG" => p.hg = number(name, s),
-        "Ic" => p.ic = number(name, s),
-        "kn" => p.kn = number(name, s),
-        "fm" => p.fm = number(name, s),
-        "eta" => p.eta = number(name, s),
-        "g" => p.g = number(name, s),
-        "theta" => p.theta0 = number(name, s),
-        "omega" => p.omega0 = number(name, s),
-        _ => die(format!("unknown parameter {name}")),
+        None => die(format!("unknown parameter {name}")),
     }
 }
 

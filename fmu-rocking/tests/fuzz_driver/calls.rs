@@ -1,0 +1,432 @@
+//! The driver's FMI calls on one instance: life cycle, get/set, stepping,
+//! status.
+
+use super::*;
+use Machine as M;
+
+impl Driver {
+    pub(crate) fn instantiate(&mut self, k: u8, spec: &InstSpec) {
+        let k = k as usize % SLOTS;
+        if self.slots[k].is_some() {
+            // Instantiating into a used slot would lose the pointer: free first.
+            self.free(k as u8);
+        }
+        let name: Option<Vec<u8>> = match &spec.name {
+            Name::Null => None,
+            Name::Empty => Some(Vec::new()),
+            Name::Plain => Some(format!("fuzz{k}").into_bytes()),
+            Name::Odd(b) => Some(b.clone()),
+            Name::Long => Some(vec![b'n'; 5000]),
+        };
+        let name_c = name
+            .as_ref()
+            .map(|n| CString::new(n.clone()).expect("no NUL"));
+        let guid = match spec.guid {
+            Guid::Right => Some(CString::new(fmu::GUID).expect("GUID")),
+            Guid::Wrong => Some(c"{00000000-0000-0000-0000-000000000000}".to_owned()),
+            Guid::Null => None,
+            Guid::Truncated => Some(CString::new(&fmu::GUID[..fmu::GUID.len() - 1]).expect("GUID")),
+        };
+        let resource = spec
+            .resource
+            .as_ref()
+            .map(|r| CString::new(r.clone()).expect("no NUL"));
+        let sink = LogSink::new(
+            name.as_deref().unwrap_or(b""),
+            spec.logging_on != fmi2False,
+            spec.inspect,
+        );
+        let callbacks = Box::new(Callbacks {
+            logger: spec.logger.then_some(logger as PlainLogger),
+            allocate_memory: None,
+            free_memory: None,
+            step_finished: None,
+            environment: &*sink as *const LogSink as *mut c_void,
+        });
+        let p0 = panics();
+        let c = unsafe {
+            fmu::fmi2Instantiate(
+                name_c.as_ref().map_or(ptr::null(), |s| s.as_ptr()),
+                spec.fmu_type,
+                guid.as_ref().map_or(ptr::null(), |s| s.as_ptr()),
+                resource.as_ref().map_or(ptr::null(), |s| s.as_ptr()),
+                &*callbacks as *const Callbacks as *const fmi2CallbackFunctions,
+                spec.visible,
+                spec.logging_on,
+            )
+        };
+        self.stats.calls += 1;
+        assert_eq!(panics(), p0, "fmi2Instantiate: the FMU panicked");
+        if let Some(p) = sink.take_problem() {
+            panic!("fmi2Instantiate: logger: {p}");
+        }
+        let valid = name.as_ref().is_some_and(|n| !n.is_empty())
+            && spec.fmu_type == fmi2CoSimulation
+            && matches!(spec.guid, Guid::Right);
+        assert_eq!(
+            !c.is_null(),
+            valid,
+            "fmi2Instantiate({spec:?}) returned {c:?}"
+        );
+        if c.is_null() {
+            if spec.logger {
+                assert!(
+                    sink.counts()[fmi2Error as usize] > 0,
+                    "refused without a message"
+                );
+            }
+            return;
+        }
+        self.stats.instantiated += 1;
+        self.slots[k] = Some(Slot {
+            c,
+            sink,
+            callbacks,
+            logger: spec.logger,
+            machine: Some(M::Instantiated),
+            stored: Some(Stored::start()),
+            time: Some(0.0),
+            forged: false,
+            states: Vec::new(),
+        });
+    }
+
+    pub(crate) fn free(&mut self, k: u8) {
+        let k = k as usize % SLOTS;
+        if let Some(s) = self.slots[k].take() {
+            let p0 = panics();
+            // SAFETY: a live instance of ours; its FMU states go with it.
+            unsafe { fmu::fmi2FreeInstance(s.c) };
+            self.stats.calls += 1;
+            assert_eq!(panics(), p0, "fmi2FreeInstance: the FMU panicked");
+            if let Some(p) = s.sink.take_problem() {
+                panic!("fmi2FreeInstance: logger: {p}");
+            }
+            drop(s);
+        }
+    }
+
+    pub(crate) fn setup(
+        &mut self,
+        k: u8,
+        tol_def: c_int,
+        tol: f64,
+        start: f64,
+        stop_def: c_int,
+        stop: f64,
+    ) {
+        let before = self.slot(k).and_then(|s| s.machine);
+        if let Some(st) = self.call(k, "fmi2SetupExperiment", INSTANTIATED, |c| unsafe {
+            fmu::fmi2SetupExperiment(c, tol_def, tol, start, stop_def, stop)
+        }) {
+            let tol_ok = tol_def == fmi2False || (tol.is_finite() && tol > 0.0);
+            let stop_ok = stop_def == fmi2False || (stop.is_finite() && stop >= start);
+            let s = self.slot(k).expect("called");
+            if before == Some(M::Instantiated) || st == fmi2OK {
+                assert_eq!(
+                    st == fmi2OK,
+                    tol_ok && start.is_finite() && stop_ok,
+                    "fmi2SetupExperiment({tol_def}, {tol}, {start}, {stop_def}, {stop}) = {st}"
+                );
+            }
+            if st == fmi2OK {
+                s.time = Some(start);
+            }
+        }
+    }
+
+    pub(crate) fn enter(&mut self, k: u8) {
+        if let Some(fmi2OK) =
+            self.call(k, "fmi2EnterInitializationMode", INSTANTIATED, |c| unsafe {
+                fmu::fmi2EnterInitializationMode(c)
+            })
+        {
+            self.set_machine(k, Some(M::Init));
+        }
+    }
+
+    pub(crate) fn exit(&mut self, k: u8) {
+        let Some(s) = self.slot(k) else { return };
+        let expect = (s.machine == Some(M::Init))
+            .then(|| s.stored.as_ref().map(Stored::valid))
+            .flatten();
+        let stored = s.stored.clone();
+        let Some(st) = self.call(k, "fmi2ExitInitializationMode", INIT, |c| unsafe {
+            fmu::fmi2ExitInitializationMode(c)
+        }) else {
+            return;
+        };
+        if let Some(valid) = expect {
+            assert_eq!(
+                st,
+                if valid { fmi2OK } else { fmi2Error },
+                "fmi2ExitInitializationMode with parameters {:?}",
+                stored.and_then(|s| s.params())
+            );
+            if valid {
+                self.stats.exit_init_ok += 1;
+            } else {
+                self.stats.exit_init_error += 1;
+            }
+        }
+        if st == fmi2OK {
+            self.set_machine(k, Some(M::StepComplete));
+        }
+    }
+
+    pub(crate) fn set_real(&mut self, k: u8, r: &[u32], x: &[f64]) {
+        if let Some(fmi2OK) = self.call(k, "fmi2SetReal", SET, |c| unsafe {
+            fmu::fmi2SetReal(c, r.as_ptr(), r.len(), x.as_ptr())
+        }) {
+            let s = self.slot(k).expect("called");
+            if let Some(st) = s.stored.as_mut() {
+                for (&r, &x) in r.iter().zip(x) {
+                    if let Some(v) = st.real.get_mut(r as usize) {
+                        *v = x;
+                    }
+                }
+            }
+        }
+    }
+
+    pub(crate) fn set_integer(&mut self, k: u8, r: &[u32], x: &[c_int]) {
+        if let Some(fmi2OK) = self.call(k, "fmi2SetInteger", SET, |c| unsafe {
+            fmu::fmi2SetInteger(c, r.as_ptr(), r.len(), x.as_ptr())
+        }) {
+            let s = self.slot(k).expect("called");
+            if let Some(st) = s.stored.as_mut() {
+                for (&r, &x) in r.iter().zip(x) {
+                    if let Some(v) = st.int.get_mut(r as usize) {
+                        *v = x;
+                    }
+                }
+            }
+        }
+    }
+
+    /// fmi2GetReal with the value checks; the values after fmi2OK.
+    pub(crate) fn get_real(&mut self, k: u8, r: &[u32]) -> Option<Vec<f64>> {
+        let mut out = vec![f64::from_bits(SENTINEL); r.len()];
+        let st = self.call(k, "fmi2GetReal", GET, |c| unsafe {
+            fmu::fmi2GetReal(c, r.as_ptr(), r.len(), out.as_mut_ptr())
+        })?;
+        if st != fmi2OK && st != fmi2Warning {
+            return None;
+        }
+        let params = || {
+            let s = self.slots[k as usize % SLOTS].as_ref();
+            format!(
+                "{:?}",
+                s.and_then(|s| s.stored.as_ref()).and_then(Stored::params)
+            )
+        };
+        for (&r, &x) in r.iter().zip(&out) {
+            assert_ne!(x.to_bits(), SENTINEL, "fmi2GetReal: vr {r} not written");
+            let v = VARIABLES.iter().find(|v| v.vr == r).expect("a Real vr");
+            let finite = match v.causality {
+                Causality::Output => x.is_finite(),
+                // thetaC is +inf without crushing
+                Causality::CalculatedParameter => {
+                    x.is_finite() || (r == vr::THETA_C && x == f64::INFINITY)
+                }
+                _ => true,
+            };
+            assert!(finite, "{} = {x} with parameters {}", v.name, params());
+        }
+        Some(out)
+    }
+
+    pub(crate) fn get_integer(&mut self, k: u8, r: &[u32]) {
+        let mut out: Vec<c_int> = vec![0x5eed_f00d; r.len()];
+        if let Some(fmi2OK) = self.call(k, "fmi2GetInteger", GET, |c| unsafe {
+            fmu::fmi2GetInteger(c, r.as_ptr(), r.len(), out.as_mut_ptr())
+        }) {
+            for (&r, &x) in r.iter().zip(&out) {
+                match r {
+                    vr::REGIME => assert!((0..=4).contains(&x), "regime = {x}"),
+                    vr::IMPACTS => assert!(x >= 0, "impacts = {x}"),
+                    vr::ZERO_CROSSINGS => assert!(x >= 0, "zeroCrossings = {x}"),
+                    _ => assert_ne!(x, 0x5eed_f00d, "fmi2GetInteger: vr {r} not written"),
+                }
+            }
+            let of = |v: u32| r.iter().position(|&q| q == v).map(|i| out[i]);
+            if let (Some(i), Some(z)) = (of(vr::IMPACTS), of(vr::ZERO_CROSSINGS)) {
+                assert!(i <= z, "impacts = {i} > zeroCrossings = {z}");
+            }
+        }
+    }
+
+    pub(crate) fn get_boolean(&mut self, k: u8, r: &[u32]) {
+        let mut out: Vec<c_int> = vec![-7; r.len()];
+        if let Some(fmi2OK) = self.call(k, "fmi2GetBoolean", GET, |c| unsafe {
+            fmu::fmi2GetBoolean(c, r.as_ptr(), r.len(), out.as_mut_ptr())
+        }) {
+            for (&r, &x) in r.iter().zip(&out) {
+                assert!(x == fmi2True || x == fmi2False, "Boolean vr {r} = {x}");
+            }
+        }
+    }
+
+    pub(crate) fn get_all(&mut self, k: u8) {
+        let of = |base: BaseType| -> Vec<u32> {
+            VARIABLES
+                .iter()
+                .filter(|v| {
+                    v.ty.base() == base
+                        && matches!(
+                            v.causality,
+                            Causality::Output | Causality::CalculatedParameter
+                        )
+                })
+                .map(|v| v.vr)
+                .collect()
+        };
+        self.get_real(k, &of(BaseType::Real));
+        self.get_integer(k, &of(BaseType::Integer));
+        self.get_boolean(k, &of(BaseType::Boolean));
+    }
+
+    pub(crate) fn do_step(&mut self, k: u8, point: Point, h: f64, no_prior: c_int) {
+        let Some(s) = self.slot(k) else { return };
+        let machine = s.machine;
+        let forged = s.forged;
+        // The FMU's time: asked where it answers, else the driver's own.
+        let mut now = s.time;
+        if matches!(
+            machine,
+            Some(M::StepComplete | M::StepFailed | M::Terminated)
+        ) {
+            let mut t = f64::NAN;
+            if let Some(fmi2OK) = self.call(k, "fmi2GetRealStatus", STATUS, |c| unsafe {
+                fmu::fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &mut t)
+            }) {
+                assert!(t.is_finite(), "fmi2LastSuccessfulTime = {t}");
+                if let Some(d) = now {
+                    assert_eq!(t.to_bits(), d.to_bits(), "fmi2LastSuccessfulTime");
+                }
+                now = Some(t);
+            }
+        }
+        if h.is_finite() && h > MAX_STEP || (self.skip_extreme_stiffness && forged) {
+            self.stats.steps_skipped += 1;
+            return;
+        }
+        if self.skip_extreme_stiffness && machine == Some(M::StepComplete) && self.extreme(k) {
+            self.stats.steps_skipped += 1;
+            return;
+        }
+        let base = now.unwrap_or(0.0);
+        let t = match point {
+            Point::Matching => base,
+            Point::Offset(d) => base + d,
+            Point::Raw(x) => x,
+        };
+        if std::env::var_os("FUZZ_DRIVER_TRACE").is_some() {
+            let s = self.slots[k as usize % SLOTS].as_ref();
+            let params = s.and_then(|s| s.stored.as_ref()).and_then(Stored::params);
+            let state = self.get_real(k, &[vr::AG, vr::THETA, vr::OMEGA]);
+            eprintln!("fmi2DoStep({t}, {h}) on slot {k}: ag, theta, omega {state:?}, parameters {params:?}");
+        }
+        let Some(st) = self.call(k, "fmi2DoStep", DO_STEP, |c| unsafe {
+            fmu::fmi2DoStep(c, t, h, no_prior)
+        }) else {
+            return;
+        };
+        let s = self.slot(k).expect("called");
+        if !(t.is_finite() && h.is_finite() && h > 0.0) {
+            assert_eq!(st, fmi2Error, "fmi2DoStep({t}, {h})");
+        }
+        match st {
+            fmi2OK => {
+                s.machine = Some(M::StepComplete);
+                s.time = Some(t + h);
+                self.stats.steps_ok += 1;
+            }
+            fmi2Discard => {
+                s.machine = Some(M::StepFailed);
+                s.time = None;
+                self.stats.steps_discard += 1;
+                let mut term = fmi2False;
+                if let Some(fmi2OK) = self.call(k, "fmi2GetBooleanStatus", STATUS, |c| unsafe {
+                    fmu::fmi2GetBooleanStatus(c, fmi2Terminated, &mut term)
+                }) {
+                    assert_eq!(
+                        term, fmi2True,
+                        "fmi2Discard from fmi2DoStep: fmi2Terminated"
+                    );
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// A model out of the integrator's working range (see
+    /// [`Driver::skip_extreme_stiffness`]), read from the FMU itself: a
+    /// flexible interface far stiffer than the body's weight, or a body whose
+    /// weight, mass, lever or inertia is beyond 1e-30..1e30 (W = 1.8e308 N on
+    /// a rigid interface: the moments overflow and the step loop never ends).
+    pub(crate) fn extreme(&mut self, k: u8) -> bool {
+        let mut law: c_int = 0;
+        let Some(fmi2OK) = self.call(k, "fmi2GetInteger", GET, |c| unsafe {
+            fmu::fmi2GetInteger(c, &vr::INTERFACE, 1, &mut law)
+        }) else {
+            return false;
+        };
+        let Some(x) = self.get_real(
+            k,
+            &[
+                vr::THETA_JO,
+                vr::THETA_OV,
+                vr::WEIGHT,
+                vr::MASS,
+                vr::R0,
+                vr::IO,
+            ],
+        ) else {
+            return false;
+        };
+        let body = x[2..].iter().any(|&v| !(1e-30..=1e30).contains(&v));
+        body || (law != enums::RIGID && x[0] < EXTREME_STIFFNESS * x[1])
+    }
+
+    pub(crate) fn status(&mut self, k: u8, which: u8, kind: c_int) {
+        let name = [
+            "fmi2GetStatus",
+            "fmi2GetRealStatus",
+            "fmi2GetIntegerStatus",
+            "fmi2GetBooleanStatus",
+            "fmi2GetStringStatus",
+        ][which as usize % 5];
+        let mut st_out: fmi2Status = -1;
+        let mut r = f64::NAN;
+        let mut i: c_int = -1;
+        let mut b: c_int = -1;
+        let mut s: fmi2String = ptr::null();
+        let Some(st) = self.call(k, name, STATUS, |c| unsafe {
+            match which % 5 {
+                0 => fmu::fmi2GetStatus(c, kind, &mut st_out),
+                1 => fmu::fmi2GetRealStatus(c, kind, &mut r),
+                2 => fmu::fmi2GetIntegerStatus(c, kind, &mut i),
+                3 => fmu::fmi2GetBooleanStatus(c, kind, &mut b),
+                _ => fmu::fmi2GetStringStatus(c, kind, &mut s),
+            }
+        }) else {
+            return;
+        };
+        if st == fmi2OK {
+            match which % 5 {
+                0 => check_status(st_out, "fmi2GetStatus value"),
+                1 => assert!(r.is_finite(), "{name}({kind}) = {r}"),
+                3 => assert!(b == fmi2True || b == fmi2False, "{name}({kind}) = {b}"),
+                // SAFETY: a string of the FMU's.
+                4 if !s.is_null() => {
+                    let _ = unsafe { CStr::from_ptr(s) }.to_bytes().len();
+                }
+                _ => {}
+            }
+        }
+        if !(0..=3).contains(&kind) {
+            assert!(st == fmi2Error, "{name}({kind}) = {st}: unknown kind");
+        }
+    }
+}
