@@ -8,25 +8,40 @@ use super::{Events, State};
 /// The most work one call may do, scaled with the length of the call.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WorkLimit {
-    /// Work (see [`Events::work`]) allowed to a call of 1 s or longer.
+    /// Work (see [`Events::work`]) allowed to a call of up to
+    /// [`BASE_SPAN`](Self::BASE_SPAN).
     pub per_call: u64,
 }
 
 impl WorkLimit {
-    /// Length of a call that gets all of `per_call`, s.
-    pub const FULL_SPAN: f64 = 1.0;
-    /// The smallest share of `per_call` a short call gets.
-    pub const MIN_SHARE: f64 = 0.01;
+    /// Calls up to this long get `per_call`, s.
+    pub const BASE_SPAN: f64 = 1.0;
+    /// Longer calls get proportionally more, up to this many times `per_call`.
+    pub const MAX_FACTOR: f64 = 5.0;
+    /// The default `per_call`: about 20 times the steps of the costliest
+    /// second measured in normal use (docs/dynamics.md §4: 2435 steps per
+    /// second of a stiff interface shaken below uplift, kn 1e15 Pa/m), and
+    /// a few tenths of a second of work at most.
+    pub const DEFAULT_PER_CALL: u64 = 50_000;
 
-    /// The budget of a call over `span` seconds: `per_call` for calls of
-    /// [`FULL_SPAN`](Self::FULL_SPAN) or longer, a proportional share for
-    /// shorter ones, at least [`MIN_SHARE`](Self::MIN_SHARE) of it and at
-    /// least 1. Long calls get no more: the limit is there to bound the
-    /// time a call takes.
+    /// The budget of a call over `span` seconds: `per_call` up to
+    /// [`BASE_SPAN`](Self::BASE_SPAN), proportionally more beyond, at most
+    /// [`MAX_FACTOR`](Self::MAX_FACTOR) times as much, at least 1. Shorter
+    /// calls get the whole `per_call`, so that a caller stopped by the limit
+    /// can go on with shorter calls; longer ones no more than a bounded
+    /// multiple, so that no call runs for long.
     pub fn budget(&self, span: f64) -> u64 {
-        let share = (span / Self::FULL_SPAN).clamp(Self::MIN_SHARE, 1.0);
-        let share = if share.is_nan() { 1.0 } else { share };
-        ((self.per_call as f64 * share).ceil() as u64).max(1)
+        let factor = (span / Self::BASE_SPAN).clamp(1.0, Self::MAX_FACTOR);
+        let factor = if factor.is_nan() { 1.0 } else { factor };
+        ((self.per_call as f64 * factor).ceil() as u64).max(1)
+    }
+}
+
+impl Default for WorkLimit {
+    fn default() -> WorkLimit {
+        WorkLimit {
+            per_call: WorkLimit::DEFAULT_PER_CALL,
+        }
     }
 }
 
@@ -67,7 +82,7 @@ impl Limited {
     pub fn cause(&self) -> String {
         if self.zero_crossings >= self.steps {
             format!(
-                "{} zero crossings of theta (the body vibrates through theta = 0 faster than the step)",
+                "{} zero crossings of theta (impacts or a vibration through theta = 0 that go on through the step)",
                 self.zero_crossings
             )
         } else {
