@@ -17,7 +17,7 @@ impl WorkLimit {
     /// Calls up to this long get `per_call`, s.
     pub const BASE_SPAN: f64 = 1.0;
     /// Longer calls get proportionally more, up to this many times `per_call`.
-    pub const MAX_FACTOR: f64 = 5.0;
+    pub const MAX_FACTOR: f64 = 2.0;
     /// The default `per_call`: about 20 times the steps of the costliest
     /// second measured in normal use (docs/dynamics.md §4: 2435 steps per
     /// second of a stiff interface shaken below uplift, kn 1e15 Pa/m), and
