@@ -895,7 +895,8 @@ impl Stored {
     }
 
     fn valid(&self) -> bool {
-        self.params().is_some_and(|p| p.build().is_ok())
+        // maxSteps >= 1 (docs/model.md §5)
+        self.int[vr::MAX_STEPS as usize] >= 1 && self.params().is_some_and(|p| p.build().is_ok())
     }
 }
 
@@ -1589,10 +1590,20 @@ impl Driver {
                 if let Some(fmi2OK) = self.call(k, "fmi2GetBooleanStatus", STATUS, |c| unsafe {
                     fmu::fmi2GetBooleanStatus(c, fmi2Terminated, &mut term)
                 }) {
-                    assert_eq!(
-                        term, fmi2True,
-                        "fmi2Discard from fmi2DoStep: fmi2Terminated"
-                    );
+                    if term == fmi2False {
+                        // the work limit (maxSteps): stopped inside the step
+                        let mut last = f64::NAN;
+                        if let Some(fmi2OK) =
+                            self.call(k, "fmi2GetRealStatus", STATUS, |c| unsafe {
+                                fmu::fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &mut last)
+                            })
+                        {
+                            assert!(
+                                last >= t && last < t + h,
+                                "fmi2Discard without fmi2Terminated: fmi2LastSuccessfulTime = {last} outside [{t}, {t} + {h})"
+                            );
+                        }
+                    }
                 }
             }
             _ => {}
