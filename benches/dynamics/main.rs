@@ -21,6 +21,9 @@ mod dharahara;
 mod rigid;
 mod rk4;
 mod scipy;
+// the quadratures of the physics tests
+#[path = "../../tests/support/mod.rs"]
+mod support;
 
 use rocking::dynamics::{GroundInput, Method, Simulator, State};
 use rocking::model::{LawKind, MassKind, ShapeKind};

@@ -1,30 +1,10 @@
 //! A plain fixed-step RK4 with impacts and overturning, written here as an
 //! independent reference, and the quadrature of the exact rigid solution.
 
-pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
-    (0..n)
-        .map(|i| {
-            let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-            let mut dp = 0.0;
-            for _ in 0..100 {
-                let (mut p0, mut p1) = (1.0, x);
-                for k in 2..=n {
-                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                    p0 = p1;
-                    p1 = p2;
-                }
-                dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
-                let dx = p1 / dp;
-                x -= dx;
-                if dx.abs() < 1e-16 {
-                    break;
-                }
-            }
-            (x, 2.0 / ((1.0 - x * x) * dp * dp))
-        })
-        .collect()
-}
+use super::support::gauss_legendre;
 
+/// The integral of `f` over `[p, q]` by 30-point Gauss-Legendre panels,
+/// doubled until two levels agree to 1e-15.
 pub fn quad(f: &dyn Fn(f64) -> f64, p: f64, q: f64) -> f64 {
     let rule = gauss_legendre(30);
     let mut prev = f64::NAN;

@@ -448,9 +448,9 @@ variables! {
     }
     MAX_STEPS = 42 => {
         name: "maxSteps",
-        description: "Work limit of one fmi2DoStep: integrator steps (accepted or rejected) and zero crossings for a step of up to 1 s, proportionally more for longer steps up to twice as many; past it fmi2DoStep returns fmi2Discard at the time reached (>= 1)",
+        description: "Work limit of one fmi2DoStep: integrator steps (accepted or rejected) and zero crossings for a step of up to 1 s, proportionally more for longer steps up to 1.5 times as many; past it fmi2DoStep returns fmi2Discard at the time reached (>= 1)",
         causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: Type::Integer { start: Some(50_000) },
+        ty: Type::Integer { start: Some(100_000) },
     }
 }
 

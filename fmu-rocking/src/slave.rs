@@ -360,7 +360,7 @@ impl Slave for RockingSlave {
                 time: l.t,
                 reason: format!(
                     "work limit reached after {} in the step of {h} s from t = {t} (budget {}: maxSteps = {max_steps}, \
-                     up to twice that for steps over 1 s)",
+                     up to 1.5 times that for steps over 1 s)",
                     l.cause(),
                     l.budget
                 ),

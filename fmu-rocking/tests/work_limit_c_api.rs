@@ -47,7 +47,7 @@ fn discarded_at_the_limit(name: &str, h: &Host, step: f64) {
         .find(|m| m.status == fmi2Discard)
         .expect("a message with the discard");
     assert!(
-        msg.text.contains("maxSteps = 50000") && msg.text.contains(&format!("t = {t_reached}")),
+        msg.text.contains("maxSteps = 100000") && msg.text.contains(&format!("t = {t_reached}")),
         "{}",
         msg.text
     );
