@@ -1,8 +1,10 @@
 //! Cost of the interface solve: `af` and `af'` together, per shape and law.
 //! Prints a table (ns per evaluation, Newton iterations per solve) for a
 //! sweep of rotations from the heel opening to the overturning range, cold
-//! (no hint) and warm (started from the previous contact extrapolated along
-//! `da/dphi`, as the integrator calls it). Run: `cargo bench --bench interface`.
+//! (`contact`, no hint), started from the previous `a` (`contact_near`, the
+//! path the integrator takes: `eom.rs` keeps the last `a` as the hint), and
+//! extrapolated from the previous contact along `da/dphi` (`contact_after`).
+//! Run: `cargo bench --bench interface`.
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -23,7 +25,7 @@ fn main() {
         ("solid circle", Shape::SolidCircle { ro: 0.5 }),
         ("hollow circle", Shape::HollowCircle { ro: 3.99, ri: 2.12 }),
     ];
-    println!("| shape | law | cold ns/eval | warm ns/eval | iterations/solve (cold) | iterations/solve (warm) |");
+    println!("| shape | law | cold ns/eval | contact_near (integrator) ns/eval | contact_after ns/eval | iterations/solve: cold, near, after |");
     println!("|---|---|---|---|---|---|");
     for (name, shape) in shapes {
         let w = 0.3e6 * shape.area();
@@ -49,6 +51,20 @@ fn main() {
                 }
             }
             let cold = t0.elapsed().as_nanos() as f64 / (reps * n) as f64;
+            let mut iters_near = 0u64;
+            let t0 = Instant::now();
+            for _ in 0..reps {
+                let mut a = f64::NAN;
+                for &th in &thetas {
+                    let c = it.contact_near(black_box(th), a);
+                    if c.a.is_finite() {
+                        a = c.a;
+                    }
+                    iters_near += c.iterations as u64;
+                    black_box((c.af, c.daf));
+                }
+            }
+            let near = t0.elapsed().as_nanos() as f64 / (reps * n) as f64;
             let mut iters_warm = 0u64;
             let t0 = Instant::now();
             for _ in 0..reps {
@@ -63,8 +79,9 @@ fn main() {
             let warm = t0.elapsed().as_nanos() as f64 / (reps * n) as f64;
             let per = (reps * n) as f64;
             println!(
-                "| {name} | {lname} | {cold:.0} | {warm:.0} | {:.2} | {:.2} |",
+                "| {name} | {lname} | {cold:.0} | {near:.0} | {warm:.0} | {:.2}, {:.2}, {:.2} |",
                 iters_cold as f64 / per,
+                iters_near as f64 / per,
                 iters_warm as f64 / per
             );
         }

@@ -2,7 +2,7 @@
 """The rocking equations of docs/model.md §3 with scipy.integrate.solve_ivp.
 
 A reference written independently of the Rust code, for the dynamics bench
-(benches/dynamics.rs), which spawns it as
+(benches/dynamics/), which spawns it as
 
     .venv/bin/python benches/scipy_reference.py '<json>'
 

@@ -9,7 +9,7 @@ from fmpy.validation import validate_fmu
 
 PARAMETERS = [
     "shape", "B", "L", "t", "Ro", "Ri", "massModel", "H", "rho", "W", "hG", "Ic",
-    "interface", "kn", "fm", "formulation", "restitution", "eta", "g",
+    "interface", "kn", "fm", "formulation", "restitution", "eta", "g", "maxSteps",
 ]
 OUTPUTS = [
     "theta", "omega", "thetaOverAlpha", "af", "contactLength", "MR", "regime",

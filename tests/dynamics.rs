@@ -8,11 +8,11 @@
 //! by Gauss-Legendre after the substitution `psi = phi sin(u)` that removes the
 //! turning-point singularity. None of this uses the code under test.
 
-mod dyncommon;
+mod support;
 
-use dyncommon::{quad_adaptive, rigid_block};
 use rocking::dynamics::{GroundInput, Simulator, State, DEFAULT_RTOL};
 use rocking::Model;
+use support::{quad_adaptive, rigid_block};
 
 /// The exact Housner solution of a rigid block released from `theta0` at rest.
 struct Exact {
@@ -229,7 +229,7 @@ fn rigid_chattering_ends_in_rest_at_the_accumulation_time() {
 }
 
 #[test]
-fn uplift_threshold_and_direction() {
+fn uplift_starts_just_above_g_tan_alpha_toward_the_side_ag_pushes() {
     let m = rigid_block(0.5, 2.5);
     let sim = Simulator::new(m, DEFAULT_RTOL);
     let thr = m.body.g * m.body.b / m.body.hg; // g tan(alpha)

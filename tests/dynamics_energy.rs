@@ -17,12 +17,12 @@
 /// The tolerance of these runs.
 const RTOL: f64 = 1e-12;
 
-mod dyncommon;
+mod support;
 
-use dyncommon::{moment_breaks, potential};
 use rocking::dynamics::{GroundInput, Simulator};
 use rocking::model::{Formulation, LawKind, MassKind, Restitution, ShapeKind};
 use rocking::{Model, Params};
+use support::{moment_breaks, potential};
 
 /// Prism bodies on each base shape, 1800 kg/m³.
 fn shapes() -> Vec<(&'static str, Params)> {

@@ -12,12 +12,12 @@
 //! At rest `Fx = m ag`, `Fz = W`; a body at rest that `ag` sets moving gets
 //! the `theta''` it starts with (against `omega(h) / h`).
 
-mod dyncommon;
+mod support;
 
-use dyncommon::{moment_breaks, quad_adaptive, rigid_block};
 use rocking::dynamics::{GroundInput, Simulator, State};
 use rocking::model::LawKind;
 use rocking::{Law, Model, Params};
+use support::{moment_breaks, quad_adaptive, rigid_block};
 
 /// The side of the motion: the sign of `theta`, at `theta = 0` of `omega`.
 fn side(st: &State) -> f64 {

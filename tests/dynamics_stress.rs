@@ -240,7 +240,7 @@ const BASE: Case = Case {
 };
 
 #[test]
-fn stiffness_from_1e6_to_1e15() {
+fn runs_end_finite_and_gain_no_energy_for_kn_from_1e6_to_1e15() {
     for kn in [1e6, 1e8, 1e10, 1e12, 1e13, 1e14, 1e15] {
         for (shaking, law) in [
             (0.5, LawKind::Elastic),
@@ -265,7 +265,7 @@ fn stiffness_from_1e6_to_1e15() {
 }
 
 #[test]
-fn strength_from_barely_carrying_the_weight_to_none() {
+fn runs_end_finite_and_gain_no_energy_for_fm_from_barely_carrying_the_weight_to_none() {
     for fm_ratio in [1.01, 1.1, 2.0, 10.0, 1e3, f64::INFINITY] {
         let c = Case {
             fm_ratio,
@@ -282,7 +282,7 @@ fn strength_from_barely_carrying_the_weight_to_none() {
 }
 
 #[test]
-fn slenderness_and_size() {
+fn runs_end_finite_and_gain_no_energy_for_slenderness_0_01_to_0_6_and_sizes_0_1_to_100_m() {
     for alpha in [0.01, 0.05, 0.2, 0.6] {
         for size in [0.1, 2.5, 100.0] {
             for law in [LawKind::Rigid, LawKind::ElastoPlastic] {
@@ -303,7 +303,7 @@ fn slenderness_and_size() {
 }
 
 #[test]
-fn communication_steps_from_1e_5_to_1_s() {
+fn runs_end_finite_and_gain_no_energy_for_communication_steps_from_1e_5_to_1_s() {
     for (dt, record) in [
         (1e-5, 1.0),
         (1e-4, 5.0),
@@ -326,7 +326,7 @@ fn communication_steps_from_1e_5_to_1_s() {
 }
 
 #[test]
-fn records_of_1000_s() {
+fn runs_of_1000_s_records_end_finite_and_gain_no_energy() {
     for (law, kn) in [
         (LawKind::Rigid, 0.0),
         (LawKind::ElastoPlastic, 5e9),
@@ -354,7 +354,7 @@ fn records_of_1000_s() {
 }
 
 #[test]
-fn random_sweep_of_every_parameter() {
+fn runs_end_finite_and_gain_no_energy_for_random_parameters() {
     let mut r = Lcg(0x5eed_0003);
     for i in 0..60 {
         let law = r.pick(&[LawKind::Rigid, LawKind::Elastic, LawKind::ElastoPlastic]);

@@ -5,12 +5,12 @@
 //! opened). The expected counts come from the sampled trajectory itself
 //! (sign changes and peaks of `theta`), not from the counters.
 
-mod dyncommon;
+mod support;
 
-use dyncommon::{moment_breaks, potential};
 use rocking::dynamics::{GroundInput, Simulator, State};
 use rocking::model::{LawKind, Restitution};
 use rocking::{Model, Params};
+use support::{moment_breaks, potential};
 
 /// The default 0.5 m x 1 m x 2.5 m block on an elastic joint of stiffness `kn`.
 fn elastic(kn: f64, eta: Option<f64>) -> Model {

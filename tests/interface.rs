@@ -2,10 +2,10 @@
 //! quadrature of the width function, the solid-rectangle closed forms
 //! derived by hand, a brute-force fibre model, and invariants.
 
-mod common;
+mod support;
 
-use common::integrate_pieces;
 use rocking::{Interface, Law, Regime, Shape};
+use support::integrate_pieces;
 
 /// Width function of docs/model.md §1, written again here from the table.
 fn width(shape: &Shape, x: f64) -> f64 {
@@ -379,7 +379,7 @@ fn all_shapes_and_laws_match_a_brute_force_fibre_model() {
 }
 
 #[test]
-fn limits_and_continuity() {
+fn af_is_d_over_2_at_rest_c1_at_the_thresholds_and_non_increasing() {
     for shape in shapes() {
         let w = 0.3e6 * shape.area();
         let d = shape.depth();

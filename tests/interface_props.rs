@@ -24,7 +24,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
 
     #[test]
-    fn invariants_hold(
+    fn af_stays_within_the_base_decreases_and_carries_the_weight(
         shape in shape_strategy(),
         stress in 1e3f64..1e7,       // W/A, Pa
         kn_exp in 6.0f64..15.0,      // kn = 10^kn_exp Pa/m

@@ -23,12 +23,12 @@
 //! computed here from `theta''`, fails on a flexible interface by orders of
 //! magnitude more: the test discriminates.
 
-mod dyncommon;
+mod support;
 
-use dyncommon::{moment_breaks, potential};
 use rocking::dynamics::{GroundInput, Simulator, State};
 use rocking::model::{LawKind, Restitution};
 use rocking::{Law, Model, Params, Regime};
+use support::{moment_breaks, potential};
 
 /// Tolerance of the runs.
 const RTOL: f64 = 1e-11;

@@ -151,6 +151,12 @@ pub enum StepEnd {
     /// returns `fmi2Discard`, `fmi2LastSuccessfulTime` is `time` and
     /// `fmi2Terminated` is true.
     Terminated { time: f64, reason: String },
+    /// The model stopped at `time` (within the step) without ending the run,
+    /// for a reason the host can act on (a work limit): `fmi2DoStep` returns
+    /// `fmi2Discard`, `fmi2LastSuccessfulTime` is `time`, `fmi2Terminated`
+    /// is false, and the state is the model's at `time`. The host goes on
+    /// from a state it saved (`fmi2SetFMUstate`) with smaller steps.
+    Stopped { time: f64, reason: String },
 }
 
 /// A model as an FMI 2.0 co-simulation slave.

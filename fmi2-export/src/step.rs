@@ -76,20 +76,16 @@ impl<S: Slave> Inner<S> {
                 Ok(Status::Ok)
             }
             Ok(StepEnd::Terminated { time, reason }) => {
-                let dt = time - t;
-                for i in 0..self.values.len() {
-                    if let Some(Scalar::Real(x)) = &mut self.values[i] {
-                        if self.derivatives[i] != 0.0 {
-                            *x += self.derivatives[i] * dt;
-                        }
-                    }
-                }
-                self.time = time;
-                self.last_successful_time = time;
-                self.terminated = true;
-                self.machine = M::StepFailed;
+                self.stop_within_step(t, time, true);
                 discard(format!(
                     "{reason}: the simulation ends at t = {time} (fmi2Terminated is true)"
+                ))
+            }
+            Ok(StepEnd::Stopped { time, reason }) => {
+                self.stop_within_step(t, time, false);
+                discard(format!(
+                    "{reason}: the step stopped at t = {time} (fmi2LastSuccessfulTime; fmi2Terminated is false); \
+                     restore a state saved before the step (fmi2SetFMUstate) and go on with smaller steps"
                 ))
             }
             Err(f) => {
@@ -107,6 +103,24 @@ impl<S: Slave> Inner<S> {
                 })
             }
         }
+    }
+
+    /// The model stopped at `time` inside the step from `t`: the inputs
+    /// follow their polynomials to `time`, the FMU's time is `time`, and the
+    /// state machine is in `stepFailed`.
+    fn stop_within_step(&mut self, t: f64, time: f64, terminated: bool) {
+        let dt = time - t;
+        for i in 0..self.values.len() {
+            if let Some(Scalar::Real(x)) = &mut self.values[i] {
+                if self.derivatives[i] != 0.0 {
+                    *x += self.derivatives[i] * dt;
+                }
+            }
+        }
+        self.time = time;
+        self.last_successful_time = time;
+        self.terminated = terminated;
+        self.machine = M::StepFailed;
     }
 
     pub fn cancel_step(&mut self) -> Res<Status> {

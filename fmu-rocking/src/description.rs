@@ -446,6 +446,12 @@ variables! {
         causality: Output, variability: Discrete, initial: Some(Calculated),
         ty: Type::Integer { start: None },
     }
+    MAX_STEPS = 42 => {
+        name: "maxSteps",
+        description: "Work limit of one fmi2DoStep: integrator steps (accepted or rejected) and zero crossings for a step of up to 1 s, proportionally more for longer steps up to 1.5 times as many; past it fmi2DoStep returns fmi2Discard at the time reached (>= 1)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: Type::Integer { start: Some(100_000) },
+    }
 }
 
 const fn base(kg: i32, m: i32, s: i32, rad: i32) -> BaseUnit {

@@ -5,7 +5,7 @@ use crate::description::{vr, ROCKING_BLOCK};
 use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
 use fmi2_export::model_description::ModelDescription;
 use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Values};
-use rocking::dynamics::{GroundInput, OutputRates, Outputs, Simulator, State};
+use rocking::dynamics::{GroundInput, OutputRates, Outputs, Simulator, State, WorkLimit};
 use rocking::{Params, Regime};
 
 /// Largest |ag| a step accepts, m/s2 (far beyond any ground motion; the
@@ -98,7 +98,16 @@ impl Slave for RockingSlave {
         let rtol = setup
             .tolerance
             .unwrap_or(ROCKING_BLOCK.default_experiment.tolerance);
-        let sim = Simulator::new(model, rtol);
+        let max_steps = values.integer(vr::MAX_STEPS);
+        if max_steps < 1 {
+            return Err(format!(
+                "maxSteps = {max_steps}: the work limit must be >= 1"
+            ));
+        }
+        let mut sim = Simulator::new(model, rtol);
+        sim.work_limit = Some(WorkLimit {
+            per_call: max_steps as u64,
+        });
         let mut state = sim.initial_state(p.theta0, p.omega0);
         state.t = setup.start_time;
         Ok(RockingSlave {
@@ -275,6 +284,18 @@ impl Slave for RockingSlave {
                 reason: format!(
                     "the body overturned (|theta| reached thetaOv = {} rad) at t = {t_ov}",
                     self.sim.model.theta_ov
+                ),
+            });
+        }
+        if let Some(l) = ev.limited {
+            let max_steps = self.sim.work_limit.map_or(0, |w| w.per_call);
+            return Ok(StepEnd::Stopped {
+                time: l.t,
+                reason: format!(
+                    "work limit reached after {} in the step of {h} s from t = {t} (budget {}: maxSteps = {max_steps}, \
+                     up to 1.5 times that for steps over 1 s)",
+                    l.cause(),
+                    l.budget
                 ),
             });
         }

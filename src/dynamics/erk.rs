@@ -98,8 +98,20 @@ pub(crate) trait Pair {
     ) -> StepOut;
 }
 
+/// The stages of an explicit method of `S` stages (first same as last):
+/// `kw[j]` is stage `j`'s `omega` (= `theta'`), `ka[j]` its `theta''`.
+struct Stages<const S: usize> {
+    kw: [f64; S],
+    ka: [f64; S],
+    /// `(theta, omega)` at the end of the step, and its `theta''`.
+    y1: [f64; 2],
+    a1: f64,
+    /// `theta` of the last stage, which is at `c = 1` too (for `rho`).
+    th_last: f64,
+}
+
 /// Stage `i` of an explicit RK method: `y0 + h sum_j a_ij k_j` and its
-/// right-hand side. `kw[j]` is the stage's `omega` (= `theta'`), `ka[j]` its `theta''`.
+/// right-hand side, `(theta, omega, theta'')`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn stage<const S: usize>(
@@ -113,7 +125,7 @@ fn stage<const S: usize>(
     ka: &[f64; S],
     side: f64,
     hint: &mut f64,
-) -> (f64, f64) {
+) -> (f64, f64, f64) {
     let mut sw = 0.0;
     let mut sa = 0.0;
     for j in 0..i {
@@ -122,7 +134,55 @@ fn stage<const S: usize>(
     }
     let th = y0[0] + h * sw;
     let om = y0[1] + h * sa;
-    (om, eom.accel(t, th, om, side, hint))
+    (th, om, eom.accel(t, th, om, side, hint))
+}
+
+/// All stages of a step of the tableau `(c, a, b)` from `y0` (where
+/// `theta'' = a0`), and `f(y1)` at its end.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn stages<const S: usize>(
+    eom: &Eom,
+    t: f64,
+    h: f64,
+    y0: [f64; 2],
+    a0: f64,
+    side: f64,
+    hint: &mut f64,
+    (c, a, b): (&[f64; S], &[[f64; S]], &[f64; S]),
+) -> Stages<S> {
+    let mut kw = [0.0; S];
+    let mut ka = [0.0; S];
+    kw[0] = y0[1];
+    ka[0] = a0;
+    let mut th_last = y0[0];
+    for i in 1..S {
+        let (th, w, acc) = stage(eom, t + c[i] * h, h, y0, &a[i], i, &kw, &ka, side, hint);
+        kw[i] = w;
+        ka[i] = acc;
+        th_last = th;
+    }
+    let (th1, w1, a1) = stage(eom, t + h, h, y0, b, S, &kw, &ka, side, hint);
+    Stages {
+        kw,
+        ka,
+        y1: [th1, w1],
+        a1,
+        th_last,
+    }
+}
+
+impl<const S: usize> Stages<S> {
+    /// The step's result with the scaled error `err`; `rho` from the last
+    /// stage and the end, both at `c = 1` (Hairer's stiffness detection).
+    fn out(&self, err: f64) -> StepOut {
+        StepOut {
+            y: self.y1,
+            accel: self.a1,
+            err,
+            rho: rho(self.y1[0], self.a1, self.th_last, self.ka[S - 1]),
+        }
+    }
 }
 
 /// Dormand-Prince 5(4), 7 stages, first same as last.
@@ -186,52 +246,17 @@ impl Pair for Dp5 {
         hint: &mut f64,
         tol: &Tol,
     ) -> StepOut {
-        let mut kw = [0.0; 6];
-        let mut ka = [0.0; 6];
-        kw[0] = y0[1];
-        ka[0] = a0;
-        for i in 1..6 {
-            let (w, a) = stage(
-                eom,
-                t + DP5_C[i] * h,
-                h,
-                y0,
-                &DP5_A[i],
-                i,
-                &kw,
-                &ka,
-                side,
-                hint,
-            );
-            kw[i] = w;
-            ka[i] = a;
+        let s = stages(eom, t, h, y0, a0, side, hint, (&DP5_C, &DP5_A, &DP5_B));
+        let mut ew = DP5_E[6] * s.y1[1];
+        let mut ea = DP5_E[6] * s.a1;
+        for ((e, w), a) in DP5_E[..6].iter().zip(&s.kw).zip(&s.ka) {
+            ew += e * w;
+            ea += e * a;
         }
-        let (w1, a1) = stage(eom, t + h, h, y0, &DP5_B, 6, &kw, &ka, side, hint);
-        let mut ew = DP5_E[6] * w1;
-        let mut ea = DP5_E[6] * a1;
-        for j in 0..6 {
-            ew += DP5_E[j] * kw[j];
-            ea += DP5_E[j] * ka[j];
-        }
-        let mut sw = 0.0;
-        for j in 0..6 {
-            sw += DP5_B[j] * kw[j];
-        }
-        let y1 = [y0[0] + h * sw, w1];
-        let sc = tol.scales(y0, y1);
+        let sc = tol.scales(y0, s.y1);
         let e0 = h * ew / sc[0];
         let e1 = h * ea / sc[1];
-        // stage 6 is at c = 1 too
-        let mut s5 = 0.0;
-        for j in 0..5 {
-            s5 += DP5_A[5][j] * kw[j];
-        }
-        StepOut {
-            y: y1,
-            accel: a1,
-            err: (0.5 * (e0 * e0 + e1 * e1)).sqrt(),
-            rho: rho(y1[0], a1, y0[0] + h * s5, ka[5]),
-        }
+        s.out((0.5 * (e0 * e0 + e1 * e1)).sqrt())
     }
 }
 
@@ -373,38 +398,16 @@ impl Pair for Dop853 {
         hint: &mut f64,
         tol: &Tol,
     ) -> StepOut {
-        let mut kw = [0.0; N12];
-        let mut ka = [0.0; N12];
-        kw[0] = y0[1];
-        ka[0] = a0;
-        for i in 1..N12 {
-            let (w, a) = stage(
-                eom,
-                t + DOP_C[i] * h,
-                h,
-                y0,
-                &DOP_A[i],
-                i,
-                &kw,
-                &ka,
-                side,
-                hint,
-            );
-            kw[i] = w;
-            ka[i] = a;
-        }
-        let (w1, a1) = stage(eom, t + h, h, y0, &DOP_A[N12], N12, &kw, &ka, side, hint);
-        let mut sw = 0.0;
+        let tableau = (&DOP_C, &DOP_A[..N12], &DOP_A[N12]);
+        let s = stages(eom, t, h, y0, a0, side, hint, tableau);
         let (mut e5w, mut e5a, mut e3w, mut e3a) = (0.0, 0.0, 0.0, 0.0);
         for j in 0..N12 {
-            sw += DOP_A[N12][j] * kw[j];
-            e5w += DOP_E5[j] * kw[j];
-            e5a += DOP_E5[j] * ka[j];
-            e3w += DOP_E3[j] * kw[j];
-            e3a += DOP_E3[j] * ka[j];
+            e5w += DOP_E5[j] * s.kw[j];
+            e5a += DOP_E5[j] * s.ka[j];
+            e3w += DOP_E3[j] * s.kw[j];
+            e3a += DOP_E3[j] * s.ka[j];
         }
-        let y1 = [y0[0] + h * sw, w1];
-        let sc = tol.scales(y0, y1);
+        let sc = tol.scales(y0, s.y1);
         let (e5w, e5a, e3w, e3a) = (e5w / sc[0], e5a / sc[1], e3w / sc[0], e3a / sc[1]);
         let n5 = e5w * e5w + e5a * e5a;
         let n3 = e3w * e3w + e3a * e3a;
@@ -413,16 +416,6 @@ impl Pair for Dop853 {
         } else {
             h.abs() * n5 / ((n5 + 0.01 * n3) * 2.0).sqrt()
         };
-        // stage 12 is at c = 1 too
-        let mut s11 = 0.0;
-        for j in 0..11 {
-            s11 += DOP_A[11][j] * kw[j];
-        }
-        StepOut {
-            y: y1,
-            accel: a1,
-            err,
-            rho: rho(y1[0], a1, y0[0] + h * s11, ka[11]),
-        }
+        s.out(err)
     }
 }

@@ -123,7 +123,8 @@ impl Stored {
     }
 
     pub(crate) fn valid(&self) -> bool {
-        self.params().is_some_and(|p| p.build().is_ok())
+        // maxSteps >= 1 (docs/model.md §5)
+        self.int[vr::MAX_STEPS as usize] >= 1 && self.params().is_some_and(|p| p.build().is_ok())
     }
 }
 

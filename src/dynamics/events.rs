@@ -1,0 +1,325 @@
+//! Events (docs/model.md §3): zero crossings of `theta` (impacts, with the
+//! restitution rule), overturning at `|theta| = thetaOv`, rest, and the
+//! kinks where steps are cut; located on a step's dense output, then the
+//! step is redone to end exactly there.
+
+use super::dense::{max_abs, Hermite, Hit};
+use super::eom::{side_of, Eom};
+use super::erk::{Pair, StepOut, Tol};
+use super::free::FreeRigid;
+use super::integrate::{Flow, StepCx, Stop, Trial};
+use super::stiffness;
+use super::{Events, Simulator, State};
+use crate::interface::Law;
+
+/// The verdict on an event found on the dense output (see
+/// [`StepCx::step_to_event`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum EventStatus {
+    /// Located to the last bits by a step that passes the error test, with
+    /// `theta` moving the right way: applied.
+    Confirmed,
+    /// `theta` does not move the right way there (the interpolant of a step
+    /// whose error is below the floor can cross where the motion does not),
+    /// or no time passes: no event, the accepted step stands.
+    Spurious,
+    /// The step to the event failed the error test or the polish did not
+    /// converge: the step is retried shorter.
+    Retry,
+}
+
+impl StepCx<'_, '_> {
+    /// The level of `theta` of an event on the side `side`.
+    fn level(&self, hit: Hit) -> f64 {
+        match hit {
+            Hit::Impact => 0.0,
+            Hit::Overturn => self.side * self.sim.model.theta_ov,
+            Hit::Kink(i) => self.side * self.sim.kinks.as_slice()[i],
+        }
+    }
+
+    /// An event found at `tau` (a fraction of the step) on the dense output
+    /// `herm` of the accepted step `tr`: the step is redone to end there and
+    /// the event applied, or the step retried shorter, or (spurious) taken
+    /// as it is. `h_next` is the controller's next step.
+    pub(super) fn event<P: Pair>(
+        &mut self,
+        tr: &Trial,
+        herm: &Hermite,
+        hit: Hit,
+        tau: f64,
+        h_next: f64,
+    ) -> Flow {
+        let (t_ev, y_ev, status) = self.step_to_event::<P>(tr, hit, tau * tr.hh);
+        if status == EventStatus::Retry && t_ev - tr.t > tr.min_step {
+            // the step to the event is not accurate enough (a singular
+            // kink, a poor interpolant): retry shorter
+            self.ev.stats.rejected += 1;
+            self.h = (0.5 * (t_ev - tr.t)).max(tr.min_step);
+            self.rejected = true;
+            return Flow::Next;
+        }
+        self.h = h_next;
+        if status == EventStatus::Spurious {
+            // no event after all (see step_to_event): the accepted step stands
+            self.take(tr, herm);
+            return Flow::Next;
+        }
+        // Put the state exactly on the level: move along the trajectory by
+        // the residual, dt = -r / omega, to first order (the residual is
+        // below 1e-3 of the error scale, but in the contact zone
+        // I'(phi) omega² is large and a bare shift of theta would change the
+        // energy).
+        let level = self.level(hit);
+        let shift = if y_ev.y[1] != 0.0 {
+            -(y_ev.y[0] - level) / y_ev.y[1]
+        } else {
+            0.0
+        };
+        let omega = y_ev.y[1] + y_ev.accel * shift;
+        // the part of the step up to the event (on one side of theta = 0:
+        // the event is the step's first)
+        self.note_opening(herm, ((t_ev - tr.t) / tr.hh).clamp(0.0, 1.0));
+        let t_ev = t_ev + shift;
+        self.st.t = t_ev;
+        match hit {
+            Hit::Kink(_) => {
+                self.on_kink(level, omega);
+                Flow::Next
+            }
+            Hit::Overturn => {
+                self.overturn(level, omega, t_ev);
+                Flow::Stop(Stop::Event)
+            }
+            Hit::Impact => self.impact(omega, t_ev),
+        }
+    }
+
+    /// Exactly on the level of a kink, so that the next step starts on it
+    /// and is smooth.
+    fn on_kink(&mut self, level: f64, omega: f64) {
+        self.st.theta = level;
+        self.st.omega = omega;
+        self.a0 = self.eom.accel(
+            self.st.t,
+            self.st.theta,
+            self.st.omega,
+            self.side,
+            &mut self.hint,
+        );
+        self.ev.stats.evals += 1;
+        self.st.a = self.hint;
+        self.side = side_of(self.st.theta, self.st.omega, self.eom.ag(self.st.t));
+    }
+
+    /// `|theta|` reached `thetaOv` at `t_ev`: the run is over.
+    fn overturn(&mut self, level: f64, omega: f64, t_ev: f64) {
+        self.st.theta = level;
+        self.st.omega = omega;
+        self.st.overturned = true;
+        self.st.h = self.h;
+        self.ev.overturned_at = Some(t_ev);
+    }
+
+    /// A zero crossing at `t_ev` arriving with `omega`: the restitution
+    /// rule, the counts, then rest (or, for the rigid law without ground
+    /// motion, the half-cycles that fit in closed form).
+    fn impact(&mut self, omega: f64, t_ev: f64) -> Flow {
+        let (sim, eom) = (self.sim, self.eom);
+        self.st.theta = 0.0;
+        self.st.omega = sim.restitution(omega);
+        count_crossing(self.st, self.ev);
+        let ag = eom.ag(t_ev);
+        let quiet = ag == 0.0 && eom.dag() == 0.0;
+        let mut rest = if eom.rigid {
+            sim.comes_to_rest(self.st.omega, ag)
+        } else {
+            quiet && sim.settles(self.st.omega)
+        };
+        if eom.rigid && quiet && !rest && !self.stop_at_event {
+            rest = sim.free_half_cycles(self.st, self.t_end, self.ev, self.budget);
+        }
+        if rest {
+            self.st.omega = 0.0;
+            self.st.at_rest = true;
+            self.ev.came_to_rest = true;
+            self.st.h = 0.0;
+            return Flow::Stop(if self.stop_at_event {
+                Stop::Event
+            } else {
+                Stop::End
+            });
+        }
+        self.side = side_of(0.0, self.st.omega, ag);
+        self.hint = self.st.a;
+        self.a0 = eom.accel(self.st.t, 0.0, self.st.omega, self.side, &mut self.hint);
+        self.ev.stats.evals += 1;
+        if self.stop_at_event {
+            self.st.h = self.h;
+            return Flow::Stop(Stop::Event);
+        }
+        Flow::Next
+    }
+
+    /// Redo the step `tr` so that it ends at the event `t + dt`, then polish
+    /// `dt` by Newton on the step itself until the event function (`theta`,
+    /// `|theta| - level`) is below a thousandth of the error scale of the
+    /// motion. Returns the event time, the step, and the verdict.
+    fn step_to_event<P: Pair>(
+        &mut self,
+        tr: &Trial,
+        hit: Hit,
+        mut dt: f64,
+    ) -> (f64, StepOut, EventStatus) {
+        let (eom, tol): (&Eom, &Tol) = (self.eom, self.tol);
+        let target = self.level(hit);
+        let h_max = tr.hh;
+        let mut out = StepOut {
+            y: tr.y0,
+            accel: self.a0,
+            err: 0.0,
+            rho: 0.0,
+        };
+        let mut converged = false;
+        for _ in 0..4 {
+            if dt > 0.0 {
+                let mut hh = self.hint;
+                out = stiffness::attempt::<P>(
+                    eom, tol, &tr.kind, tr.t, dt, tr.y0, self.a0, self.side, &mut hh, self.ev,
+                );
+                self.ev.stats.steps += 1;
+            }
+            // relative to the size of the motion itself, not to the error
+            // floor: the state is set exactly on the level, and a
+            // displacement at the floor would feed a spurious oscillation
+            let r = out.y[0] - target;
+            let sc = tol.rtol * tol.amp(out.y);
+            if r.abs() <= 1e-3 * sc {
+                converged = true;
+                break;
+            }
+            // stay inside the step that was accepted
+            let next = dt - r / out.y[1];
+            if !next.is_finite() || next <= 0.0 || next > h_max || next == dt {
+                break;
+            }
+            dt = next;
+        }
+        let moving = self.side * out.y[1];
+        let direction = match hit {
+            Hit::Impact => moving < 0.0,
+            Hit::Overturn => moving > 0.0,
+            Hit::Kink(_) => true,
+        };
+        let t = tr.t;
+        let status = if t + dt <= t || !direction {
+            EventStatus::Spurious
+        } else if converged && out.err <= 1.0 {
+            EventStatus::Confirmed
+        } else {
+            EventStatus::Retry
+        };
+        (t + dt, out, status)
+    }
+
+    /// Marks the joint opened if `|theta|` exceeds `thetaJo` on `[0, tau_end]`
+    /// (fractions of the step) of the step interpolated by `p`: the ends, and
+    /// the turning points inside (a peak above `thetaJo` between two step
+    /// ends below it, as in a stiff step, or between two ends cut exactly on
+    /// the level).
+    pub(super) fn note_opening(&mut self, p: &Hermite, tau_end: f64) {
+        let theta_jo = self.sim.model.interface.theta_jo();
+        // the end first: the turning-point search only while the joint has
+        // not opened in this half-cycle
+        if !self.st.opened && (p.theta(tau_end).abs() > theta_jo || max_abs(p, tau_end) > theta_jo)
+        {
+            self.st.opened = true;
+        }
+    }
+}
+
+/// A zero crossing of `theta`: an impact too if the joint had opened since
+/// the previous one (see [`State::impacts`]).
+fn count_crossing(st: &mut State, ev: &mut Events) {
+    st.zero_crossings += 1;
+    ev.zero_crossings += 1;
+    if st.opened {
+        st.impacts += 1;
+        ev.impacts += 1;
+    }
+    st.opened = false;
+}
+
+impl Simulator {
+    /// The restitution rule (docs/model.md §3), at every zero crossing: the
+    /// angular velocity after the crossing from the one before, rad/s.
+    fn restitution(&self, omega: f64) -> f64 {
+        self.model.eta * omega
+    }
+
+    /// Rigid law without ground motion, after an impact: the half-cycles
+    /// that end before `t_end` in closed form (see `free`), each with its
+    /// impact and the rest test, within the call's work `budget`. Returns
+    /// whether the body came to rest; else `st` is just after the last
+    /// impact that fits, and the integrator takes over (for the partial
+    /// half-cycle, overturning, or the work limit).
+    fn free_half_cycles(
+        &self,
+        st: &mut State,
+        t_end: f64,
+        ev: &mut Events,
+        budget: Option<u64>,
+    ) -> bool {
+        let b = &self.model.body;
+        let free = FreeRigid::new(b.weight, b.r0, b.io, b.alpha);
+        while let Some(phi) = free.peak(st.omega) {
+            let t_next = st.t + 2.0 * free.fall_time(phi);
+            if t_next.is_nan() || t_next >= t_end || budget.is_some_and(|n| ev.work() >= n) {
+                break;
+            }
+            st.t = t_next;
+            // the body falls back with the velocity it left with
+            st.omega = self.restitution(-st.omega);
+            // the half-cycle rose to phi > 0 = thetaJo: an impact
+            st.opened = true;
+            count_crossing(st, ev);
+            if self.comes_to_rest(st.omega, 0.0) {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// The rest criterion of the flexible laws, under zero ground motion:
+    /// after an impact at `theta = 0` with `omega`, the free oscillation in
+    /// full contact has the amplitude `|omega| sqrt(I0 / K0)`
+    /// (`K0 = kn Is - W hG`, `I0 = Ic + m hG²`, the linearisation at
+    /// `theta = 0`). Below `rtol thetaOv` (the error floor) it is set to rest
+    /// exactly: it would otherwise cross zero every half period for ever,
+    /// decaying by `eta` each time.
+    fn settles(&self, omega: f64) -> bool {
+        let (kn, is) = match self.model.interface.law() {
+            Law::Elastic { kn } | Law::ElastoPlastic { kn, .. } => {
+                (kn, self.model.interface.shape().second_moment())
+            }
+            Law::Rigid => return false,
+        };
+        let b = &self.model.body;
+        let k0 = kn * is - b.weight * b.hg;
+        let i0 = b.ic + b.mass * b.hg * b.hg;
+        let amp = omega.abs() * (i0 / k0).sqrt();
+        amp <= self.effective_rtol() * self.model.theta_ov
+    }
+
+    /// Whether a rigid body leaving an impact with `omega` under `ag` is at
+    /// rest to the tolerance ([`rest_bound`](Self::rest_bound) below the
+    /// step's absolute tolerances).
+    fn comes_to_rest(&self, omega: f64, ag: f64) -> bool {
+        let rtol = self.effective_rtol();
+        let (th, om) = self.scales();
+        match self.rest_bound(omega, ag) {
+            Some((dw, dth)) => dw <= rtol * om && dth <= rtol * th,
+            None => false,
+        }
+    }
+}

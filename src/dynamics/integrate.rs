@@ -1,0 +1,461 @@
+//! The integration loop of one call: the call's own time axis, rest and
+//! uplift (rigid law), and the step loop that ties the controller, the
+//! stiffness switch, the kinks and the events together through a step
+//! context ([`StepCx`]).
+
+use super::controller;
+use super::dense::{first_event, Hermite};
+use super::eom::{side_of, Eom};
+use super::erk::{Dop853, Dp5, Pair, StepOut, Tol};
+use super::rodas::Jac;
+use super::stiffness::{self, Kind};
+use super::{Events, GroundInput, Limited, Method, Simulator, State};
+
+/// Why a step loop stopped.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Stop {
+    /// Reached `t_end`.
+    End,
+    /// An event, and the caller wants to see it.
+    Event,
+    /// The call's work limit.
+    Limit,
+}
+
+impl Simulator {
+    /// Integrates in the call's own time `tau = t - t0` (`t0 = state.t` at
+    /// the call): a step's resolution is then that of `tau`, not that of the
+    /// absolute time, whose last bit at `t = 1e9 s` (1.2e-7 s) is longer
+    /// than a passage through the contact zone of a stiff interface.
+    pub(super) fn run(
+        &self,
+        st: &mut State,
+        t_end: f64,
+        input: GroundInput,
+        stop_at_event: bool,
+    ) -> Events {
+        if st.overturned || t_end.is_nan() || t_end <= st.t {
+            return Events::default();
+        }
+        let t0 = st.t;
+        let tau_end = t_end - t0;
+        st.t = 0.0;
+        let budget = self.work_limit.map(|w| w.budget(tau_end));
+        let mut ev = self.run_local(st, t0, tau_end, input, stop_at_event, budget);
+        let to_absolute = move |tau: f64| -> f64 {
+            if tau >= tau_end {
+                t_end
+            } else {
+                (t0 + tau).min(t_end)
+            }
+        };
+        ev.overturned_at = ev.overturned_at.map(to_absolute);
+        st.t = to_absolute(st.t);
+        if let Some(l) = ev.limited.as_mut() {
+            l.t = st.t;
+        }
+        ev
+    }
+
+    /// [`run`](Self::run) from `st.t = 0` to `t_end` (call-local times; the
+    /// call starts at the absolute time `t0`), at most `budget` units of work.
+    fn run_local(
+        &self,
+        st: &mut State,
+        t0: f64,
+        t_end: f64,
+        input: GroundInput,
+        stop_at_event: bool,
+        budget: Option<u64>,
+    ) -> Events {
+        let mut ev = Events::default();
+        let eom = Eom::new(&self.model, st.t, input);
+        let tol = self.tol();
+        if st.theta == 0.0 && st.omega == 0.0 {
+            st.at_rest = true;
+        }
+        loop {
+            if st.at_rest && !eom.rigid {
+                // flexible law: theta = omega = 0 is an equilibrium as long
+                // as there is no ground motion
+                if self.held_at_rest(eom.ag(st.t)) && eom.dag() == 0.0 {
+                    st.t = t_end;
+                    return ev;
+                }
+                st.at_rest = false;
+                st.h = 0.0;
+            }
+            if st.at_rest {
+                match self.uplift_time(&eom, st.t, t_end) {
+                    None => {
+                        st.t = t_end;
+                        return ev;
+                    }
+                    Some(tu) => {
+                        st.t = tu;
+                        st.at_rest = false;
+                        st.theta = 0.0;
+                        st.omega = 0.0;
+                        st.h = 0.0;
+                        ev.uplift = true;
+                        // An uplift at the call's start (in absolute time)
+                        // is not a stop: the call after an uplift event
+                        // starts there at rest (theta = omega = 0) and would
+                        // report it again, for ever.
+                        if stop_at_event && t0 + tu > t0 {
+                            return ev;
+                        }
+                    }
+                }
+            }
+            let stop = match self.method {
+                Method::Dp5 => {
+                    StepCx::new::<Dp5>(self, &eom, &tol, st, t_end, stop_at_event, budget, &mut ev)
+                        .steps::<Dp5>()
+                }
+                Method::Dop853 => StepCx::new::<Dop853>(
+                    self,
+                    &eom,
+                    &tol,
+                    st,
+                    t_end,
+                    stop_at_event,
+                    budget,
+                    &mut ev,
+                )
+                .steps::<Dop853>(),
+            };
+            if stop != Stop::End || st.overturned || !st.at_rest || st.t >= t_end {
+                return ev;
+            }
+        }
+    }
+
+    /// When a rigid body at rest at `t` lifts off before `t_end`: the first
+    /// time `|ag| > g tan(alpha)` (the input is linear), or `None`.
+    fn uplift_time(&self, eom: &Eom, t: f64, t_end: f64) -> Option<f64> {
+        let thr = self.uplift_acceleration();
+        let ag = eom.ag(t);
+        if !self.held_at_rest(ag) {
+            return Some(t);
+        }
+        let dag = eom.dag();
+        if dag == 0.0 {
+            return None;
+        }
+        let target = if dag > 0.0 { thr } else { -thr };
+        let tu = t + (target - ag) / dag;
+        // strictly beyond the threshold: the first representable time after
+        let tu = if eom.ag(tu).abs() > thr {
+            tu
+        } else {
+            tu.next_up()
+        };
+        (tu < t_end).then_some(tu)
+    }
+}
+
+/// One step loop: from the state to `t_end`, an event the caller wants,
+/// rest, overturning or the work limit. The fields that are not the
+/// call's settings change from step to step.
+pub(super) struct StepCx<'c, 'm> {
+    pub(super) sim: &'c Simulator,
+    pub(super) eom: &'c Eom<'m>,
+    pub(super) tol: &'c Tol,
+    pub(super) st: &'c mut State,
+    pub(super) ev: &'c mut Events,
+    pub(super) t_end: f64,
+    pub(super) stop_at_event: bool,
+    /// The most work (steps, rejections and zero crossings) of the call.
+    pub(super) budget: Option<u64>,
+    /// Side of the motion at the step start (see `eom::side_of`).
+    pub(super) side: f64,
+    /// Warm start of the contact solve at the step start, m.
+    pub(super) hint: f64,
+    /// `theta''` at the step start, rad/s².
+    pub(super) a0: f64,
+    /// The step to try next, s.
+    pub(super) h: f64,
+    /// The last attempt was rejected: the next step may not grow.
+    pub(super) rejected: bool,
+    /// The Rosenbrock Jacobian at the current step start.
+    pub(super) jac: Option<Jac>,
+}
+
+/// One attempted step from the context's state.
+pub(super) struct Trial {
+    /// Start time, s.
+    pub(super) t: f64,
+    /// `(theta, omega)` at the start.
+    pub(super) y0: [f64; 2],
+    /// End time (`t_end` on the last step), s.
+    pub(super) t_new: f64,
+    /// `t_new - t`, s.
+    pub(super) hh: f64,
+    /// Cut by `t_end`.
+    pub(super) last: bool,
+    pub(super) kind: Kind,
+    pub(super) out: StepOut,
+    /// The contact warm start at the end of the step.
+    pub(super) hint: f64,
+    /// The smallest step from `t`.
+    pub(super) min_step: f64,
+}
+
+/// What the loop does after an event.
+pub(super) enum Flow {
+    /// Go on stepping.
+    Next,
+    /// Return from the loop.
+    Stop(Stop),
+}
+
+impl<'c, 'm> StepCx<'c, 'm> {
+    /// The context at the state's start: `theta''` there and the first step
+    /// (the state's suggestion, else Hairer's starting step).
+    #[allow(clippy::too_many_arguments)]
+    fn new<P: Pair>(
+        sim: &'c Simulator,
+        eom: &'c Eom<'m>,
+        tol: &'c Tol,
+        st: &'c mut State,
+        t_end: f64,
+        stop_at_event: bool,
+        budget: Option<u64>,
+        ev: &'c mut Events,
+    ) -> StepCx<'c, 'm> {
+        let side = side_of(st.theta, st.omega, eom.ag(st.t));
+        let mut hint = st.a;
+        let a0 = eom.accel(st.t, st.theta, st.omega, side, &mut hint);
+        ev.stats.evals += 1;
+        let mut h = st.h;
+        if h.is_nan() || h <= 0.0 {
+            h = controller::initial_step(
+                eom,
+                tol,
+                st.t,
+                [st.theta, st.omega],
+                a0,
+                side,
+                &mut hint,
+                P::ORDER,
+            );
+            ev.stats.evals += 1;
+        }
+        if eom.rigid || !sim.stiff_mode {
+            st.stiff = false;
+        }
+        StepCx {
+            sim,
+            eom,
+            tol,
+            st,
+            ev,
+            t_end,
+            stop_at_event,
+            budget,
+            side,
+            hint,
+            a0,
+            h,
+            rejected: false,
+            jac: None,
+        }
+    }
+
+    /// The loop: attempt, reject or accept, then take the step or the event
+    /// found on its dense output.
+    fn steps<P: Pair>(mut self) -> Stop {
+        while self.st.t < self.t_end {
+            if self.over_budget() {
+                self.st.h = self.h;
+                return Stop::Limit;
+            }
+            let tr = self.attempt::<P>();
+            let acceptable = tr.out.err <= 1.0; // false for NaN
+            if !acceptable && tr.hh > tr.min_step {
+                self.reject::<P>(&tr);
+                continue;
+            }
+            let h_next = self.accept::<P>(&tr);
+            let herm = Hermite::new(
+                tr.hh,
+                [tr.y0[0], tr.y0[1], self.a0],
+                [tr.out.y[0], tr.out.y[1], tr.out.accel],
+            );
+            self.jac = None;
+            // RODAS steps are not cut at the kinks: its steps are long, and
+            // the projection on the slow manifold moves the state off them
+            let kinks = if self.st.stiff {
+                &[][..]
+            } else {
+                self.sim.kinks.as_slice()
+            };
+            match first_event(&herm, self.side, self.sim.model.theta_ov, kinks) {
+                None => {
+                    self.take(&tr, &herm);
+                    self.h = h_next;
+                }
+                Some((hit, tau)) => match self.event::<P>(&tr, &herm, hit, tau, h_next) {
+                    Flow::Next => {}
+                    Flow::Stop(s) => return s,
+                },
+            }
+        }
+        self.st.h = self.h;
+        Stop::End
+    }
+
+    /// Whether the call has used its work budget.
+    fn over_budget(&mut self) -> bool {
+        let Some(budget) = self.budget else {
+            return false;
+        };
+        let work = self.ev.work();
+        if work < budget {
+            return false;
+        }
+        self.ev.limited = Some(Limited::at(self.ev, self.st, budget, self.h));
+        true
+    }
+
+    /// A step of `self.h` (cut at `t_end`) from the state, with the kind of
+    /// method of the mode (projecting the state on the slow manifold first
+    /// in the stiff mode, see `stiffness::slow_state`).
+    fn attempt<P: Pair>(&mut self) -> Trial {
+        let t = self.st.t;
+        let last = t + 1.01 * self.h >= self.t_end;
+        let t_new = if last { self.t_end } else { t + self.h };
+        let hh = t_new - t;
+        let kind = if self.st.stiff {
+            Kind::Rodas(self.stiff_jacobian(t, hh))
+        } else {
+            Kind::Explicit
+        };
+        let y0 = [self.st.theta, self.st.omega];
+        let mut hint = self.hint;
+        let out = stiffness::attempt::<P>(
+            self.eom, self.tol, &kind, t, hh, y0, self.a0, self.side, &mut hint, self.ev,
+        );
+        Trial {
+            t,
+            y0,
+            t_new,
+            hh,
+            last,
+            kind,
+            out,
+            hint,
+            min_step: controller::min_step(t, hh),
+        }
+    }
+
+    /// The Jacobian at the step start, computed once per step start. In the
+    /// stiff mode an oscillation about the quasi-static state below the
+    /// tolerance at the rocking scale, `rtol thetaOv`, is projected away
+    /// (onto the linearised slow manifold), so that RODAS is not held to
+    /// resolve it.
+    fn stiff_jacobian(&mut self, t: f64, hh: f64) -> Jac {
+        if let Some(j) = self.jac {
+            return j;
+        }
+        let (eom, tol) = (self.eom, self.tol);
+        let y0 = [self.st.theta, self.st.omega];
+        let mut j =
+            stiffness::jacobian(eom, tol, t, hh, y0, self.a0, self.side, self.hint, self.ev);
+        let negligible = tol.rtol * self.sim.model.theta_ov;
+        if let Some((th, om)) = stiffness::slow_state(&j, y0, self.a0, negligible) {
+            self.st.theta = th;
+            self.st.omega = om;
+            self.a0 = eom.accel(t, th, om, self.side, &mut self.hint);
+            self.ev.stats.evals += 1;
+            j = stiffness::jacobian(
+                eom,
+                tol,
+                t,
+                hh,
+                [th, om],
+                self.a0,
+                self.side,
+                self.hint,
+                self.ev,
+            );
+        }
+        self.jac = Some(j);
+        j
+    }
+
+    /// A rejected step: shorter by the controller, and cut just past a kink
+    /// it ran across.
+    fn reject<P: Pair>(&mut self, tr: &Trial) {
+        self.ev.stats.rejected += 1;
+        let f = controller::shrink(tr.out.err, tr.kind.err_exp::<P>());
+        self.h = (tr.hh * f).max(tr.min_step);
+        let kinks = &self.sim.kinks;
+        if !kinks.as_slice().is_empty() && !self.st.stiff && tr.out.err.is_finite() {
+            let herm = Hermite::new(
+                tr.hh,
+                [tr.y0[0], tr.y0[1], self.a0],
+                [tr.out.y[0], tr.out.y[1], tr.out.accel],
+            );
+            self.h = kinks.retry_past(
+                &herm,
+                self.side,
+                self.sim.model.theta_ov,
+                tr.hh,
+                self.h,
+                tr.min_step,
+            );
+        }
+        self.rejected = true;
+    }
+
+    /// An accepted step: counted, the mode switched if it argues for it
+    /// (steps not cut by `t_end`); returns the next step size.
+    fn accept<P: Pair>(&mut self, tr: &Trial) -> f64 {
+        self.ev.stats.steps += 1;
+        if self.st.stiff {
+            self.ev.stats.stiff_steps += 1;
+        }
+        let fac = controller::grow(tr.out.err, tr.kind.err_exp::<P>(), self.rejected);
+        self.rejected = false;
+        let mut h_next = if tr.last {
+            (tr.hh * fac).max(self.h)
+        } else {
+            tr.hh * fac
+        };
+        h_next = h_next.max(tr.min_step);
+        if !self.eom.rigid {
+            h_next = controller::toward_zero(
+                h_next,
+                tr.hh,
+                fac,
+                tr.out.y,
+                self.sim.model.interface.theta_jo(),
+            );
+        }
+        if !self.eom.rigid && !tr.last && self.sim.stiff_mode {
+            stiffness::switch(
+                &mut self.st.stiff,
+                &mut self.st.switch_count,
+                tr.hh,
+                tr.out.rho,
+            );
+        }
+        h_next
+    }
+
+    /// The state moves to the end of the accepted step.
+    pub(super) fn take(&mut self, tr: &Trial, herm: &Hermite) {
+        self.note_opening(herm, 1.0);
+        self.st.t = tr.t_new;
+        self.st.theta = tr.out.y[0];
+        self.st.omega = tr.out.y[1];
+        self.a0 = tr.out.accel;
+        self.hint = tr.hint;
+        self.st.a = self.hint;
+        if !self.eom.rigid {
+            self.side = side_of(self.st.theta, self.st.omega, self.eom.ag(self.st.t));
+        }
+    }
+}

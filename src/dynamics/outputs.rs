@@ -1,0 +1,95 @@
+//! Output quantities at a state (docs/model.md §5): `theta''`, the contact,
+//! the restoring moment and the forces of the support.
+
+use super::eom::{side_of, Eom};
+use super::{GroundInput, Outputs, Simulator, State};
+use crate::interface::Regime;
+
+impl Simulator {
+    /// Outputs at `state` under ground acceleration `ag` (m/s²).
+    ///
+    /// A body at rest that this `ag` sets moving (see
+    /// [`held_at_rest`](Self::held_at_rest)) gets the equation of motion's
+    /// `theta''`, `Fx`, `Fz` at `theta = omega = 0` on the side `ag` pushes
+    /// it to (the motion starts there); its contact outputs stay those at
+    /// rest.
+    ///
+    /// The support forces (docs/model.md §5) follow from the velocity of G
+    /// that the equation of motion implies, G turning about the interface
+    /// resultant: `xG' = hg omega`, `zG' = s hW omega`, so
+    /// `xG'' = hg theta'' + s hg' omega²`, `zG'' = s hW theta'' + hW' omega²`,
+    /// `Fx = m (ag + xG'')`, `Fz = m (g + zG'')`. With `I = Ic + m (hg² +
+    /// hW²)` these make the energy of a block on a moving support balance
+    /// the work of `Fx`; for the rigid law they are G turning rigidly about
+    /// the toe.
+    pub fn outputs(&self, state: &State, ag: f64) -> Outputs {
+        if !state.at_rest {
+            return self.outputs_in_motion(state, ag);
+        }
+        let b = &self.model.body;
+        // The contact of a body at rest is the whole base, whatever ag: the
+        // contact outputs do not depend on ag (docs/model.md §5 declares
+        // only angularAcceleration, Fx, Fz as depending on it).
+        let c = self.model.interface.contact(0.0);
+        let rest = Outputs {
+            theta_dd: 0.0,
+            af: c.af,
+            contact_length: c.contact_length,
+            mr: 0.0,
+            regime: c.regime,
+            fx: b.mass * ag,
+            fz: b.weight,
+        };
+        if self.held_at_rest(ag) {
+            return rest;
+        }
+        let start = self.outputs_in_motion(state, ag);
+        Outputs {
+            theta_dd: start.theta_dd,
+            fx: start.fx,
+            fz: start.fz,
+            ..rest
+        }
+    }
+
+    /// [`outputs`](Self::outputs) from the equation of motion at `state`.
+    fn outputs_in_motion(&self, state: &State, ag: f64) -> Outputs {
+        let m = &self.model;
+        let b = &m.body;
+        let side = side_of(state.theta, state.omega, ag);
+        let eom = Eom::new(
+            m,
+            state.t,
+            GroundInput {
+                ag,
+                ..Default::default()
+            },
+        );
+        let mut hint = state.a;
+        let theta_dd = eom.accel(state.t, state.theta, state.omega, side, &mut hint);
+        let phi = state.theta.abs();
+        // rigid law in motion: the reaction is at the toe even at theta = 0
+        let c = if eom.rigid {
+            m.interface.contact(phi.max(f64::MIN_POSITIVE))
+        } else {
+            m.interface.contact_near(phi, state.a)
+        };
+        let l = m.levers(phi, &c);
+        let w2 = state.omega * state.omega;
+        let xg_dd = l.hg * theta_dd + side * l.dhg * w2;
+        let zg_dd = side * l.hw * theta_dd + l.dhw * w2;
+        Outputs {
+            theta_dd,
+            af: c.af,
+            contact_length: c.contact_length,
+            mr: b.weight * l.hw,
+            regime: if state.overturned {
+                Regime::Overturned
+            } else {
+                c.regime
+            },
+            fx: b.mass * (ag + xg_dd),
+            fz: b.mass * (b.g + zg_dd),
+        }
+    }
+}
