@@ -20,7 +20,8 @@
 //!   has no win64 folder and a line says so.
 //!
 //! The native build (`target/release`) also makes the `run_direct` example
-//! (the Rust engine run directly, for the fmpy tests' comparisons).
+//! (the Rust engine run directly, for the fmpy tests' comparisons) and
+//! `libfmu_stepper.so` (the native stepping loop of python/rocking).
 
 use std::env;
 use std::fs;
@@ -42,6 +43,9 @@ struct Model {
     identifier: &'static str,
     /// Examples built with the native release library.
     examples: &'static [&'static str],
+    /// Other packages built with the native release library: the hosts'
+    /// helpers the Python package loads from target/release.
+    companions: &'static [&'static str],
 }
 
 const ROCKING_BLOCK: Model = Model {
@@ -49,6 +53,8 @@ const ROCKING_BLOCK: Model = Model {
     lib: "fmu_rocking",
     identifier: "RockingBlock",
     examples: &["run_direct"],
+    // the stepping loop python/rocking/stepper.py loads
+    companions: &["fmu-stepper"],
 };
 
 const SHEAR_FRAME: Model = Model {
@@ -56,6 +62,7 @@ const SHEAR_FRAME: Model = Model {
     lib: "fmu_shear_frame",
     identifier: "ShearFrame",
     examples: &[],
+    companions: &[],
 };
 
 /// The FMUs `cargo xtask fmu` writes.
@@ -93,7 +100,7 @@ fn usage() {
          tasks:\n  \
          fmu          build the release libraries for linux64 (glibc 2.17) and win64 and write\n               \
          target/fmu/RockingBlock.fmu, target/fmu/ShearFrame.fmu (and\n               \
-         target/release/examples/run_direct)\n  \
+         target/release/examples/run_direct, target/release/libfmu_stepper.so)\n  \
          shear-frame  only target/fmu/ShearFrame.fmu\n  \
          crosscheck   the FMUs, then RockingBlock's FMI cross-check artefacts (FMU, input,\n               \
          reference results from the engine run directly, options, README) under\n               \
@@ -191,6 +198,9 @@ fn cargo() -> Command {
 fn build(model: &Model) -> Res<Built> {
     let mut cmd = cargo();
     cmd.args(["build", "--release", "--package", model.package, "--lib"]);
+    for p in model.companions {
+        cmd.args(["--package", p]);
+    }
     for e in model.examples {
         cmd.args(["--example", e]);
     }
