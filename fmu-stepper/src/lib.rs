@@ -101,12 +101,7 @@ pub struct Outcome {
 /// # Safety
 /// As for [`fmu_stepper_run`].
 unsafe fn sample(f: &Functions, c: Component, run: &Run, row: usize, t: f64) -> Result<(), i32> {
-    let mut status = (f.get_real)(
-        c,
-        run.vr_real,
-        run.n_real,
-        run.reals.add(row * run.n_real),
-    );
+    let mut status = (f.get_real)(c, run.vr_real, run.n_real, run.reals.add(row * run.n_real));
     if run.n_integer > 0 {
         status = status.max((f.get_integer)(
             c,

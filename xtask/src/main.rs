@@ -297,6 +297,12 @@ fn build_platform(
         "--target-dir",
     ]);
     cmd.arg(target_dir().join("platforms").join(platform));
+    // The shipped binary carries its symbols but no debug information: a
+    // fifth of the size, and compressing the 5.5 MB of DWARF was 3.1 of the
+    // packaging's 3.3 s. The native build of target/release keeps it (the
+    // profile's `debug = 1`) for profilers and debuggers.
+    cmd.env("CARGO_PROFILE_RELEASE_DEBUG", "0")
+        .env("CARGO_PROFILE_RELEASE_STRIP", "debuginfo");
     let messages = cargo_messages(cmd, model)?;
     cdylib(&messages, model, extension)
         .ok_or_else(|| format!("cargo reported no {} {extension} for {target}", model.lib))
