@@ -77,6 +77,7 @@ fn main() {
     let args: Vec<String> = env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("fmu") => MODELS.iter().try_for_each(|m| package(m).map(|_| ())),
+        Some("rocking-block") => package(&ROCKING_BLOCK).map(|_| ()),
         Some("shear-frame") => package(&SHEAR_FRAME).map(|_| ()),
         Some("crosscheck") => crosscheck(),
         Some("-h") | Some("--help") | None => {
@@ -98,12 +99,13 @@ fn usage() {
     eprintln!(
         "usage: cargo xtask <task>\n\n\
          tasks:\n  \
-         fmu          build the release libraries for linux64 (glibc 2.17) and win64 and write\n               \
-         target/fmu/RockingBlock.fmu, target/fmu/ShearFrame.fmu (and\n               \
+         fmu            build the release libraries for linux64 (glibc 2.17) and win64 and write\n                 \
+         target/fmu/RockingBlock.fmu, target/fmu/ShearFrame.fmu (and\n                 \
          target/release/examples/run_direct, target/release/libfmu_stepper.so)\n  \
-         shear-frame  only target/fmu/ShearFrame.fmu\n  \
-         crosscheck   the FMUs, then RockingBlock's FMI cross-check artefacts (FMU, input,\n               \
-         reference results from the engine run directly, options, README) under\n               \
+         rocking-block  only target/fmu/RockingBlock.fmu (and run_direct, libfmu_stepper.so)\n  \
+         shear-frame    only target/fmu/ShearFrame.fmu\n  \
+         crosscheck     the FMUs, then RockingBlock's FMI cross-check artefacts (FMU, input,\n                 \
+         reference results from the engine run directly, options, README) under\n                 \
          target/cross-check/fmus/2.0/cs/{{linux64,win64}}/..."
     );
 }
