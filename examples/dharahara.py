@@ -6,9 +6,11 @@
    interface stiffnesses of Table 1, fm = 2, 5, 15 MPa and none, and the rigid
    interface: `cargo run --release --example dharahara_curves` (the physics
    crate, no FMU), plotted here.
-2. Time histories through target/fmu/RockingBlock.fmu in fmpy (the paper's
-   Fig. 20) for the same cases under the KATNP north-south record, stopped at
-   overturning, run in parallel by `rocking.run_grid`; a summary table.
+2. Time histories through target/fmu/RockingBlock.fmu (the paper's Fig. 20)
+   for the same cases under the KATNP north-south record, stopped at
+   overturning, and the scale study (the record scaled), all in one pool of
+   `rocking.run_grid` (the native stepping loop where built, docs/performance.md)
+   while this process makes the curves and their plots; a summary table.
 3. The paper's claims set against our numbers (printed and written).
 
 The KATNP record itself could not be obtained: by default the synthetic
