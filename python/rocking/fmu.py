@@ -22,6 +22,10 @@ buffer sized, passes at most samples the slope of the segment that ends there
 (docs/examples.md, "Input derivatives and fmpy"). Overturning: the FMU
 returns fmi2Discard with fmi2Terminated true; the run ends at
 fmi2LastSuccessfulTime, whose outputs are the last row.
+
+The loop runs in native code (`rocking.stepper`, the fmu-stepper crate that
+`cargo xtask fmu` builds) where built, else in Python (`loop="python"`, the
+reference it is tested against bit for bit); docs/performance.md has the costs.
 """
 
 import math
