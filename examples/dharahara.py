@@ -6,9 +6,11 @@
    interface stiffnesses of Table 1, fm = 2, 5, 15 MPa and none, and the rigid
    interface: `cargo run --release --example dharahara_curves` (the physics
    crate, no FMU), plotted here.
-2. Time histories through target/fmu/RockingBlock.fmu in fmpy (the paper's
-   Fig. 20) for the same cases under the KATNP north-south record, stopped at
-   overturning, run in parallel by `rocking.run_grid`; a summary table.
+2. Time histories through target/fmu/RockingBlock.fmu (the paper's Fig. 20)
+   for the same cases under the KATNP north-south record, stopped at
+   overturning, and the scale study (the record scaled), all in one pool of
+   `rocking.run_grid` (the native stepping loop where built, docs/performance.md)
+   while this process makes the curves and their plots; a summary table.
 3. The paper's claims set against our numbers (printed and written).
 
 The KATNP record itself could not be obtained: by default the synthetic
@@ -55,20 +57,26 @@ def fm_text(fm_pa):
 # 1. moment-rotation curves
 # --------------------------------------------------------------------------
 
-def moment_rotation(out, hg=None, ic=None):
-    """Run the Rust example; return (curves DataFrame, cases DataFrame)."""
+def start_moment_rotation(out, hg=None, ic=None):
+    """Start the Rust example that writes the curves (a process of its own)."""
     cmd = ["cargo", "run", "--release", "--quiet", "--example", "dharahara_curves", "--", str(out)]
     if hg is not None or ic is not None:
         cmd += [repr(hg if hg is not None else HG)] + ([repr(ic)] if ic is not None else [])
     log("[1/3] moment-rotation curves: " + " ".join(cmd))
-    t0 = time.perf_counter()
-    proc = subprocess.run(cmd, cwd=REPO, capture_output=True, text=True)
+    proc = subprocess.Popen(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc.started = time.perf_counter()
+    return proc
+
+
+def finish_moment_rotation(proc, out):
+    """Wait for the example; return (curves DataFrame, cases DataFrame)."""
+    stdout, stderr = proc.communicate()
     if proc.returncode != 0:
-        sys.exit(f"dharahara_curves failed:\n{proc.stdout}\n{proc.stderr}")
-    (out / "dharahara_mr_log.txt").write_text(proc.stdout)
-    head = proc.stdout.split("\n\n")[0]
+        sys.exit(f"dharahara_curves failed:\n{stdout}\n{stderr}")
+    (out / "dharahara_mr_log.txt").write_text(stdout)
+    head = stdout.split("\n\n")[0]
     log("\n".join("      " + line for line in head.splitlines()))
-    log(f"      done in {time.perf_counter() - t0:.1f} s")
+    log(f"      done in {time.perf_counter() - proc.started:.1f} s")
     curves = pd.read_csv(out / "dharahara_mr_curves.csv", comment="#")
     cases = pd.read_csv(out / "dharahara_mr_cases.csv").set_index("case")
     return curves, cases
@@ -146,35 +154,54 @@ def plot_fig18(curves, cases, out):
 # 2. time histories through the FMU
 # --------------------------------------------------------------------------
 
-def time_histories(record, rec_label, standin, out, workers, fmu_path, stop_time, only=None, hg=None, ic=None,
-                   rtol=None):
+def fmu_runs(record, rec_label, fmu, workers, stop_time, only=None, scales=(), hg=None, ic=None, rtol=None,
+             meanwhile=None):
+    """Every case under the record (its history kept: thetaOverAlpha, the one output the study
+    plots) and under the record scaled by `scales`, in one pool. `meanwhile()` is called as runs
+    finish, while the pool works on (this process's work overlapped with the runs). Returns
+    (time histories, scale study rows without the unscaled ones, wall time)."""
     cases = dharahara_cases(hg=hg, ic=ic)
     if only:
         unknown = [c for c in only if c not in cases]
         if unknown:
             sys.exit(f"unknown cases {unknown}; known: {', '.join(cases)}")
         cases = {c: cases[c] for c in only}
-    log(f"[2/3] time histories through the FMU: {len(cases)} cases under {rec_label}, "
-        f"{workers} worker process(es), relative tolerance {rtol if rtol else 'the FMU default'}")
+    extra = [s for s in scales if s != 1.0]
+    log(f"[2/3] time histories through the FMU: {len(cases)} cases under {rec_label}"
+        + (f", and scaled by {', '.join(f'{s:g}' for s in extra)}" if extra else "")
+        + f" ({len(cases) * (1 + len(extra))} runs), {workers} worker process(es), relative tolerance "
+        f"{rtol if rtol else 'the FMU default'}")
     t0 = time.perf_counter()
 
     def progress(done, total, row):
-        state = (f"OVERTURNED at {row['t_overturn']:6.2f} s" if row["overturned"]
-                 else "error: " + row["error"][:80] if row["error"]
-                 else f"stands, peak |theta|/alpha = {row['peak_theta_over_alpha']:.3g}")
-        log(f"      [{done:2d}/{total}] {row['case']:14s} {state:42s} "
-            f"({row['wall_s']:.2f} s; {time.perf_counter() - t0:5.1f} s elapsed)")
+        if meanwhile:
+            meanwhile()
+        if row["error"]:
+            log(f"      {row['case']} x{row['scale']:g}: error: {row['error'][:120]}")
+        if done % 50 == 0 or done == total:
+            log(f"      {done}/{total} runs ({time.perf_counter() - t0:.1f} s)")
 
-    df = run_grid(cases, records={rec_label: record}, workers=workers, fmu=fmu_path, rtol=rtol,
-                  stop_time=stop_time, histories=True, progress=progress,
-                  outputs=("theta", "thetaOverAlpha", "impacts", "regime"))
+    df = run_grid(cases, records={rec_label: record}, scales=[1.0] + extra, workers=workers, fmu=fmu,
+                  rtol=rtol, stop_time=stop_time, histories=lambda _c, _r, scale: scale == 1.0,
+                  progress=progress, outputs=("thetaOverAlpha",))
     wall = time.perf_counter() - t0
     log(f"      {len(df)} runs in {wall:.1f} s ({len(df) / wall:.2f} runs/s)")
     info = [case_info(c) for c in df["case"]]
     df.insert(1, "group", [i[0] for i in info])
     df["kn_Pa_per_m"] = [i[1] for i in info]
     df["fm_Pa"] = [i[2] for i in info]
-    return df, wall
+    unscaled = df["scale"] == 1.0
+    th = df[unscaled].reset_index(drop=True)
+    scaled = df[~unscaled].drop(columns=["history"]).reset_index(drop=True)
+    return th, scaled, wall
+
+
+def log_histories(th):
+    for _, row in th.iterrows():
+        state = (f"OVERTURNED at {row['t_overturn']:6.2f} s" if row["overturned"]
+                 else "error: " + row["error"][:80] if row["error"]
+                 else f"stands, peak |theta|/alpha = {row['peak_theta_over_alpha']:.3g}")
+        log(f"      {row['case']:14s} {state:42s} ({row['wall_s']:.2f} s)")
 
 
 def write_histories(df, record, rec_label, standin, out):
@@ -261,26 +288,10 @@ def robustness(th, study):
     return [bool(same.get(c, True)) for c in th["case"]]
 
 
-def scale_study(th, record, rec_label, standin, out, workers, fmu_path, stop_time, scales, hg=None, ic=None,
-                rtol=None):
-    """The same cases with the record scaled: how many overturn, per family."""
-    all_cases = dharahara_cases(hg=hg, ic=ic)
-    cases = {c: all_cases[c] for c in th["case"]}
-    log(f"[2b/3] scale study: {len(cases)} cases x scales {', '.join(f'{s:g}' for s in scales)} "
-        f"({len(cases) * len(scales)} runs)")
-    t0 = time.perf_counter()
-
-    def progress(done, total, row):
-        if done % 20 == 0 or done == total:
-            log(f"      {done}/{total} runs ({time.perf_counter() - t0:.1f} s)")
-
-    df = run_grid(cases, records={rec_label: record}, scales=scales, workers=workers, fmu=fmu_path,
-                  stop_time=stop_time, progress=progress, rtol=rtol)
-    info = [case_info(c) for c in df["case"]]
-    df.insert(1, "group", [i[0] for i in info])
-    df["kn_Pa_per_m"], df["fm_Pa"] = [i[1] for i in info], [i[2] for i in info]
+def scale_study(th, scaled, standin, out, rec_label):
+    """The cases with the record scaled: how many overturn, per family (table and CSV)."""
     base = th.drop(columns=["history"]).copy()
-    allrows = pd.concat([base, df], ignore_index=True)
+    allrows = pd.concat([base, scaled], ignore_index=True)
     allrows["family"] = [family(g, f) for g, f in zip(allrows["group"], allrows["fm_Pa"])]
     allrows["overturned"] = allrows["overturned"].fillna(False).astype(bool)
     table = allrows.pivot_table(index="family", columns="scale", values="overturned",
@@ -292,7 +303,7 @@ def scale_study(th, record, rec_label, standin, out, workers, fmu_path, stop_tim
         if standin:
             f.write("# THE RECORD IS A SYNTHETIC STAND-IN for KATNP N-S, not the real record\n")
         allrows.drop(columns=["family"]).to_csv(f, index=False, float_format="%.6g")
-    log("      overturned cases per family and scale factor" + (" (STAND-IN record)" if standin else ""))
+    log("[2b/3] overturned cases per family and scale factor" + (" (STAND-IN record)" if standin else ""))
     log("\n".join("      " + line for line in table.to_string().splitlines()))
     return allrows, table
 
@@ -301,18 +312,17 @@ def scale_study(th, record, rec_label, standin, out, workers, fmu_path, stop_tim
 # 3. claims
 # --------------------------------------------------------------------------
 
-def check_invalid_foundation(fmu_path, mr_cases, hg=None, ic=None):
-    """What the FMU does when kn Is > W hG fails (90 % of the limiting kn)."""
+def check_invalid_foundation(fmu, mr_cases, hg=None, ic=None):
+    """What the FMU (a RockingFMU) does when kn Is > W hG fails (90 % of the limiting kn)."""
     is_ = math.pi * (3.99 ** 4 - 2.12 ** 4) / 4
     tower = dharahara_tower(hg, ic)
     kn_lim = tower["W"] * tower["hG"] / is_
     params = dharahara_tower(hg, ic, interface="elastic", kn=0.9 * kn_lim)
-    with RockingFMU(fmu_path) as fmu:
-        try:
-            fmu.simulate(params, stop_time=0.01)
-            return kn_lim, "UNEXPECTED: the FMU accepted it"
-        except Exception as exc:  # noqa: BLE001
-            return kn_lim, str(exc)
+    try:
+        fmu.simulate(params, stop_time=0.01)
+        return kn_lim, "UNEXPECTED: the FMU accepted it"
+    except Exception as exc:  # noqa: BLE001
+        return kn_lim, str(exc)
 
 
 def claims(mr, th, standin, study=None):
@@ -438,20 +448,34 @@ def main(argv=None):
     out = Path(args.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
 
-    mr_curves, mr = moment_rotation(out, args.hg, args.ic)
-    p17, p18 = plot_fig17(mr_curves, mr, out), plot_fig18(mr_curves, mr, out)
-    log(f"      wrote {p17.name}, {p18.name}")
-
     th = study = None
     standin = args.record is None
+    scales = [float(x) for x in args.scales.split(",") if x.strip()]
+    # the curves (a Rust process) and their plots are made while the FMU runs go on
+    mr_proc = start_moment_rotation(out, args.hg, args.ic)
+    mr_result = []
+
+    def curves_and_plots():
+        if not mr_result and mr_proc.poll() is not None:
+            mr_result.extend(finish_moment_rotation(mr_proc, out))
+            p17, p18 = plot_fig17(*mr_result, out), plot_fig18(*mr_result, out)
+            log(f"      wrote {p17.name}, {p18.name}")
+
     if not args.curves_only:
         record = gm.katnp(args.record, component=args.component)
         rec_label = STANDIN_LABEL if standin else f"{record.name} {record.component} ({record.source})"
         log(f"      record: {rec_label}: {record.npts} samples, dt = {record.dt:g} s, "
             f"PGA = {record.pga_g:.3f} g, PGV = {100 * record.pgv:.1f} cm/s")
         only = [c.strip() for c in args.cases.split(",") if c.strip()] if args.cases else None
-        th, wall = time_histories(record, rec_label, standin, out, args.workers, args.fmu, args.stop_time, only,
-                                  args.hg, args.ic, args.rtol)
+        fmu = RockingFMU(args.fmu)
+        th, scaled, wall = fmu_runs(record, rec_label, fmu, args.workers, args.stop_time, only, scales,
+                                    args.hg, args.ic, args.rtol, meanwhile=curves_and_plots)
+    mr_proc.wait()
+    curves_and_plots()
+    mr = mr_result[1]
+
+    if not args.curves_only:
+        log_histories(th)
         # the FMU's thetaOv against the moment-rotation curves' (two codes paths: Rust example vs FMU)
         dev = max((abs(r["thetaOv"] / mr.loc[r["case"], "thetaOv"] - 1) for _, r in th.iterrows()
                    if not r["error"]), default=float("nan"))
@@ -461,10 +485,8 @@ def main(argv=None):
         f2 = plot_histories(th, record, rec_label, "foundation", out)
         log(f"      wrote {hp.name}, {f1.name}, {f2.name}")
         study = None
-        if args.scales.strip():
-            scales = [float(x) for x in args.scales.split(",") if x.strip()]
-            study, _ = scale_study(th, record, rec_label, standin, out, args.workers, args.fmu, args.stop_time,
-                                   scales, args.hg, args.ic, args.rtol)
+        if scales:
+            study, _ = scale_study(th, scaled, standin, out, rec_label)
             th["robust_1pct"] = robustness(th, study)
         summary = th[["case", "group", "kn_Pa_per_m", "fm_Pa", "overturned", "t_overturn",
                       "peak_theta_over_alpha", "impacts", "zero_crossings", "thetaOv", "wall_s", "error"]
@@ -490,7 +512,8 @@ def main(argv=None):
         if standin:
             log("  (record: SYNTHETIC STAND-IN for KATNP N-S, not the real record)")
 
-        kn_lim, msg = check_invalid_foundation(args.fmu, mr, args.hg, args.ic)
+        kn_lim, msg = check_invalid_foundation(fmu, mr, args.hg, args.ic)
+        fmu.close()
         log(f"\n[stability] kn Is > W hG holds for every case (softest foundation 85 MPa/m: "
             f"margin {mr.loc['F85_elastic', 'stability_margin_knIs_over_WhG']:.1f}x; "
             f"limit kn = {kn_lim / 1e6:.3f} MPa/m). With kn = 0.9 x the limit the FMU refuses: {msg}")

@@ -10,6 +10,9 @@
 
 use crate::shape::Shape;
 
+mod table;
+pub use table::ContactTable;
+
 /// Interface law (docs/model.md §2).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Law {

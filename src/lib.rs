@@ -24,6 +24,6 @@ pub mod model;
 pub mod shape;
 
 pub use body::{Body, MassModel};
-pub use interface::{Contact, Interface, Law, Regime};
+pub use interface::{Contact, ContactTable, Interface, Law, Regime};
 pub use model::{Formulation, Model, ParamError, Params, Restitution};
 pub use shape::Shape;

@@ -5,5 +5,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/venv.sh
 tools/cross-deps.sh
-cargo xtask fmu
+cargo xtask rocking-block
 .venv/bin/python examples/dharahara.py "$@"

@@ -22,6 +22,10 @@ buffer sized, passes at most samples the slope of the segment that ends there
 (docs/examples.md, "Input derivatives and fmpy"). Overturning: the FMU
 returns fmi2Discard with fmi2Terminated true; the run ends at
 fmi2LastSuccessfulTime, whose outputs are the last row.
+
+The loop runs in native code (`rocking.stepper`, the fmu-stepper crate that
+`cargo xtask fmu` builds) where built, else in Python (`loop="python"`, the
+reference it is tested against bit for bit); docs/performance.md has the costs.
 """
 
 import math
@@ -39,7 +43,7 @@ from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFr
                        fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2Discard,
                        fmi2LastSuccessfulTime, fmi2Terminated)
 
-from . import paths
+from . import paths, stepper
 
 #: Where `cargo xtask fmu` writes the FMU (None when the package is not in the repository).
 DEFAULT_FMU = paths.default_fmu() if paths.REPO is not None else None
@@ -204,7 +208,7 @@ class RockingFMU:
                 raise TypeError(f"{name}: cannot set a {v.type}")
 
     def simulate(self, params, record=None, scale=1.0, stop_time=None, output_interval=None,
-                 rtol=None, outputs=DEFAULT_OUTPUTS, ag=None):
+                 rtol=None, outputs=DEFAULT_OUTPUTS, ag=None, loop="auto"):
         """Run one case and return a `Run`.
 
         params           parameter and start values by name (docs/model.md §5)
@@ -217,6 +221,8 @@ class RockingFMU:
                          step is the record's dt (or the output interval without a
                          record), the outputs are sampled every round(interval / step) steps
         rtol             the integrator's relative tolerance (default: the FMU's)
+        loop             "native": the stepping loop of fmu-stepper (rocking.stepper), "python":
+                         the loop in Python (the reference), "auto" (default): native when built
         """
         t_start = _time.perf_counter()
         if record is not None:
@@ -251,22 +257,21 @@ class RockingFMU:
         if "thetaOverAlpha" not in reals:  # for the peak
             reals.append("thetaOverAlpha")
         calc = [c for c in CALCULATED if c in self.variables]
-        vr_r = (c_uint32 * len(reals))(*[self.variables[n].valueReference for n in reals])
-        vr_i = (c_uint32 * len(ints))(*[self.variables[n].valueReference for n in ints])
-        vr_b = (c_uint32 * len(bools))(*[self.variables[n].valueReference for n in bools])
-        buf_r, buf_i, buf_b = (c_double * len(reals))(), (c_int * len(ints))(), (c_int * len(bools))()
-        n_rows = n_steps // every + 2
-        rows_r = np.empty((n_rows, len(reals)))
-        rows_i = np.empty((n_rows, len(ints)), dtype=np.int64)
-        rows_b = np.empty((n_rows, len(bools)), dtype=bool)
-        times = np.empty(n_rows)
+        vr_r = [self.variables[n].valueReference for n in reals]
+        vr_i = [self.variables[n].valueReference for n in ints]
+        vr_b = [self.variables[n].valueReference for n in bools]
         vr_ag = (c_uint32 * 1)(self.variables["ag"].valueReference)
-        val, order = (c_double * 1)(), (c_int * 1)(1)
+        val = (c_double * 1)()
+        if loop not in ("auto", "native", "python"):
+            raise ValueError(f"loop = {loop!r}: not one of 'auto', 'native', 'python'")
+        native = loop == "native" or (loop == "auto" and stepper.library() is not None)
+        if native and stepper.library() is None:
+            raise FileNotFoundError(f"loop='native': {stepper.library_path()} not built "
+                                    "(cargo build --release -p fmu-stepper, or cargo xtask fmu)")
+        inputs = (acc, slope) if t_in is not None else (None, None)
 
         slave = self._library()
         _MESSAGES.clear()
-        overturned = False
-        nrec = 0
         component = None
         try:
             slave.instantiate(callbacks=self._callbacks)
@@ -282,46 +287,9 @@ class RockingFMU:
             slave.fmi2GetReal(component, vr_c, len(calc), buf_c)
             calculated = dict(zip(calc, list(buf_c)))
 
-            raw = slave._functions  # the ctypes functions: no per-call wrapper in the loop
-            get_real, get_int, get_bool = raw["fmi2GetReal"], raw["fmi2GetInteger"], raw["fmi2GetBoolean"]
-            set_real, set_der, do_step = raw["fmi2SetReal"], raw["fmi2SetRealInputDerivatives"], raw["fmi2DoStep"]
-            n_r, n_i, n_b = len(reals), len(ints), len(bools)
-
-            def sample(t):
-                nonlocal nrec
-                status = get_real(component, vr_r, n_r, buf_r)
-                if n_i:
-                    status = max(status, get_int(component, vr_i, n_i, buf_i))
-                    rows_i[nrec] = buf_i
-                if n_b:
-                    status = max(status, get_bool(component, vr_b, n_b, buf_b))
-                    rows_b[nrec] = buf_b
-                if status > 1:
-                    raise FMICallException("fmi2Get*", status)
-                rows_r[nrec] = buf_r
-                times[nrec] = t
-                nrec += 1
-
-            sample(0.0)
-            with_input = t_in is not None
-            for k in range(n_steps):
-                t = grid[k]
-                if with_input:
-                    val[0] = acc[k]
-                    status = set_real(component, vr_ag, 1, val)
-                    val[0] = slope[k]
-                    status = max(status, set_der(component, vr_ag, 1, order, val))
-                    if status > 1:
-                        raise FMICallException("fmi2SetReal/fmi2SetRealInputDerivatives", status)
-                status = do_step(component, t, grid[k + 1] - t, 1)
-                if status > 1:
-                    if status == fmi2Discard and slave.getBooleanStatus(fmi2Terminated):
-                        sample(slave.getRealStatus(fmi2LastSuccessfulTime))
-                        overturned = True
-                        break
-                    raise FMICallException("fmi2DoStep", status)
-                if (k + 1) % every == 0 or k + 1 == n_steps:
-                    sample(grid[k + 1])
+            loop_fn = self._native_loop if native else self._python_loop
+            times, rows_r, rows_i, rows_b, overturned = loop_fn(
+                slave, component, grid, *inputs, vr_ag[0], vr_r, vr_i, vr_b, every)
             final = {}
             for name in ("impacts", "zeroCrossings", "overturned"):
                 v = self.variables[name]
@@ -340,14 +308,14 @@ class RockingFMU:
 
         dtype = [("time", float)] + [(n, float) for n in reals] + [(n, np.int64) for n in ints] \
             + [(n, bool) for n in bools]
-        result = np.empty(nrec, dtype=dtype)
-        result["time"] = times[:nrec]
+        result = np.empty(len(times), dtype=dtype)
+        result["time"] = times
         for j, n in enumerate(reals):
-            result[n] = rows_r[:nrec, j]
+            result[n] = rows_r[:, j]
         for j, n in enumerate(ints):
-            result[n] = rows_i[:nrec, j]
+            result[n] = rows_i[:, j]
         for j, n in enumerate(bools):
-            result[n] = rows_b[:nrec, j]
+            result[n] = rows_b[:, j]
         overturned = overturned or bool(final["overturned"])
         keep = ["time"] + list(outputs)
         t_end = float(result["time"][-1])
@@ -363,6 +331,76 @@ class RockingFMU:
             wall=_time.perf_counter() - t_start,
             messages=list(_MESSAGES),
         )
+
+    @staticmethod
+    def _native_loop(slave, component, grid, acc, slope, vr_ag, vr_r, vr_i, vr_b, every):
+        """The stepping loop in fmu-stepper (rocking.stepper): the calls of `_python_loop`, natively."""
+        fns = stepper.functions(slave._functions)
+        out, times, reals, ints, bools = stepper.step(fns, component, grid, acc, slope, vr_ag,
+                                                      vr_r, vr_i, vr_b, every)
+        if out.failed_call:
+            raise FMICallException(stepper.CALLS.get(out.failed_call, "?"), out.status)
+        return times, reals, ints.astype(np.int64), bools.astype(bool), bool(out.terminated)
+
+    @staticmethod
+    def _python_loop(slave, component, grid, acc, slope, vr_ag, vr_r, vr_i, vr_b, every):
+        """The stepping loop in Python: the reference for the native one (same calls, same order).
+
+        Returns (times, reals, integers, booleans, terminated): the rows sampled at grid[0],
+        after every `every` steps and after the last, and at fmi2LastSuccessfulTime when the
+        FMU discarded a step and terminated (overturned)."""
+        raw = slave._functions  # the ctypes functions: no per-call wrapper in the loop
+        get_real, get_int, get_bool = raw["fmi2GetReal"], raw["fmi2GetInteger"], raw["fmi2GetBoolean"]
+        set_real, set_der, do_step = raw["fmi2SetReal"], raw["fmi2SetRealInputDerivatives"], raw["fmi2DoStep"]
+        n_r, n_i, n_b = len(vr_r), len(vr_i), len(vr_b)
+        vr_r, vr_i, vr_b = (c_uint32 * n_r)(*vr_r), (c_uint32 * n_i)(*vr_i), (c_uint32 * n_b)(*vr_b)
+        buf_r, buf_i, buf_b = (c_double * n_r)(), (c_int * n_i)(), (c_int * n_b)()
+        vr_in, val, order = (c_uint32 * 1)(vr_ag), (c_double * 1)(), (c_int * 1)(1)
+        n_steps = len(grid) - 1
+        n_rows = n_steps // every + 2
+        rows_r = np.empty((n_rows, n_r))
+        rows_i = np.empty((n_rows, n_i), dtype=np.int64)
+        rows_b = np.empty((n_rows, n_b), dtype=bool)
+        times = np.empty(n_rows)
+        nrec = 0
+        overturned = False
+
+        def sample(t):
+            nonlocal nrec
+            status = get_real(component, vr_r, n_r, buf_r)
+            if n_i:
+                status = max(status, get_int(component, vr_i, n_i, buf_i))
+                rows_i[nrec] = buf_i
+            if n_b:
+                status = max(status, get_bool(component, vr_b, n_b, buf_b))
+                rows_b[nrec] = buf_b
+            if status > 1:
+                raise FMICallException("fmi2Get*", status)
+            rows_r[nrec] = buf_r
+            times[nrec] = t
+            nrec += 1
+
+        sample(grid[0])
+        with_input = acc is not None
+        for k in range(n_steps):
+            t = grid[k]
+            if with_input:
+                val[0] = acc[k]
+                status = set_real(component, vr_in, 1, val)
+                val[0] = slope[k]
+                status = max(status, set_der(component, vr_in, 1, order, val))
+                if status > 1:
+                    raise FMICallException("fmi2SetReal/fmi2SetRealInputDerivatives", status)
+            status = do_step(component, t, grid[k + 1] - t, 1)
+            if status > 1:
+                if status == fmi2Discard and slave.getBooleanStatus(fmi2Terminated):
+                    sample(slave.getRealStatus(fmi2LastSuccessfulTime))
+                    overturned = True
+                    break
+                raise FMICallException("fmi2DoStep", status)
+            if (k + 1) % every == 0 or k + 1 == n_steps:
+                sample(grid[k + 1])
+        return times[:nrec], rows_r[:nrec], rows_i[:nrec], rows_b[:nrec], overturned
 
     def calculated(self, params):
         """The calculated parameters (docs/model.md §5) after initialization, without stepping."""

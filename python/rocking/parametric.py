@@ -35,7 +35,7 @@ def _init_worker(unzipdir):
 
 def _run_task(task):
     """Run one grid point in this process; never raises (errors go in the row)."""
-    index, case, params, rec_name, record, scale, opts = task
+    index, case, params, rec_name, record, scale, opts, keep_history = task
     t0, c0 = _time.perf_counter(), _time.process_time()
     row = {"case": case, "record": rec_name, "scale": scale}
     history = None
@@ -48,7 +48,7 @@ def _run_task(task):
                    zero_crossings=run.zero_crossings,
                    t_end=run.t_end, alpha=run.calculated.get("alpha", math.nan),
                    thetaOv=run.calculated.get("thetaOv", math.nan), error="")
-        if opts["histories"]:
+        if keep_history:
             history = run.result
     except Exception as exc:  # noqa: BLE001 - reported in the row
         row.update(overturned=None, t_overturn=math.nan, peak_theta_over_alpha=math.nan,
@@ -86,16 +86,19 @@ def run_grid(cases, records=(None,), scales=(1.0,), workers=None, fmu=None, *, s
                      for target/fmu/RockingBlock.fmu
     stop_time, output_interval, rtol, outputs
                      as for `RockingFMU.simulate`
-    histories        keep each run's recorded outputs in a 'history' column
+    histories        keep each run's recorded outputs in a 'history' column: True, or a
+                     function (case, record name, scale) -> bool choosing the runs (None
+                     in the others' column)
     progress         callback(done, total, row) called in this process as runs finish
     """
     own = not isinstance(fmu, RockingFMU)
     handle = RockingFMU(fmu) if own else fmu
     try:
         opts = dict(stop_time=stop_time, output_interval=output_interval, rtol=rtol,
-                    outputs=tuple(outputs), histories=histories)
+                    outputs=tuple(outputs))
         case_list, rec_list = _named(cases, "case"), _named(records, "record")
-        tasks = [(i, cname, params, rname, rec, float(scale), opts)
+        keep = histories if callable(histories) else (lambda *_: bool(histories))
+        tasks = [(i, cname, params, rname, rec, float(scale), opts, keep(cname, rname, float(scale)))
                  for i, ((cname, params), (rname, rec), scale)
                  in enumerate(product(case_list, rec_list, scales))]
         total = len(tasks)
