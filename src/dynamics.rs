@@ -35,6 +35,8 @@ mod free;
 mod output_rates;
 mod rodas;
 
+pub mod continuous;
+
 pub use output_rates::{Jet, OutputRates};
 
 use crate::interface::{Law, Regime};

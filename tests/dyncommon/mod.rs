@@ -2,6 +2,8 @@
 //! test: Gauss-Legendre quadrature and a few model builders.
 #![allow(dead_code)]
 
+pub mod exact;
+
 use rocking::model::{LawKind, MassKind, ShapeKind};
 use rocking::{Model, Params};
 

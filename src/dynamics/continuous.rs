@@ -1,0 +1,190 @@
+//! Model Exchange: the motion as a host's own solver integrates it
+//! (docs/model-exchange.md). The host integrates `(theta, omega)` with
+//! [`Simulator::derivatives`], watches [`Simulator::event_indicators`] for sign
+//! changes and, at each one, calls [`Simulator::event_update`]; this module
+//! only evaluates. The equation of motion is the one [`Eom`] gives the
+//! co-simulation integrator, the impact map and the rest criteria are the
+//! co-simulation's ([`Simulator::comes_to_rest`], [`Simulator::settles`]).
+//!
+//! Event indicators (a state event where one changes sign), in this order:
+//!
+//! | index | indicator | event |
+//! |---|---|---|
+//! | 0 | `side theta` | zero crossing (impact): `omega <- eta omega`, the toe switches (docs/model.md §3) |
+//! | 1 | `thetaOv - abs(theta)` | overturning: the run ends |
+//! | 2 | `g tan(alpha) - abs(ag)` while a rigid body rests, else 1 | uplift from rest |
+//! | 3.. | `abs(theta) - level` per kink of `af` ([`KINK_SLOTS`], unused ones 1) | none: the solver restarts at the kink |
+//!
+//! `side` (the toe the body rocks about, `±1`) is a discrete state: the
+//! crossing indicator is positive on the toe's side, so a body that the
+//! impact map leaves exactly at `theta = 0` moving into the other side does
+//! not fire again.
+
+use crate::interface::Law;
+
+use super::eom::{side_of, Eom};
+use super::{count_crossing, Events, GroundInput, Simulator, State};
+
+/// Event-indicator slots for the kinks of `af` (docs/model.md §2: `thetaJo`,
+/// `thetaC`, and up to two corners of the width function, each passed by the
+/// contact edge and by the plastic edge).
+pub const KINK_SLOTS: usize = 6;
+/// Number of event indicators: crossing, overturning, uplift, kinks.
+pub const EVENT_INDICATORS: usize = 3 + KINK_SLOTS;
+
+/// The state of a run under Model Exchange: the co-simulation [`State`]
+/// (its `theta`, `omega` are the continuous states; `t` the host's time;
+/// the integrator fields unused) and the toe.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Continuous {
+    pub state: State,
+    /// The toe the body rocks about, `+1` or `-1` (see the module doc).
+    pub side: f64,
+}
+
+/// What an event update did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct EventUpdate {
+    /// `theta` or `omega` were changed (the host must re-read them).
+    pub states_changed: bool,
+    /// A zero crossing of `theta` was applied (impact map).
+    pub crossing: bool,
+    /// The body came to rest.
+    pub came_to_rest: bool,
+    /// A rigid body at rest lifted off.
+    pub uplift: bool,
+    /// The body overturned: the run is over.
+    pub overturned: bool,
+}
+
+impl Simulator {
+    /// The state at the start of a run from `theta0`, `omega0` (rad, rad/s)
+    /// under the ground acceleration `ag` (m/s²).
+    pub fn continuous(&self, theta0: f64, omega0: f64, ag: f64) -> Continuous {
+        Continuous {
+            state: self.initial_state(theta0, omega0),
+            side: side_of(theta0, omega0, ag),
+        }
+    }
+
+    /// `[theta', omega']` (rad/s, rad/s²) at `c` under the ground
+    /// acceleration `ag` (m/s²): the equation of motion of docs/model.md §3
+    /// on the toe `c.side`; zero while a rigid body rests and after
+    /// overturning.
+    pub fn derivatives(&self, c: &Continuous, ag: f64) -> [f64; 2] {
+        let st = &c.state;
+        if st.overturned || (st.at_rest && self.is_rigid()) {
+            return [0.0, 0.0];
+        }
+        let eom = Eom::new(&self.model, st.t, GroundInput { ag, dag: 0.0 });
+        let mut hint = st.a;
+        [
+            st.omega,
+            eom.accel(st.t, st.theta, st.omega, c.side, &mut hint),
+        ]
+    }
+
+    /// The event indicators at `c` under `ag` (see the module doc).
+    pub fn event_indicators(&self, c: &Continuous, ag: f64) -> [f64; EVENT_INDICATORS] {
+        let mut z = [1.0; EVENT_INDICATORS];
+        let st = &c.state;
+        if st.overturned {
+            return z;
+        }
+        let phi = st.theta.abs();
+        z[1] = self.model.theta_ov - phi;
+        if st.at_rest && self.is_rigid() {
+            z[2] = self.uplift_acceleration() - ag.abs();
+            return z;
+        }
+        z[0] = c.side * st.theta;
+        for (zi, level) in z[3..].iter_mut().zip(self.kinks.as_slice()) {
+            *zi = phi - level;
+        }
+        z
+    }
+
+    /// The event update at `c` under `ag`: overturning, uplift from rest, or
+    /// the zero crossing of `theta` (impact map, then the rest criteria of
+    /// co-simulation), whichever the state shows; nothing at a kink. The
+    /// state is examined, not the indicator that fired, so a repeated or a
+    /// spurious call changes nothing.
+    pub fn event_update(&self, c: &mut Continuous, ag: f64) -> EventUpdate {
+        let mut u = EventUpdate::default();
+        self.completed_step(c);
+        let rigid = self.is_rigid();
+        let st = &mut c.state;
+        if st.overturned {
+            return u;
+        }
+        if st.theta.abs() >= self.model.theta_ov {
+            st.overturned = true;
+            u.overturned = true;
+            return u;
+        }
+        if st.at_rest {
+            if rigid && !self.held_at_rest(ag) {
+                st.at_rest = false;
+                c.side = side_of(0.0, 0.0, ag);
+                u.uplift = true;
+            }
+            return u;
+        }
+        let s = c.side * st.theta;
+        if !(s < 0.0 || (s == 0.0 && c.side * st.omega < 0.0)) {
+            return u;
+        }
+        u.crossing = true;
+        u.states_changed = true;
+        if rigid {
+            // docs/model.md §3: for the rigid law every crossing is an impact
+            st.opened = true;
+        }
+        count_crossing(st, &mut Events::default());
+        st.omega *= self.model.eta;
+        c.side = -c.side;
+        if c.side * st.theta < 0.0 {
+            // the host stopped just short of the crossing
+            st.theta = 0.0;
+        }
+        let rest = if rigid {
+            self.comes_to_rest(st.omega, ag)
+        } else {
+            ag == 0.0 && self.settles(st.omega)
+        };
+        if rest {
+            st.theta = 0.0;
+            st.omega = 0.0;
+            st.at_rest = true;
+            u.came_to_rest = true;
+        } else if st.theta == 0.0 && st.omega == 0.0 {
+            // eta = 0: stopped dead above the uplift threshold
+            c.side = side_of(0.0, 0.0, ag);
+        }
+        u
+    }
+
+    /// Bookkeeping after an accepted step of the host: whether the joint
+    /// opened (for the impact count), and a flexible body that was set to
+    /// rest and has moved again.
+    pub fn completed_step(&self, c: &mut Continuous) {
+        let st = &mut c.state;
+        if st.theta.abs() > self.model.interface.theta_jo() {
+            st.opened = true;
+        }
+        if st.at_rest && !self.is_rigid() && (st.theta != 0.0 || st.omega != 0.0) {
+            st.at_rest = false;
+        }
+    }
+
+    /// Nominal values of `(theta, omega)`: the scales of the motion
+    /// ([`Simulator::scales`]), rad and rad/s.
+    pub fn nominals(&self) -> [f64; 2] {
+        let (th, om) = self.scales();
+        [th, om]
+    }
+
+    fn is_rigid(&self) -> bool {
+        self.model.interface.law() == Law::Rigid
+    }
+}
