@@ -301,3 +301,40 @@ fn elastic_and_crushing_interfaces_match_co_simulation() {
     let r = compare(crushing, 1.5, 0.5, 300, 1e-6);
     assert!(!r.crossings.is_empty());
 }
+
+/// Explicit Euler at a fixed step, indicators checked at step ends only (as
+/// fmpy's Euler does): the state events come late, and the chattering
+/// settles into impacts every few steps whose speed does not decay. The
+/// event update must still bring the block to rest after a bounded number
+/// of events.
+#[test]
+fn rigid_rest_under_explicit_euler_ends_the_chattering() {
+    let m = rigid_block(0.25, 1.0);
+    let ex = Exact::new(&m);
+    let sim = Simulator::new(m, DEFAULT_RTOL);
+    let h = 1e-3;
+    let mut c = sim.continuous(0.9 * ex.alpha, 0.0, 0.0);
+    let mut z0 = sim.event_indicators(&c, 0.0);
+    let mut events = 0;
+    while !c.state.at_rest {
+        assert!(c.state.t < 60.0, "no rest after {events} events: {c:?}");
+        let d = sim.derivatives(&c, 0.0);
+        c.state.t += h;
+        c.state.theta += h * d[0];
+        c.state.omega += h * d[1];
+        sim.completed_step(&mut c);
+        let z = sim.event_indicators(&c, 0.0);
+        if crossed(&z0, &z) {
+            events += 1;
+            sim.event_update(&mut c, 0.0);
+        }
+        z0 = sim.event_indicators(&c, 0.0);
+    }
+    let t_acc = ex.impacts(0.9 * ex.alpha, 2000)[1999].0;
+    eprintln!(
+        "Euler h = {h}: rest at {:.4} s after {events} events (exact accumulation {t_acc:.4} s)",
+        c.state.t
+    );
+    assert!(events < 400, "{events}");
+    assert!((c.state.t - t_acc).abs() < 0.05 * t_acc);
+}

@@ -40,6 +40,9 @@ pub struct Continuous {
     pub state: State,
     /// The toe the body rocks about, `+1` or `-1` (see the module doc).
     pub side: f64,
+    /// `|omega|` just after the last impact of a rigid body, rad/s (0: none
+    /// since the start or the last uplift): see [`Simulator::event_update`].
+    pub left_with: f64,
 }
 
 /// What an event update did.
@@ -64,6 +67,7 @@ impl Simulator {
         Continuous {
             state: self.initial_state(theta0, omega0),
             side: side_of(theta0, omega0, ag),
+            left_with: 0.0,
         }
     }
 
@@ -105,10 +109,22 @@ impl Simulator {
     }
 
     /// The event update at `c` under `ag`: overturning, uplift from rest, or
-    /// the zero crossing of `theta` (impact map, then the rest criteria of
-    /// co-simulation), whichever the state shows; nothing at a kink. The
-    /// state is examined, not the indicator that fired, so a repeated or a
-    /// spurious call changes nothing.
+    /// the zero crossing of `theta` (impact map, then the rest criteria),
+    /// whichever the state shows; nothing at a kink. The state is examined,
+    /// not the indicator that fired, so a repeated or a spurious call
+    /// changes nothing.
+    ///
+    /// Rest of a rigid body (docs/model-exchange.md): at an impact, either
+    /// the co-simulation criterion (the remaining chattering is below the
+    /// tolerance, [`Simulator::rest_bound`]), or, without ground motion
+    /// (`ag = 0` at this impact and the previous one), the host no longer
+    /// resolves the chattering: the body came back faster than `1/sqrt(eta)`
+    /// times the speed it left the previous impact with. Without ground
+    /// motion energy is conserved between impacts, so a resolved excursion
+    /// returns at the speed it left with; a host whose error adds per
+    /// excursion more than half the energy an impact takes out (a fixed
+    /// step near the excursion's duration: explicit Euler settles into
+    /// impacts every few steps that never decay) would chatter for ever.
     pub fn event_update(&self, c: &mut Continuous, ag: f64) -> EventUpdate {
         let mut u = EventUpdate::default();
         self.completed_step(c);
@@ -126,6 +142,7 @@ impl Simulator {
             if rigid && !self.held_at_rest(ag) {
                 st.at_rest = false;
                 c.side = side_of(0.0, 0.0, ag);
+                c.left_with = 0.0;
                 u.uplift = true;
             }
             return u;
@@ -136,19 +153,30 @@ impl Simulator {
         }
         u.crossing = true;
         u.states_changed = true;
+        let eta = self.model.eta;
+        let unresolved = rigid
+            && eta < 1.0
+            && c.left_with > 0.0
+            && ag == 0.0
+            && st.omega.abs() * eta.sqrt() >= c.left_with;
         if rigid {
             // docs/model.md §3: for the rigid law every crossing is an impact
             st.opened = true;
         }
         count_crossing(st, &mut Events::default());
-        st.omega *= self.model.eta;
+        st.omega *= eta;
+        c.left_with = if rigid && ag == 0.0 {
+            st.omega.abs()
+        } else {
+            0.0
+        };
         c.side = -c.side;
         if c.side * st.theta < 0.0 {
             // the host stopped just short of the crossing
             st.theta = 0.0;
         }
         let rest = if rigid {
-            self.comes_to_rest(st.omega, ag)
+            unresolved || self.comes_to_rest(st.omega, ag)
         } else {
             ag == 0.0 && self.settles(st.omega)
         };
@@ -156,6 +184,7 @@ impl Simulator {
             st.theta = 0.0;
             st.omega = 0.0;
             st.at_rest = true;
+            c.left_with = 0.0;
             u.came_to_rest = true;
         } else if st.theta == 0.0 && st.omega == 0.0 {
             // eta = 0: stopped dead above the uplift threshold
