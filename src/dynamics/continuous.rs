@@ -74,7 +74,8 @@ impl Simulator {
     /// `[theta', omega']` (rad/s, rad/s²) at `c` under the ground
     /// acceleration `ag` (m/s²): the equation of motion of docs/model.md §3
     /// on the toe `c.side`; zero while a rigid body rests and after
-    /// overturning.
+    /// overturning, whatever states the host sets (a solver probing its
+    /// Jacobian): rest ends at uplift only, which sets the states to 0.
     pub fn derivatives(&self, c: &Continuous, ag: f64) -> [f64; 2] {
         let st = &c.state;
         if st.overturned || (st.at_rest && self.is_rigid()) {
@@ -140,15 +141,18 @@ impl Simulator {
         }
         if st.at_rest {
             if rigid && !self.held_at_rest(ag) {
+                st.theta = 0.0;
+                st.omega = 0.0;
                 st.at_rest = false;
                 c.side = side_of(0.0, 0.0, ag);
                 c.left_with = 0.0;
+                leave_zero(c.side, &mut st.theta);
                 u.uplift = true;
+                u.states_changed = true;
             }
             return u;
         }
-        let s = c.side * st.theta;
-        if !(s < 0.0 || (s == 0.0 && c.side * st.omega < 0.0)) {
+        if !crossed(c.side, st) {
             return u;
         }
         u.crossing = true;
@@ -171,10 +175,7 @@ impl Simulator {
             0.0
         };
         c.side = -c.side;
-        if c.side * st.theta < 0.0 {
-            // the host stopped just short of the crossing
-            st.theta = 0.0;
-        }
+        leave_zero(c.side, &mut st.theta);
         let rest = if rigid {
             unresolved || self.comes_to_rest(st.omega, ag)
         } else {
@@ -186,24 +187,34 @@ impl Simulator {
             st.at_rest = true;
             c.left_with = 0.0;
             u.came_to_rest = true;
-        } else if st.theta == 0.0 && st.omega == 0.0 {
+        } else if st.omega == 0.0 && !self.held_at_rest(ag) {
             // eta = 0: stopped dead above the uplift threshold
             c.side = side_of(0.0, 0.0, ag);
+            leave_zero(c.side, &mut st.theta);
         }
         u
     }
 
     /// Bookkeeping after an accepted step of the host: whether the joint
     /// opened (for the impact count), and a flexible body that was set to
-    /// rest and has moved again.
-    pub fn completed_step(&self, c: &mut Continuous) {
+    /// rest and has moved again. Returns whether the host must enter event
+    /// mode: `theta` has crossed zero without a state event (a host whose
+    /// solver could not resolve an excursion, which started at the level
+    /// of its tolerance, saw no sign change), and the impact map is due.
+    pub fn completed_step(&self, c: &mut Continuous) -> bool {
+        if !c.state.at_rest && !c.state.overturned && c.side * c.state.theta < 0.0 {
+            return true;
+        }
         let st = &mut c.state;
         if st.theta.abs() > self.model.interface.theta_jo() {
             st.opened = true;
         }
         if st.at_rest && !self.is_rigid() && (st.theta != 0.0 || st.omega != 0.0) {
+            // a flexible body leaves rest on the side the ground pushed it to
             st.at_rest = false;
+            c.side = side_of(st.theta, st.omega, 0.0);
         }
+        false
     }
 
     /// Nominal values of `(theta, omega)`: the scales of the motion
@@ -216,4 +227,24 @@ impl Simulator {
     fn is_rigid(&self) -> bool {
         self.model.interface.law() == Law::Rigid
     }
+}
+
+/// Puts `theta` strictly on the toe's side after an impact or an uplift, so
+/// that the crossing indicator `side theta` starts positive: a host that
+/// stopped just short of the crossing left `theta` on the old side, and one
+/// that stopped exactly on it left 0, from which a solver that tracks sign
+/// changes (CVode, fmpy's Euler) would miss the next crossing if the
+/// excursion were shorter than its next step. The mirror image moves `theta`
+/// by no more than the host's own error in locating the event.
+fn leave_zero(side: f64, theta: &mut f64) {
+    *theta = side * theta.abs().max(f64::MIN_POSITIVE);
+}
+
+/// `theta` has crossed zero from the toe's side: it is beyond, or exactly
+/// on zero and not moving back into the toe's side (a host that located the
+/// crossing at the apex of an excursion below its resolution returns
+/// `theta = omega = 0`).
+fn crossed(side: f64, st: &State) -> bool {
+    let s = side * st.theta;
+    s < 0.0 || (s == 0.0 && side * st.omega <= 0.0)
 }
