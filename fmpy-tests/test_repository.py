@@ -156,9 +156,9 @@ def test_markdown_links_point_to_tracked_files(tracked):
 
 
 def test_every_fmu_variable_is_documented_in_the_model_page():
-    """Every variable of the FMU's one definition (model-description) has a row
+    """Every variable of the FMU's one definition (fmu-rocking/src/description.rs) has a row
     in docs/model.md §5, so the page cannot silently fall behind the FMU."""
-    source = (ROOT / "model-description" / "src" / "rocking_block.rs").read_text(encoding="utf-8")
+    source = (ROOT / "fmu-rocking" / "src" / "description.rs").read_text(encoding="utf-8")
     block = source.split("variables! {", 1)[1].split("\n}\n", 1)[0]
     defined = set(re.findall(r'^\s*name:\s*"([^"]+)"', block, flags=re.M))
     assert {"theta", "ag", "Fx", "thetaOv"} <= defined, sorted(defined)

@@ -1,12 +1,17 @@
 //! Generates `modelDescription.xml`, its GUID and `documentation/index.html`
-//! from the one variable table (`model_description::shear_frame`) into
-//! `OUT_DIR`. The library embeds the GUID (`fmi2Instantiate` checks it) and
-//! `cargo xtask fmu` packages these very files.
+//! from the one variable table (`src/description.rs`) into `OUT_DIR`. The
+//! library embeds the GUID (`fmi2Instantiate` checks it) and `cargo xtask
+//! fmu` packages these very files.
 
 use std::{env, fs, path::PathBuf};
 
-use model_description::shear_frame::SHEAR_FRAME;
 use model_description::{html, xml};
+
+// The same file the library compiles as `description`: one table for both.
+#[allow(dead_code)] // the value references and enums are for the library
+#[path = "src/description.rs"]
+mod description;
+use description::SHEAR_FRAME;
 
 fn main() {
     let out = PathBuf::from(env::var_os("OUT_DIR").expect("OUT_DIR"));
@@ -19,4 +24,6 @@ fn main() {
     )
     .expect("write index.html");
     println!("cargo:rerun-if-changed=build.rs");
+    println!("cargo:rerun-if-changed=src/description.rs");
+    println!("cargo:rerun-if-changed=src/description.html");
 }

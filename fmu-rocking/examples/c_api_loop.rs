@@ -23,8 +23,8 @@ use std::ptr;
 use std::time::Instant;
 
 use chost::*;
-use fmi2_export::model_description::rocking_block::vr;
 use fmi2_export::types::*;
+use fmu_rocking::description::vr;
 use fmu_rocking::*;
 
 const ALL_CATEGORIES: [&str; 4] = ["logEvents", "logStatusWarning", "logStatusError", "logAll"];

@@ -17,8 +17,8 @@ use std::env;
 use std::fs;
 use std::process::exit;
 
-use fmi2_export::model_description::rocking_block::{enums, ROCKING_BLOCK};
 use fmi2_export::model_description::Type;
+use fmu_rocking::description::{enums, ROCKING_BLOCK};
 use rocking::dynamics::{GroundInput, Simulator, State};
 use rocking::model::{LawKind, MassKind, ShapeKind};
 use rocking::{Formulation, Params, Restitution};

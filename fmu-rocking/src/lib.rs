@@ -7,9 +7,10 @@
 //! - this crate: [`slave::RockingSlave`] joins them in one small file, and
 //!   [`fmi2_export::export_fmi2!`] exports the C functions.
 //!
-//! The variables come from `model_description::rocking_block` (one table);
-//! `build.rs` generates the XML and its [`GUID`] from it.
+//! The variables come from [`description`] (one table); `build.rs` compiles
+//! the same file and generates the XML and its [`GUID`] from it.
 
+pub mod description;
 pub mod slave;
 
 #[cfg(test)]

@@ -1,8 +1,8 @@
 //! The rocking model as an FMI 2.0 co-simulation slave: parameters from the
 //! stored values, outputs from `rocking::dynamics`, one `advance` per step.
 
+use crate::description::{enums, vr, ROCKING_BLOCK};
 use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
-use fmi2_export::model_description::rocking_block::{enums, vr, ROCKING_BLOCK};
 use fmi2_export::model_description::ModelDescription;
 use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Values};
 use rocking::dynamics::{GroundInput, OutputRates, Outputs, Simulator, State};

@@ -3,7 +3,7 @@
 use std::ffi::{c_char, CStr, CString};
 use std::ptr;
 
-use fmi2_export::model_description::rocking_block::{vr, ROCKING_BLOCK, VARIABLES};
+use crate::description::{vr, ROCKING_BLOCK, VARIABLES};
 use fmi2_export::model_description::{Causality, Type};
 use fmi2_export::types::*;
 use rocking::Params;
@@ -95,7 +95,7 @@ fn start_values_are_the_physics_defaults() {
         assert_eq!(real(n).to_bits(), x.to_bits(), "{n}");
     }
     // the enumeration starts are the physics defaults too
-    use fmi2_export::model_description::rocking_block::enums::*;
+    use crate::description::enums::*;
     use rocking::model::{LawKind, MassKind, ShapeKind};
     let expect = |kind_ok: bool, r: u32, v: i32| {
         assert!(kind_ok);

@@ -21,9 +21,9 @@
 
 mod fuzz_driver;
 
-use fmi2_export::model_description::rocking_block::{vr, ROCKING_BLOCK, VARIABLES};
 use fmi2_export::model_description::{Causality, Type};
 use fmi2_export::types::*;
+use fmu_rocking::description::{vr, ROCKING_BLOCK, VARIABLES};
 use fuzz_driver::*;
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -326,7 +326,7 @@ fn regression_bytes_after_a_serialized_state_are_refused() {
 /// calculated parameter is infinite.
 #[test]
 fn regression_weightless_body_has_no_infinite_theta_ov() {
-    use fmi2_export::model_description::rocking_block::enums::LUMPED;
+    use fmu_rocking::description::enums::LUMPED;
     let cases: [(Vec<u32>, Vec<f64>, Vec<i32>); 3] = [
         (vec![vr::RHO, vr::OMEGA], vec![1e-300, 0.005], vec![]),
         (vec![vr::RHO], vec![1e-305], vec![]),

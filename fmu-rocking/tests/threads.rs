@@ -12,7 +12,7 @@ use std::sync::{Arc, Barrier};
 use std::thread;
 
 use chost::*;
-use fmi2_export::model_description::rocking_block::vr;
+use fmu_rocking::description::vr;
 
 const THREADS: usize = 8;
 const STEPS: usize = 10_000;
@@ -38,10 +38,9 @@ fn jobs(i: usize) -> [Case; 2] {
         STEPS + 1,
     )));
     rigid.reals.push((vr::ETA, 0.85 + 0.01 * x));
-    rigid.ints.push((
-        vr::RESTITUTION,
-        fmi2_export::model_description::rocking_block::enums::GIVEN,
-    ));
+    rigid
+        .ints
+        .push((vr::RESTITUTION, fmu_rocking::description::enums::GIVEN));
     rigid.name = format!("rigid #{i}");
     [crushing, rigid]
 }

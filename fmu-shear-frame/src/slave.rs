@@ -1,8 +1,8 @@
 //! The shear building as an FMI 2.0 co-simulation slave: the frame from the
 //! stored parameters, outputs from its state, one exact step per `fmi2DoStep`.
 
+use crate::description::{enums, vr, MAX_STOREYS, SHEAR_FRAME};
 use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
-use fmi2_export::model_description::shear_frame::{enums, vr, MAX_STOREYS, SHEAR_FRAME};
 use fmi2_export::model_description::ModelDescription;
 use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Values};
 use shear_frame::{Damping, Frame, Load, Propagator, State};

@@ -7,7 +7,7 @@ use std::ffi::{c_char, c_void, CStr, CString};
 use std::ptr;
 use std::sync::Mutex;
 
-use fmi2_export::model_description::shear_frame::vr;
+use crate::description::vr;
 use fmi2_export::types::*;
 
 use crate::*;

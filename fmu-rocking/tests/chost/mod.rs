@@ -16,8 +16,8 @@ use std::ptr;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 
-use fmi2_export::model_description::rocking_block::{enums, vr};
 use fmi2_export::types::*;
+use fmu_rocking::description::{enums, vr};
 use fmu_rocking::*;
 
 /// The real outputs read after every step, in this order.

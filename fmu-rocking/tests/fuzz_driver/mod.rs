@@ -45,10 +45,10 @@ use std::ptr;
 use std::sync::Once;
 
 use fmi2_export::bytes;
-use fmi2_export::model_description::rocking_block::{enums, vr, LOG_CATEGORIES, VARIABLES};
 use fmi2_export::model_description::{BaseType, Causality, Type, Variable};
 use fmi2_export::types::*;
 use fmu_rocking as fmu;
+use fmu_rocking::description::{enums, vr, LOG_CATEGORIES, VARIABLES};
 use rocking::model::{LawKind, MassKind, ShapeKind};
 use rocking::{Formulation, Params, Restitution};
 

@@ -12,8 +12,8 @@ use std::ffi::{c_char, c_void, CStr, CString};
 use std::ptr;
 use std::sync::Mutex;
 
-pub use fmi2_export::model_description::rocking_block::{enums, vr, ROCKING_BLOCK};
 pub use fmi2_export::types::*;
+pub use fmu_rocking::description::{enums, vr, ROCKING_BLOCK};
 use fmu_rocking::*;
 
 /// One message the FMU sent to the logger.

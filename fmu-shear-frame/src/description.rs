@@ -9,8 +9,8 @@
 
 use std::sync::LazyLock;
 
-use crate::common;
-use crate::schema::*;
+use model_description::common;
+use model_description::*;
 
 /// Length of every per-floor array: the most storeys a frame may have.
 pub const MAX_STOREYS: usize = 20;
@@ -421,7 +421,7 @@ pub static SHEAR_FRAME: LazyLock<ModelDescription> = LazyLock::new(|| {
         step_size: 0.01,
     },
     variables: Box::leak(build_variables().into_boxed_slice()),
-    documentation: include_str!("shear_frame.html"),
+    documentation: include_str!("description.html"),
 }
 });
 

@@ -4,8 +4,8 @@
 //! The value references the binary uses ([`vr`]), the `modelDescription.xml`
 //! and the variable table of `documentation/index.html` all come from here.
 
-use crate::common;
-use crate::schema::*;
+use model_description::common;
+use model_description::*;
 
 /// Relative tolerance of the integrator when the master gives none
 /// (`DefaultExperiment/@tolerance`).
@@ -708,12 +708,13 @@ pub static ROCKING_BLOCK: ModelDescription = ModelDescription {
         step_size: 0.01,
     },
     variables: VARIABLES,
-    documentation: include_str!("rocking_block.html"),
+    documentation: include_str!("description.html"),
 };
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use model_description::xml;
 
     #[test]
     fn table_is_consistent() {
@@ -774,5 +775,25 @@ mod tests {
         ] {
             assert!(ROCKING_BLOCK.variable(n).is_some(), "{n}");
         }
+    }
+
+    #[test]
+    fn guid_is_stable_and_in_the_xml() {
+        let (xml, g) = xml::model_description_xml(&ROCKING_BLOCK);
+        assert_eq!(g, xml::guid(&ROCKING_BLOCK));
+        assert!(xml.contains(&format!("guid=\"{g}\"")));
+        assert!(xml.starts_with("<?xml"));
+        assert!(xml.contains("<CoSimulation modelIdentifier=\"RockingBlock\" needsExecutionTool=\"false\" canHandleVariableCommunicationStepSize=\"true\" canInterpolateInputs=\"true\" maxOutputDerivativeOrder=\"2\" canBeInstantiatedOnlyOncePerProcess=\"false\""));
+        assert!(!xml.contains("canRunAsynchronuously"));
+        assert!(!xml.contains("providesDirectionalDerivative"));
+    }
+
+    #[test]
+    fn structure_lists() {
+        let xml = xml::render(&ROCKING_BLOCK, "x");
+        // Fx (index 31) depends on ag (index 20) only among the inputs.
+        assert!(xml.contains("<Unknown index=\"31\" dependencies=\"20\"/>"));
+        // theta (21) is an output with no direct feedthrough.
+        assert!(xml.contains("<Unknown index=\"21\" dependencies=\"\"/>"));
     }
 }

@@ -4,20 +4,32 @@
 //!
 //! - [`types`]: the FMI 2.0 C types, declared once (`std::ffi`);
 //! - [`slave`]: the [`Slave`] trait and the views it gets of the stored values;
-//! - [`instance`]: the state machine, get/set rules, stepping and FMU states;
+//! - [`machine`]: the state machine and the states each function allows;
+//! - [`instance`]: one instance, its stored values and its life cycle;
+//! - [`values`]: `fmi2Get*`/`fmi2Set*` and the input and output derivatives;
+//! - [`step`]: `fmi2DoStep` and the status functions;
+//! - [`fmu_state`]: FMU states, saved, restored and serialized;
+//! - [`fail`]: failed calls and panics of model code;
 //! - [`logging`]: the host logger, categories and `fmi2SetDebugLogging`;
 //! - [`bytes`]: the checked byte format of serialized FMU states;
-//! - [`ffi`]: pointer checks, panic barriers and the C-facing functions.
+//! - [`ffi`]: pointer checks, panic barriers and the C-facing functions;
+//! - [`uri`]: the resource location as a path.
 //!
 //! Instances share nothing (no global mutable state), so any number of them
 //! can run in any threads.
 
 pub mod bytes;
+pub mod fail;
 pub mod ffi;
+pub mod fmu_state;
 pub mod instance;
 pub mod logging;
+pub mod machine;
 pub mod slave;
+pub mod step;
 pub mod types;
+pub mod uri;
+pub mod values;
 
 pub use model_description;
 pub use slave::{EventLog, Inputs, Setup, Slave, StepEnd, Values};
