@@ -447,6 +447,17 @@ pub enum Op {
     Deserialize(u8, u8, Mutation),
     DirectionalDerivative(u8),
     Platform,
+    /// Model Exchange: `which` 0 SetTime, 1 SetContinuousStates, 2
+    /// GetContinuousStates, 3 GetDerivatives, 4 GetEventIndicators, 5
+    /// GetNominalsOfContinuousStates, 6 EnterEventMode, 7 NewDiscreteStates,
+    /// 8 EnterContinuousTimeMode, 9 CompletedIntegratorStep; `x` the time or
+    /// the states; `n` the array length passed.
+    Me {
+        slot: u8,
+        which: u8,
+        x: [f64; 2],
+        n: usize,
+    },
 }
 
 fn slot(b: &mut Bytes) -> u8 {
@@ -509,7 +520,7 @@ fn spec(b: &mut Bytes) -> InstSpec {
         _ => Guid::Right,
     };
     let fmu_type = match b.below(16) {
-        0 => fmi2ModelExchange,
+        0 | 2..=5 => fmi2ModelExchange,
         1 => b.u32() as c_int,
         _ => fmi2CoSimulation,
     };
@@ -587,13 +598,23 @@ fn state_ref(b: &mut Bytes, own: u8) -> StateRef {
 const OP_TABLE: [u8; 64] = [
     0, 3, 4, 5, 6, 7, 7, 7, 7, 10, 11, 11, 11, 12, 12, 40, 40, 40, 15, 15, 17, 18, 19, 19, 19, 21,
     22, 23, 24, 24, 24, 26, 41, 41, 27, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 32,
-    33, 33, 34, 35, 35, 35, 36, 36, 37, 38, 38, 39, 39, 39,
+    33, 33, 34, 35, 42, 42, 42, 42, 37, 38, 38, 39, 39, 42,
 ];
 
 pub fn decode_op(b: &mut Bytes) -> Op {
     let s = slot(b);
     match OP_TABLE[b.below(64)] {
         40 => Op::SetReal(s, vec![vr::AG], vec![b.int() as f64 * 2.5]),
+        42 => Op::Me {
+            slot: s,
+            which: b.u8(),
+            x: [b.near(0.05), b.near(0.0)],
+            n: if b.chance(1) {
+                [0, 1, 3, 8, 10][b.below(5)]
+            } else {
+                [2, 2, 9, 9][b.below(4)]
+            },
+        },
         41 => Op::SetInputDerivatives(s, vec![vr::AG], vec![1], vec![b.int() as f64 * 10.0]),
         0..=2 => Op::Instantiate(s, spec(b)),
         3 => Op::Free(s),
@@ -786,6 +807,9 @@ pub enum Machine {
     StepFailed,
     Terminated,
     Error,
+    /// Model Exchange.
+    EventMode,
+    ContinuousTime,
 }
 
 use Machine as M;
@@ -797,19 +821,45 @@ const ANY: &[M] = &[
     M::StepFailed,
     M::Terminated,
     M::Error,
+    M::EventMode,
+    M::ContinuousTime,
 ];
 const NOWHERE: &[M] = &[];
 const INSTANTIATED: &[M] = &[M::Instantiated];
 const INIT: &[M] = &[M::Init];
-const TERMINATE: &[M] = &[M::StepComplete, M::StepFailed];
+const TERMINATE: &[M] = &[
+    M::StepComplete,
+    M::StepFailed,
+    M::EventMode,
+    M::ContinuousTime,
+];
 const GET: &[M] = &[
     M::Init,
     M::StepComplete,
     M::StepFailed,
     M::Terminated,
     M::Error,
+    M::EventMode,
+    M::ContinuousTime,
 ];
-const SET: &[M] = &[M::Instantiated, M::Init, M::StepComplete];
+const SET: &[M] = &[
+    M::Instantiated,
+    M::Init,
+    M::StepComplete,
+    M::EventMode,
+    M::ContinuousTime,
+];
+// Model Exchange (FMI 2.0 §3.2.3)
+const ME_SET_TIME: &[M] = &[M::EventMode, M::ContinuousTime];
+const ME_CONTINUOUS: &[M] = &[M::ContinuousTime];
+const ME_EVENT: &[M] = &[M::EventMode];
+const ME_EVALUATE: &[M] = &[
+    M::Init,
+    M::EventMode,
+    M::ContinuousTime,
+    M::Terminated,
+    M::Error,
+];
 const OUTPUT_DERIVATIVES: &[M] = &[M::StepComplete, M::StepFailed, M::Terminated, M::Error];
 const DO_STEP: &[M] = &[M::StepComplete];
 const STATUS: &[M] = &[M::StepComplete, M::StepFailed, M::Terminated];
@@ -939,6 +989,8 @@ struct Slot {
     /// state, e.g. its step size, is then arbitrary).
     forged: bool,
     states: Vec<FmuState>,
+    /// Instantiated as fmi2ModelExchange.
+    me: bool,
 }
 
 struct Blob {
@@ -1240,6 +1292,7 @@ impl Driver {
                     fmu::fmi2GetDirectionalDerivative(c, &a, 1, &b, 1, &x, &mut y)
                 });
             }
+            Op::Me { slot, which, x, n } => self.model_exchange(*slot, *which, *x, *n),
             Op::Platform => {
                 let p = fmu::fmi2GetTypesPlatform();
                 let v = fmu::fmi2GetVersion();
@@ -1249,6 +1302,139 @@ impl Driver {
                     assert_eq!(CStr::from_ptr(v).to_bytes(), b"2.0");
                 }
             }
+        }
+    }
+
+    /// One Model Exchange call; after `fmi2OK` every value written is finite
+    /// (the nominals positive), and the driver follows the ME state machine.
+    fn model_exchange(&mut self, k: u8, which: u8, x: [f64; 2], n: usize) {
+        let mut out = [f64::from_bits(SENTINEL); 16];
+        let n = n.min(out.len());
+        let (mut enter, mut terminate) = (-1, -1);
+        let mut info = fmi2EventInfo {
+            newDiscreteStatesNeeded: -1,
+            terminateSimulation: -1,
+            nominalsOfContinuousStatesChanged: -1,
+            valuesOfContinuousStatesChanged: -1,
+            nextEventTimeDefined: -1,
+            nextEventTime: f64::NAN,
+        };
+        let p = out.as_mut_ptr();
+        // SAFETY (every arm): a live instance and arrays of at least `n` values.
+        let (what, allowed, st): (&str, &[M], _) = match which % 10 {
+            0 => (
+                "fmi2SetTime",
+                ME_SET_TIME,
+                self.call(k, "fmi2SetTime", ME_SET_TIME, |c| unsafe {
+                    fmu::fmi2SetTime(c, x[0])
+                }),
+            ),
+            1 => (
+                "fmi2SetContinuousStates",
+                ME_CONTINUOUS,
+                self.call(k, "fmi2SetContinuousStates", ME_CONTINUOUS, |c| unsafe {
+                    fmu::fmi2SetContinuousStates(c, x.as_ptr(), n.min(2))
+                }),
+            ),
+            2 => (
+                "fmi2GetContinuousStates",
+                ME_EVALUATE,
+                self.call(k, "fmi2GetContinuousStates", ME_EVALUATE, |c| unsafe {
+                    fmu::fmi2GetContinuousStates(c, p, n)
+                }),
+            ),
+            3 => (
+                "fmi2GetDerivatives",
+                ME_EVALUATE,
+                self.call(k, "fmi2GetDerivatives", ME_EVALUATE, |c| unsafe {
+                    fmu::fmi2GetDerivatives(c, p, n)
+                }),
+            ),
+            4 => (
+                "fmi2GetEventIndicators",
+                ME_EVALUATE,
+                self.call(k, "fmi2GetEventIndicators", ME_EVALUATE, |c| unsafe {
+                    fmu::fmi2GetEventIndicators(c, p, n)
+                }),
+            ),
+            5 => (
+                "fmi2GetNominalsOfContinuousStates",
+                ANY,
+                self.call(k, "fmi2GetNominalsOfContinuousStates", ANY, |c| unsafe {
+                    fmu::fmi2GetNominalsOfContinuousStates(c, p, n)
+                }),
+            ),
+            6 => (
+                "fmi2EnterEventMode",
+                ME_SET_TIME,
+                self.call(k, "fmi2EnterEventMode", ME_SET_TIME, |c| unsafe {
+                    fmu::fmi2EnterEventMode(c)
+                }),
+            ),
+            7 => (
+                "fmi2NewDiscreteStates",
+                ME_EVENT,
+                self.call(k, "fmi2NewDiscreteStates", ME_EVENT, |c| unsafe {
+                    fmu::fmi2NewDiscreteStates(c, &mut info)
+                }),
+            ),
+            8 => (
+                "fmi2EnterContinuousTimeMode",
+                ME_EVENT,
+                self.call(k, "fmi2EnterContinuousTimeMode", ME_EVENT, |c| unsafe {
+                    fmu::fmi2EnterContinuousTimeMode(c)
+                }),
+            ),
+            _ => (
+                "fmi2CompletedIntegratorStep",
+                ME_CONTINUOUS,
+                self.call(
+                    k,
+                    "fmi2CompletedIntegratorStep",
+                    ME_CONTINUOUS,
+                    |c| unsafe {
+                        fmu::fmi2CompletedIntegratorStep(c, fmi2True, &mut enter, &mut terminate)
+                    },
+                ),
+            ),
+        };
+        let _ = allowed;
+        let Some(st) = st else { return };
+        let me = self.slot(k).is_some_and(|s| s.me);
+        if !me {
+            assert_eq!(st, fmi2Error, "{what} on a co-simulation instance");
+            return;
+        }
+        if st != fmi2OK {
+            return;
+        }
+        if (2..=5).contains(&(which % 10)) {
+            for (i, v) in out[..n].iter().enumerate() {
+                assert!(v.is_finite(), "{what}: value {i} = {v} after fmi2OK");
+            }
+            if which % 10 == 5 {
+                assert!(out[..n].iter().all(|v| *v > 0.0), "{what}: {:?}", &out[..n]);
+            }
+        }
+        match which % 10 {
+            6 => self.set_machine(k, Some(M::EventMode)),
+            7 => {
+                for b in [
+                    info.newDiscreteStatesNeeded,
+                    info.terminateSimulation,
+                    info.valuesOfContinuousStatesChanged,
+                ] {
+                    assert!(b == fmi2True || b == fmi2False, "{what}: fmi2Boolean {b}");
+                }
+            }
+            8 => self.set_machine(k, Some(M::ContinuousTime)),
+            9 => assert!(
+                [enter, terminate]
+                    .iter()
+                    .all(|b| *b == fmi2True || *b == fmi2False),
+                "{what}: {enter}, {terminate}"
+            ),
+            _ => {}
         }
     }
 
@@ -1308,7 +1494,7 @@ impl Driver {
             panic!("fmi2Instantiate: logger: {p}");
         }
         let valid = name.as_ref().is_some_and(|n| !n.is_empty())
-            && spec.fmu_type == fmi2CoSimulation
+            && (spec.fmu_type == fmi2CoSimulation || spec.fmu_type == fmi2ModelExchange)
             && matches!(spec.guid, Guid::Right);
         assert_eq!(
             !c.is_null(),
@@ -1335,6 +1521,7 @@ impl Driver {
             time: Some(0.0),
             forged: false,
             states: Vec::new(),
+            me: spec.fmu_type == fmi2ModelExchange,
         });
     }
 
@@ -1409,7 +1596,8 @@ impl Driver {
             }
         }
         if st == fmi2OK {
-            self.set_machine(k, Some(M::StepComplete));
+            let me = self.slot(k).is_some_and(|s| s.me);
+            self.set_machine(k, Some(if me { M::EventMode } else { M::StepComplete }));
         }
     }
 
