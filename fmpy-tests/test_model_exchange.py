@@ -18,13 +18,13 @@ from rocking import RockingFMU
 from rocking.cases import dharahara_cases
 from rocking.groundmotion.katnp import katnp_standin
 
-@pytest.fixture(autouse=True)
-def fmpy_cvode_applies_inputs(monkeypatch):
+def cvode_applies_inputs():
     """fmpy 0.3.32's CVode right-hand side sets the time and the states but not
     the inputs (only its root function applies them), so with a time-varying
     input the derivatives use whatever input the last root-function call set:
     the right-hand side then depends on the call history, and CVode fails its
-    error test at tight tolerances. Apply the inputs there too."""
+    error test at tight tolerances. Returns (class, name, replacement) for a
+    right-hand side that applies the inputs too."""
     from fmpy.sundials import CVodeSolver
 
     original = CVodeSolver.f
@@ -33,7 +33,12 @@ def fmpy_cvode_applies_inputs(monkeypatch):
         self.input.apply(t)
         return original(self, t, y, ydot, user_data)
 
-    monkeypatch.setattr(CVodeSolver, "f", f)
+    return CVodeSolver, "f", f
+
+
+@pytest.fixture(autouse=True)
+def fmpy_cvode_applies_inputs(monkeypatch):
+    monkeypatch.setattr(*cvode_applies_inputs())
 
 
 OUT = ["theta", "omega", "impacts", "zeroCrossings", "overturned", "regime"]
