@@ -468,3 +468,34 @@ fn fmu_state_restores_the_toe_and_the_run_repeats_bit_for_bit() {
         .all(|(a, b)| a.to_bits() == b.to_bits()));
     me.0.free_state(s);
 }
+
+#[test]
+fn a_serialized_state_restores_only_into_its_own_fmu_type() {
+    let deserialize = |h: &Host, buf: &[u8]| {
+        let mut s: fmi2FMUstate = std::ptr::null_mut();
+        // SAFETY: a live instance and a buffer of the length passed.
+        let st = unsafe {
+            fmi2DeSerializeFMUstate(h.c, buf.as_ptr() as *const fmi2Byte, buf.len(), &mut s)
+        };
+        if !s.is_null() {
+            assert_eq!(h.free_state(s), fmi2OK);
+        }
+        st
+    };
+    let me = Me::new(false);
+    me.0.init();
+    let s = me.0.get_state();
+    let me_buf = me.0.serialize(s);
+    me.0.free_state(s);
+    let cs = Host::new();
+    cs.init();
+    let s = cs.get_state();
+    let cs_buf = cs.serialize(s);
+    cs.free_state(s);
+    // eventMode into a co-simulation instance, stepComplete into an ME one
+    assert_eq!(deserialize(&cs, &me_buf), fmi2Error);
+    let me2 = Me::new(false);
+    assert_eq!(deserialize(&me2.0, &cs_buf), fmi2Error);
+    let me3 = Me::new(false);
+    assert_eq!(deserialize(&me3.0, &me_buf), fmi2OK);
+}
