@@ -54,7 +54,8 @@ def test_archive_layout_is_reproducible(fmu_path):
 def test_co_simulation_capabilities(model_description):
     cs = model_description.coSimulation
     assert model_description.fmiVersion == "2.0"
-    assert model_description.modelExchange is None
+    # Model Exchange beside it: test_model_exchange.py
+    assert model_description.modelExchange.modelIdentifier == "RockingBlock"
     assert cs.modelIdentifier == "RockingBlock"
     assert cs.canHandleVariableCommunicationStepSize
     assert cs.canInterpolateInputs

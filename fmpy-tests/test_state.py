@@ -215,7 +215,8 @@ def test_foreign_buffers_are_refused(host, serialized):
 
 def test_payload_fields_are_checked(host, serialized):
     guid, version, payload = envelope(serialized)
-    # first byte: the state machine (0..5 valid, fatal refused)
+    # first byte: the state machine (0..5 valid, fatal refused, 7 and 8 the
+    # Model Exchange states, refused by a co-simulation instance)
     for code in (6, 7, 200):
         bad = bytes([code]) + payload[1:]
         assert deserialize_status(host, seal(guid, version, bad)) == ERROR

@@ -47,6 +47,8 @@ mod rodas;
 mod stiffness;
 mod work;
 
+pub mod continuous;
+
 pub use output_rates::{Jet, OutputRates};
 pub use work::{Limited, WorkLimit};
 

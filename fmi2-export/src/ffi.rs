@@ -35,7 +35,7 @@ unsafe fn instance<'a, S: Slave>(c: fmi2Component) -> Option<&'a Instance<S>> {
 }
 
 /// Runs `body` on the instance: state, logging, errors and panics handled.
-fn call<S: Slave>(
+pub(crate) fn call<S: Slave>(
     c: fmi2Component,
     function: &'static str,
     body: impl FnOnce(&mut Inner<S>) -> Res<Status>,
@@ -69,7 +69,7 @@ fn call<S: Slave>(
     .unwrap_or(fmi2Fatal)
 }
 
-unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Res<&'a [T]> {
+pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Res<&'a [T]> {
     if n == 0 {
         Ok(&[])
     } else if p.is_null() {
@@ -80,7 +80,7 @@ unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Res<&'a [T]> {
     }
 }
 
-unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Res<&'a mut [T]> {
+pub(crate) unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Res<&'a mut [T]> {
     if n == 0 {
         Ok(&mut [])
     } else if p.is_null() {
@@ -146,11 +146,18 @@ pub unsafe fn instantiate<S: Slave>(
             Some(n) if !n.is_empty() => {}
             _ => return refuse("instanceName must be a non-empty string".into()),
         }
-        if fmu_type != fmi2CoSimulation {
-            return refuse(format!(
-                "fmuType = {fmu_type}: this FMU supports co-simulation (fmi2CoSimulation = 1) only"
-            ));
-        }
+        let model_exchange = match fmu_type {
+            t if t == fmi2CoSimulation => false,
+            t if t == fmi2ModelExchange && md.model_exchange.is_some() => true,
+            _ => {
+                let supported = if md.model_exchange.is_some() {
+                    "Model Exchange (fmi2ModelExchange = 0) and co-simulation (fmi2CoSimulation = 1)"
+                } else {
+                    "co-simulation (fmi2CoSimulation = 1) only"
+                };
+                return refuse(format!("fmuType = {fmu_type}: this FMU supports {supported}"));
+            }
+        };
         let g = unsafe { c_str(guid) };
         if g.as_deref() != Some(S::guid()) {
             return refuse(format!(
@@ -164,7 +171,7 @@ pub unsafe fn instantiate<S: Slave>(
         }
         let resource = unsafe { c_str(resource_location) };
         let resource_dir = resource.as_deref().and_then(decode_file_uri);
-        let inner = Inner::<S>::new(logger, resource_dir);
+        let inner = Inner::<S>::new(logger, resource_dir, model_exchange);
         if let (Some(r), None) = (&resource, &inner.resource_dir) {
             inner.log_status_warning(&format!(
                 "fmi2Instantiate: fmuResourceLocation {r} is no file URI; resources are not used"

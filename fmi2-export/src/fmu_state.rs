@@ -188,6 +188,14 @@ impl<S: Slave> Inner<S> {
         if machine == M::Fatal {
             return Err("a state cannot be in state fatal".into());
         }
+        let me_only = matches!(machine, M::EventMode | M::ContinuousTimeMode);
+        let cs_only = matches!(machine, M::StepComplete | M::StepFailed);
+        if (me_only && !self.model_exchange) || (cs_only && self.model_exchange) {
+            return Err(format!(
+                "a state in state {} belongs to an instance of the other fmuType",
+                machine.name()
+            ));
+        }
         let tolerance = r.opt_f64("tolerance")?;
         let start_time = r.f64("start time")?;
         let stop_time = r.opt_f64("stop time")?;

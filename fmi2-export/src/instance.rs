@@ -41,6 +41,8 @@ pub struct Inner<S: Slave> {
     pub(crate) slave: Option<S>,
     /// The stored values changed since `slave` was built.
     pub(crate) stale: bool,
+    /// The instance is of fmuType fmi2ModelExchange.
+    pub(crate) model_exchange: bool,
     /// Live `fmi2FMUstate` pointers handed out by this instance: a membership
     /// registry, ordered rather than hashed, so that the FMU never asks the OS
     /// for random hasher keys (std's `HashSet` seeds its `RandomState` so).
@@ -55,7 +57,11 @@ pub struct Inner<S: Slave> {
 unsafe impl<S: Slave> Send for Inner<S> {}
 
 impl<S: Slave> Inner<S> {
-    pub(crate) fn new(logger: Logger, resource_dir: Option<PathBuf>) -> Inner<S> {
+    pub(crate) fn new(
+        logger: Logger,
+        resource_dir: Option<PathBuf>,
+        model_exchange: bool,
+    ) -> Inner<S> {
         let md = S::description();
         let mut inner = Inner {
             md,
@@ -73,6 +79,7 @@ impl<S: Slave> Inner<S> {
             terminated: false,
             slave: None,
             stale: true,
+            model_exchange,
             states: BTreeSet::new(),
             resource_dir,
         };
@@ -249,7 +256,11 @@ impl<S: Slave> Inner<S> {
         self.time = self.setup.start_time;
         self.last_successful_time = self.time;
         self.terminated = false;
-        self.machine = M::StepComplete;
+        self.machine = if self.model_exchange {
+            M::EventMode
+        } else {
+            M::StepComplete
+        };
         Ok(Status::Ok)
     }
 

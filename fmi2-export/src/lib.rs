@@ -1,6 +1,8 @@
-//! A generic FMI 2.0 co-simulation export layer. It knows nothing of any
-//! particular model: a model implements [`Slave`] and a cdylib calls
-//! [`export_fmi2!`] once to export every FMI 2.0 co-simulation function.
+//! A generic FMI 2.0 export layer, co-simulation and Model Exchange. It
+//! knows nothing of any particular model: a model implements [`Slave`] and a
+//! cdylib calls [`export_fmi2!`] once to export every FMI 2.0 function (the
+//! Model Exchange ones refuse an instance unless the model description has
+//! `<ModelExchange>`).
 //!
 //! - [`types`]: the FMI 2.0 C types, declared once (`std::ffi`);
 //! - [`slave`]: the [`Slave`] trait and the views it gets of the stored values;
@@ -22,10 +24,12 @@
 pub mod bytes;
 pub mod fail;
 pub mod ffi;
+pub mod ffi_me;
 pub mod fmu_state;
 pub mod instance;
 pub mod logging;
 pub mod machine;
+pub mod model_exchange;
 pub mod slave;
 pub mod step;
 #[cfg(feature = "test-host")]
@@ -35,7 +39,7 @@ pub mod uri;
 pub mod values;
 
 pub use model_description;
-pub use slave::{EventLog, Inputs, Setup, Slave, StepEnd, Values};
+pub use slave::{EventLog, Inputs, Setup, Slave, StepEnd, Update, Values};
 
 /// Exports the FMI 2.0 co-simulation functions for the model type `$slave`
 /// (which implements [`Slave`]). Call once, at the root of a cdylib.
@@ -378,6 +382,91 @@ macro_rules! export_fmi2 {
             value: *mut $crate::types::fmi2String,
         ) -> $crate::types::fmi2Status {
             unsafe { $crate::ffi::get_string_status::<$slave>(c, s, value) }
+        }
+
+        // ----- Model Exchange (FMI 2.0 §3.2) -----
+
+        #[no_mangle]
+        pub unsafe extern "C" fn fmi2SetTime(
+            c: $crate::types::fmi2Component,
+            time: $crate::types::fmi2Real,
+        ) -> $crate::types::fmi2Status {
+            unsafe { $crate::ffi_me::set_time::<$slave>(c, time) }
+        }
+        #[no_mangle]
+        pub unsafe extern "C" fn fmi2SetContinuousStates(
+            c: $crate::types::fmi2Component,
+            x: *const $crate::types::fmi2Real,
+            nx: usize,
+        ) -> $crate::types::fmi2Status {
+            unsafe { $crate::ffi_me::set_continuous_states::<$slave>(c, x, nx) }
+        }
+        #[no_mangle]
+        pub unsafe extern "C" fn fmi2GetContinuousStates(
+            c: $crate::types::fmi2Component,
+            x: *mut $crate::types::fmi2Real,
+            nx: usize,
+        ) -> $crate::types::fmi2Status {
+            unsafe { $crate::ffi_me::get_continuous_states::<$slave>(c, x, nx) }
+        }
+        #[no_mangle]
+        pub unsafe extern "C" fn fmi2GetNominalsOfContinuousStates(
+            c: $crate::types::fmi2Component,
+            x_nominal: *mut $crate::types::fmi2Real,
+            nx: usize,
+        ) -> $crate::types::fmi2Status {
+            unsafe { $crate::ffi_me::get_nominals_of_continuous_states::<$slave>(c, x_nominal, nx) }
+        }
+        #[no_mangle]
+        pub unsafe extern "C" fn fmi2GetDerivatives(
+            c: $crate::types::fmi2Component,
+            derivatives: *mut $crate::types::fmi2Real,
+            nx: usize,
+        ) -> $crate::types::fmi2Status {
+            unsafe { $crate::ffi_me::get_derivatives::<$slave>(c, derivatives, nx) }
+        }
+        #[no_mangle]
+        pub unsafe extern "C" fn fmi2GetEventIndicators(
+            c: $crate::types::fmi2Component,
+            event_indicators: *mut $crate::types::fmi2Real,
+            ni: usize,
+        ) -> $crate::types::fmi2Status {
+            unsafe { $crate::ffi_me::get_event_indicators::<$slave>(c, event_indicators, ni) }
+        }
+        #[no_mangle]
+        pub unsafe extern "C" fn fmi2EnterEventMode(
+            c: $crate::types::fmi2Component,
+        ) -> $crate::types::fmi2Status {
+            unsafe { $crate::ffi_me::enter_event_mode::<$slave>(c) }
+        }
+        #[no_mangle]
+        pub unsafe extern "C" fn fmi2NewDiscreteStates(
+            c: $crate::types::fmi2Component,
+            event_info: *mut $crate::types::fmi2EventInfo,
+        ) -> $crate::types::fmi2Status {
+            unsafe { $crate::ffi_me::new_discrete_states::<$slave>(c, event_info) }
+        }
+        #[no_mangle]
+        pub unsafe extern "C" fn fmi2EnterContinuousTimeMode(
+            c: $crate::types::fmi2Component,
+        ) -> $crate::types::fmi2Status {
+            unsafe { $crate::ffi_me::enter_continuous_time_mode::<$slave>(c) }
+        }
+        #[no_mangle]
+        pub unsafe extern "C" fn fmi2CompletedIntegratorStep(
+            c: $crate::types::fmi2Component,
+            no_set_fmu_state_prior_to_current_point: $crate::types::fmi2Boolean,
+            enter_event_mode: *mut $crate::types::fmi2Boolean,
+            terminate_simulation: *mut $crate::types::fmi2Boolean,
+        ) -> $crate::types::fmi2Status {
+            unsafe {
+                $crate::ffi_me::completed_integrator_step::<$slave>(
+                    c,
+                    no_set_fmu_state_prior_to_current_point,
+                    enter_event_mode,
+                    terminate_simulation,
+                )
+            }
         }
     };
 }

@@ -1,11 +1,13 @@
-//! The FMI 2.0 co-simulation state machine and, as in the Reference FMUs'
-//! `fmi2Functions.c`, one mask per function: the states in which it may be
-//! called (FMI 2.0, section 4.2.4, state table).
+//! The FMI 2.0 state machines, co-simulation and Model Exchange, and, as in
+//! the Reference FMUs' `fmi2Functions.c`, one mask per function: the states
+//! in which it may be called (FMI 2.0, sections 4.2.4 and 3.2.3, state
+//! tables).
 
 #![allow(non_upper_case_globals)] // the masks keep the C functions' names
 
-/// States of the FMI 2.0 co-simulation state machine (no asynchronous steps:
-/// `stepInProgress` and `stepCanceled` never occur).
+/// States of the FMI 2.0 state machines: co-simulation (no asynchronous
+/// steps: `stepInProgress` and `stepCanceled` never occur) and Model
+/// Exchange (`eventMode`, `continuousTimeMode`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Machine {
     Instantiated,
@@ -15,10 +17,12 @@ pub enum Machine {
     Terminated,
     Error,
     Fatal,
+    EventMode,
+    ContinuousTimeMode,
 }
 
 impl Machine {
-    const ALL: [Machine; 7] = [
+    const ALL: [Machine; 9] = [
         Machine::Instantiated,
         Machine::InitializationMode,
         Machine::StepComplete,
@@ -26,6 +30,8 @@ impl Machine {
         Machine::Terminated,
         Machine::Error,
         Machine::Fatal,
+        Machine::EventMode,
+        Machine::ContinuousTimeMode,
     ];
 
     pub fn name(self) -> &'static str {
@@ -37,6 +43,8 @@ impl Machine {
             Machine::Terminated => "terminated",
             Machine::Error => "error",
             Machine::Fatal => "fatal",
+            Machine::EventMode => "eventMode",
+            Machine::ContinuousTimeMode => "continuousTimeMode",
         }
     }
 
@@ -88,6 +96,8 @@ pub mod mask {
         M::StepFailed,
         M::Terminated,
         M::Error,
+        M::EventMode,
+        M::ContinuousTimeMode,
     ]);
     const GET: Mask = Mask::of(&[
         M::InitializationMode,
@@ -95,14 +105,36 @@ pub mod mask {
         M::StepFailed,
         M::Terminated,
         M::Error,
+        M::EventMode,
+        M::ContinuousTimeMode,
     ]);
-    const SET: Mask = Mask::of(&[M::Instantiated, M::InitializationMode, M::StepComplete]);
+    /// Which variables may be set in each state: `values::settable`.
+    const SET: Mask = Mask::of(&[
+        M::Instantiated,
+        M::InitializationMode,
+        M::StepComplete,
+        M::EventMode,
+        M::ContinuousTimeMode,
+    ]);
+    /// Model Exchange: evaluations of the model at the current state.
+    const EVALUATE: Mask = Mask::of(&[
+        M::InitializationMode,
+        M::EventMode,
+        M::ContinuousTimeMode,
+        M::Terminated,
+        M::Error,
+    ]);
     const STATUS: Mask = Mask::of(&[M::StepComplete, M::StepFailed, M::Terminated]);
 
     pub const fmi2SetupExperiment: Mask = Mask::of(&[M::Instantiated]);
     pub const fmi2EnterInitializationMode: Mask = Mask::of(&[M::Instantiated]);
     pub const fmi2ExitInitializationMode: Mask = Mask::of(&[M::InitializationMode]);
-    pub const fmi2Terminate: Mask = Mask::of(&[M::StepComplete, M::StepFailed]);
+    pub const fmi2Terminate: Mask = Mask::of(&[
+        M::StepComplete,
+        M::StepFailed,
+        M::EventMode,
+        M::ContinuousTimeMode,
+    ]);
     pub const fmi2Reset: Mask = ANY_BUT_FATAL;
 
     pub const fmi2GetReal: Mask = GET;
@@ -123,6 +155,24 @@ pub mod mask {
     pub const fmi2GetIntegerStatus: Mask = STATUS;
     pub const fmi2GetBooleanStatus: Mask = STATUS;
     pub const fmi2GetStringStatus: Mask = STATUS;
+
+    pub const fmi2SetTime: Mask = Mask::of(&[M::EventMode, M::ContinuousTimeMode]);
+    pub const fmi2SetContinuousStates: Mask = Mask::of(&[M::ContinuousTimeMode]);
+    pub const fmi2GetContinuousStates: Mask = EVALUATE;
+    pub const fmi2GetDerivatives: Mask = EVALUATE;
+    pub const fmi2GetEventIndicators: Mask = EVALUATE;
+    pub const fmi2GetNominalsOfContinuousStates: Mask = Mask::of(&[
+        M::Instantiated,
+        M::InitializationMode,
+        M::EventMode,
+        M::ContinuousTimeMode,
+        M::Terminated,
+        M::Error,
+    ]);
+    pub const fmi2EnterEventMode: Mask = Mask::of(&[M::EventMode, M::ContinuousTimeMode]);
+    pub const fmi2NewDiscreteStates: Mask = Mask::of(&[M::EventMode]);
+    pub const fmi2EnterContinuousTimeMode: Mask = Mask::of(&[M::EventMode]);
+    pub const fmi2CompletedIntegratorStep: Mask = Mask::of(&[M::ContinuousTimeMode]);
 
     pub const fmi2GetFMUstate: Mask = ANY_BUT_FATAL;
     pub const fmi2SetFMUstate: Mask = ANY_BUT_FATAL;

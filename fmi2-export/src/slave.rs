@@ -159,7 +159,25 @@ pub enum StepEnd {
     Stopped { time: f64, reason: String },
 }
 
-/// A model as an FMI 2.0 co-simulation slave.
+/// What a Model Exchange event update did (`fmi2NewDiscreteStates`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Update {
+    /// The continuous states changed (the host must re-read them).
+    pub states_changed: bool,
+    /// The model ends the run, and why (`terminateSimulation`).
+    pub terminate: Option<String>,
+}
+
+/// The answer of a model without Model Exchange.
+fn no_model_exchange<T>() -> Result<T, String> {
+    Err("this model has no Model Exchange interface".into())
+}
+
+/// A model as an FMI 2.0 co-simulation slave (and, if its description has
+/// `<ModelExchange>`, a Model Exchange model: the methods after
+/// `read_state`, whose sizes the layer has checked against the description:
+/// `nx` states, the variables with a `derivative` attribute in order, and
+/// `numberOfEventIndicators` indicators).
 ///
 /// Every method may return `Err(message)`: the FMI function then returns
 /// `fmi2Error` with the message through the logger. A panic is caught and
@@ -210,4 +228,45 @@ pub trait Slave: Sized + Send + 'static {
     fn write_state(state: &Self::State, w: &mut ByteWriter);
     /// Reads a state back; must check every field it can.
     fn read_state(r: &mut ByteReader<'_>) -> Result<Self::State, ReadError>;
+
+    /// Model Exchange: the host's time (`fmi2SetTime`), s.
+    fn set_time(&mut self, _t: f64) -> Result<(), String> {
+        no_model_exchange()
+    }
+
+    /// Model Exchange: the continuous states into `x`.
+    fn continuous_states(&self, _x: &mut [f64]) -> Result<(), String> {
+        no_model_exchange()
+    }
+
+    /// Model Exchange: the host's continuous states (finite, checked).
+    fn set_continuous_states(&mut self, _x: &[f64]) -> Result<(), String> {
+        no_model_exchange()
+    }
+
+    /// Model Exchange: the state derivatives at the current time, states and inputs.
+    fn derivatives(&mut self, _inputs: Inputs<'_>, _dx: &mut [f64]) -> Result<(), String> {
+        no_model_exchange()
+    }
+
+    /// Model Exchange: the event indicators.
+    fn event_indicators(&mut self, _inputs: Inputs<'_>, _z: &mut [f64]) -> Result<(), String> {
+        no_model_exchange()
+    }
+
+    /// Model Exchange: the event update at the current time (`fmi2NewDiscreteStates`).
+    fn event_update(&mut self, _inputs: Inputs<'_>, _log: &mut EventLog) -> Result<Update, String> {
+        no_model_exchange()
+    }
+
+    /// Model Exchange: after an accepted integrator step; `true` asks the
+    /// host to enter event mode (`enterEventMode`).
+    fn completed_integrator_step(&mut self, _inputs: Inputs<'_>) -> Result<bool, String> {
+        no_model_exchange()
+    }
+
+    /// Model Exchange: nominal values of the continuous states.
+    fn nominals(&self, _x: &mut [f64]) -> Result<(), String> {
+        no_model_exchange()
+    }
 }

@@ -58,9 +58,11 @@ fn settable(v: &Variable, m: Machine) -> bool {
                 || (v.causality != Causality::Parameter && v.variability == Variability::Tunable)
                 || (not_constant && init == Some(Initial::Exact))
         }
-        M::StepComplete => {
+        M::StepComplete | M::EventMode => {
             input || (v.causality == Causality::Parameter && v.variability == Variability::Tunable)
         }
+        // Model Exchange, continuous-time mode: continuous inputs only
+        M::ContinuousTimeMode => input && v.variability == Variability::Continuous,
         _ => false,
     }
 }

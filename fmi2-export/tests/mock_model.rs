@@ -27,6 +27,7 @@ static VARIABLES: &[Variable] = &[
             max: None,
         },
         depends_on: &[],
+        derivative: None,
     },
     Variable {
         name: "u",
@@ -43,6 +44,7 @@ static VARIABLES: &[Variable] = &[
             max: None,
         },
         depends_on: &[],
+        derivative: None,
     },
     Variable {
         name: "x",
@@ -59,6 +61,7 @@ static VARIABLES: &[Variable] = &[
             max: None,
         },
         depends_on: &[],
+        derivative: None,
     },
 ];
 
@@ -83,6 +86,7 @@ static MD: ModelDescription = ModelDescription {
         can_serialize_fmu_state: true,
         provides_directional_derivative: false,
     },
+    model_exchange: None,
     units: &[],
     types: &[],
     log_categories: &[

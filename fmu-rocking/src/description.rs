@@ -11,6 +11,11 @@ use model_description::*;
 /// (`DefaultExperiment/@tolerance`).
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 
+/// Event indicators of the Model Exchange interface: the zero crossing of
+/// theta, overturning, uplift from rest and six kinks of af
+/// (`rocking::dynamics::continuous::EVENT_INDICATORS`, checked by the FMU).
+pub const EVENT_INDICATORS: u32 = 9;
+
 /// Declares the value-reference constants ([`vr`]) and the variable table
 /// ([`VARIABLES`]) from one list.
 macro_rules! variables {
@@ -48,7 +53,7 @@ const fn enumeration(declared_type: &'static str, start: i32) -> Type {
     }
 }
 
-use Causality::{CalculatedParameter as CalcParam, Input, Output, Parameter};
+use Causality::{CalculatedParameter as CalcParam, Input, Local, Output, Parameter};
 use Initial::{Calculated, Exact};
 use Variability::{Continuous, Discrete, Fixed};
 
@@ -452,6 +457,22 @@ variables! {
         causality: Parameter, variability: Fixed, initial: Some(Exact),
         ty: Type::Integer { start: Some(100_000) },
     }
+    DER_THETA = 43 => {
+        name: "der(theta)",
+        description: "Model Exchange: derivative of the continuous state theta, equal to omega",
+        causality: Local, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("rad/s"), Some("deg/s"), None),
+        depends_on: &["omega"],
+        derivative: Some("theta"),
+    }
+    DER_OMEGA = 44 => {
+        name: "der(omega)",
+        description: "Model Exchange: derivative of the continuous state omega, the angular acceleration of the equation of motion (0 while a rigid body rests and after overturning)",
+        causality: Local, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("rad/s2"), Some("deg/s2"), None),
+        depends_on: D_DYNAMIC,
+        derivative: Some("omega"),
+    }
 }
 
 const fn base(kg: i32, m: i32, s: i32, rad: i32) -> BaseUnit {
@@ -675,13 +696,14 @@ pub static LOG_CATEGORIES: &[LogCategory] = &[
 
 pub static ROCKING_BLOCK: ModelDescription = ModelDescription {
     model_name: "RockingBlock",
-    description: "Rocking of a masonry body on a flexible, no-tension interface that can crush (co-simulation)",
+    description: "Rocking of a masonry body on a flexible, no-tension interface that can crush (co-simulation and model exchange)",
     author: common::AUTHOR,
     version: env!("CARGO_PKG_VERSION"),
     copyright: common::COPYRIGHT,
     license: common::LICENSE,
     generation_tool: common::GENERATION_TOOL,
     co_simulation: common::co_simulation("RockingBlock"),
+    model_exchange: Some(common::model_exchange("RockingBlock", EVENT_INDICATORS)),
     units: UNITS,
     types: TYPES,
     log_categories: LOG_CATEGORIES,

@@ -1,10 +1,14 @@
 //! The rocking model as an FMI 2.0 co-simulation slave: parameters from the
-//! stored values, outputs from `rocking::dynamics`, one `advance` per step.
+//! stored values, outputs from `rocking::dynamics`, one `advance` per step;
+//! and as a Model Exchange model ([`model_exchange`]).
+
+mod model_exchange;
 
 use crate::description::{vr, ROCKING_BLOCK};
 use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
 use fmi2_export::model_description::ModelDescription;
-use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Values};
+use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Update, Values};
+use rocking::dynamics::continuous::Continuous;
 use rocking::dynamics::{GroundInput, OutputRates, Outputs, Simulator, State, WorkLimit};
 use rocking::{Params, Regime};
 
@@ -12,12 +16,17 @@ use rocking::{Params, Regime};
 /// arithmetic of the equations of motion overflows around 1e200).
 pub const MAX_GROUND_ACCELERATION: f64 = 1e100;
 
-/// Layout version of the serialized [`State`] (inside the generic envelope).
-const STATE_VERSION: u32 = 3;
+/// Layout version of the serialized state (inside the generic envelope):
+/// 4 added the Model Exchange toe and last impact speed.
+const STATE_VERSION: u32 = 4;
 
 pub struct RockingSlave {
     sim: Simulator,
     state: State,
+    /// Model Exchange: the toe (see `rocking::dynamics::continuous`).
+    side: f64,
+    /// Model Exchange: `|omega|` after the last impact of a rigid body, rad/s.
+    left_with: f64,
     /// Outputs at `state` for the ground acceleration with these bits.
     cache: Option<(u64, Outputs)>,
     /// Output derivatives at `state` for the ground input `(ag, dag/dt)`
@@ -82,7 +91,7 @@ impl RockingSlave {
 }
 
 impl Slave for RockingSlave {
-    type State = State;
+    type State = Continuous;
 
     fn description() -> &'static ModelDescription {
         &ROCKING_BLOCK
@@ -108,11 +117,13 @@ impl Slave for RockingSlave {
         sim.work_limit = Some(WorkLimit {
             per_call: max_steps as u64,
         });
-        let mut state = sim.initial_state(p.theta0, p.omega0);
-        state.t = setup.start_time;
+        let mut c = sim.continuous(p.theta0, p.omega0, values.real(vr::AG));
+        c.state.t = setup.start_time;
         Ok(RockingSlave {
             sim,
-            state,
+            state: c.state,
+            side: c.side,
+            left_with: c.left_with,
             cache: None,
             rates: None,
         })
@@ -141,6 +152,7 @@ impl Slave for RockingSlave {
             vr::MR => self.outputs(ag).mr,
             vr::FX => self.outputs(ag).fx,
             vr::FZ => self.outputs(ag).fz,
+            vr::DER_THETA | vr::DER_OMEGA => self.me_derivative(r, inputs)?,
             _ => return Err(format!("no computed Real with value reference {r}")),
         };
         // thetaC is +inf without crushing; anything else not finite is an
@@ -302,17 +314,16 @@ impl Slave for RockingSlave {
         Ok(StepEnd::Completed)
     }
 
-    fn state(&self) -> State {
-        self.state
+    fn state(&self) -> Continuous {
+        self.continuous()
     }
 
-    fn set_state(&mut self, state: State) {
-        self.state = state;
-        self.cache = None;
-        self.rates = None;
+    fn set_state(&mut self, c: Continuous) {
+        self.store(c);
     }
 
-    fn write_state(s: &State, w: &mut ByteWriter) {
+    fn write_state(c: &Continuous, w: &mut ByteWriter) {
+        let s = &c.state;
         // Destructured: a new field in State breaks the build here, not the format.
         let State {
             t,
@@ -341,9 +352,11 @@ impl Slave for RockingSlave {
         w.f64(a);
         w.bool(stiff);
         w.u32(switch_count);
+        w.f64(c.side);
+        w.f64(c.left_with);
     }
 
-    fn read_state(r: &mut ByteReader<'_>) -> Result<State, ReadError> {
+    fn read_state(r: &mut ByteReader<'_>) -> Result<Continuous, ReadError> {
         let v = r.u32("state version")?;
         if v != STATE_VERSION {
             return Err(format!(
@@ -364,6 +377,13 @@ impl Slave for RockingSlave {
             stiff: r.bool("stiff")?,
             switch_count: r.u32("switch_count")?,
         };
+        let (side, left_with) = (r.f64("side")?, r.f64("left_with")?);
+        if side != 1.0 && side != -1.0 {
+            return Err(format!("side = {side}: must be 1 or -1"));
+        }
+        if !(left_with.is_finite() && left_with >= 0.0) {
+            return Err(format!("left_with = {left_with}: must be finite and >= 0"));
+        }
         for (name, x) in [("t", s.t), ("theta", s.theta), ("omega", s.omega)] {
             if !x.is_finite() {
                 return Err(format!("{name} = {x} is not finite"));
@@ -378,6 +398,42 @@ impl Slave for RockingSlave {
         if !(s.h.is_finite() && s.h >= 0.0 && s.a.is_finite() && s.a >= 0.0) {
             return Err(format!("step h = {}, contact a = {}: invalid", s.h, s.a));
         }
-        Ok(s)
+        Ok(Continuous {
+            state: s,
+            side,
+            left_with,
+        })
+    }
+
+    fn set_time(&mut self, t: f64) -> Result<(), String> {
+        self.me_set_time(t)
+    }
+
+    fn continuous_states(&self, x: &mut [f64]) -> Result<(), String> {
+        self.me_states(x)
+    }
+
+    fn set_continuous_states(&mut self, x: &[f64]) -> Result<(), String> {
+        self.me_set_states(x)
+    }
+
+    fn derivatives(&mut self, inputs: Inputs<'_>, dx: &mut [f64]) -> Result<(), String> {
+        self.me_derivatives(inputs, dx)
+    }
+
+    fn event_indicators(&mut self, inputs: Inputs<'_>, z: &mut [f64]) -> Result<(), String> {
+        self.me_event_indicators(inputs, z)
+    }
+
+    fn event_update(&mut self, inputs: Inputs<'_>, log: &mut EventLog) -> Result<Update, String> {
+        self.me_event_update(inputs, log)
+    }
+
+    fn completed_integrator_step(&mut self, _inputs: Inputs<'_>) -> Result<bool, String> {
+        self.me_completed_step()
+    }
+
+    fn nominals(&self, x: &mut [f64]) -> Result<(), String> {
+        self.me_nominals(x)
     }
 }

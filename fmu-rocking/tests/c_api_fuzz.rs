@@ -85,6 +85,15 @@ fn plain_instance(slot: u8) -> Op {
     )
 }
 
+/// [`plain_instance`] of fmuType fmi2ModelExchange.
+fn me_instance(slot: u8) -> Op {
+    let Op::Instantiate(_, mut spec) = plain_instance(slot) else {
+        unreachable!()
+    };
+    spec.fmu_type = fmi2ModelExchange;
+    Op::Instantiate(slot, spec)
+}
+
 proptest! {
     #![proptest_config(cases(2048))]
 
@@ -96,6 +105,7 @@ proptest! {
     #[test]
     fn random_calls_on_a_running_instance(data in prop::collection::vec(any::<u8>(), 0..1500)) {
         let mut ops = vec![plain_instance(0), Op::Init(0), plain_instance(1), Op::Init(1)];
+        ops.extend([me_instance(2), Op::Init(2)]);
         ops.extend(decode(&data));
         run_bounded(ops);
     }
@@ -505,6 +515,8 @@ fn what_random_sequences_reach() {
                     Op::Init(0),
                     plain_instance(1),
                     Op::Init(1),
+                    me_instance(2),
+                    Op::Init(2),
                 ]
             } else {
                 Vec::new()
@@ -515,6 +527,7 @@ fn what_random_sequences_reach() {
             total.calls += s.calls;
             total.instantiated += s.instantiated;
             total.steps_ok += s.steps_ok;
+            total.model_exchange_ok += s.model_exchange_ok;
             total.steps_discard += s.steps_discard;
             total.steps_skipped += s.steps_skipped;
             total.exit_init_ok += s.exit_init_ok;
@@ -548,4 +561,25 @@ fn replay_fuzz_input() {
         println!("  {:?}", t.elapsed());
     }
     println!("{:?}", d.finish());
+}
+
+/// Model Exchange through the driver: an ME instance, initialized, answers
+/// its evaluations and mode changes (the random sequences reach them too:
+/// `what_random_sequences_reach` counts `model_exchange_ok`).
+#[test]
+fn model_exchange_sequence() {
+    install_panic_counter();
+    let me = |which: u8, n: usize| Op::Me {
+        slot: 0,
+        which,
+        x: [0.05, 0.0],
+        n,
+    };
+    let mut ops = vec![me_instance(0)];
+    ops.push(Op::Init(0));
+    for w in [5, 2, 3, 4, 7, 8, 0, 1, 3, 4, 9, 6, 7, 8, 3] {
+        ops.push(me(w, if w == 4 { 9 } else { 2 }));
+    }
+    let stats = run_bounded(ops);
+    assert_eq!(stats.model_exchange_ok, 15, "{stats:?}");
 }

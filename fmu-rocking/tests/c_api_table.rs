@@ -103,9 +103,21 @@ fn instantiate_checks_the_guid_and_the_type() {
             0,
         );
         assert!(c.is_null());
+        // Model Exchange is supported, an unknown fmuType is not
         let c = fmi2Instantiate(
             name.as_ptr(),
             fmi2ModelExchange,
+            guid.as_ptr(),
+            ptr::null(),
+            ptr::null(),
+            0,
+            0,
+        );
+        assert!(!c.is_null());
+        fmi2FreeInstance(c);
+        let c = fmi2Instantiate(
+            name.as_ptr(),
+            7,
             guid.as_ptr(),
             ptr::null(),
             ptr::null(),
@@ -221,7 +233,8 @@ fn declared_dependencies_cover_the_real_ones() {
     }
 }
 
-/// The serialized state carries both counts and the opened flag; a state
+/// The serialized state carries both counts, the opened flag and the Model
+/// Exchange fields; a state
 /// claiming more impacts than zero crossings is refused (every impact is a
 /// crossing).
 #[test]
@@ -230,17 +243,20 @@ fn serialized_state_keeps_both_counts_and_refuses_more_impacts_than_crossings() 
     use fmi2_export::Slave;
     let model = Params::default().build().unwrap();
     let sim = rocking::dynamics::Simulator::new(model, 1e-9);
-    let mut s = sim.initial_state(0.01, 0.0);
-    s.impacts = 3;
-    s.zero_crossings = 7;
-    s.opened = true;
+    let mut c = sim.continuous(0.01, 0.0, 0.0);
+    c.state.impacts = 3;
+    c.state.zero_crossings = 7;
+    c.state.opened = true;
+    // the Model Exchange toe and last impact speed too
+    c.side = -1.0;
+    c.left_with = 0.25;
     let mut w = ByteWriter::new();
-    RockingSlave::write_state(&s, &mut w);
+    RockingSlave::write_state(&c, &mut w);
     let back = RockingSlave::read_state(&mut ByteReader::new(&w.buf)).unwrap();
-    assert_eq!(back, s);
-    s.impacts = 8;
+    assert_eq!(back, c);
+    c.state.impacts = 8;
     let mut w = ByteWriter::new();
-    RockingSlave::write_state(&s, &mut w);
+    RockingSlave::write_state(&c, &mut w);
     let e = RockingSlave::read_state(&mut ByteReader::new(&w.buf)).unwrap_err();
     assert!(
         e.contains("impacts = 8") && e.contains("zero crossings = 7"),

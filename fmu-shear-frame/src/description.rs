@@ -88,6 +88,7 @@ fn build_variables() -> Vec<Variable> {
         initial: Some(Exact),
         ty,
         depends_on: &[],
+        derivative: None,
     };
     let mut v = vec![
         param(
@@ -132,6 +133,7 @@ fn build_variables() -> Vec<Variable> {
             initial: None,
             ty: real("m/s2", Some("g"), Some(0.0)),
             depends_on: &[],
+            derivative: None,
         },
     ];
     let (m, k, fx, fz) = (names("m"), names("k"), names("Fx"), names("Fz"));
@@ -193,6 +195,7 @@ fn build_variables() -> Vec<Variable> {
                 initial: None,
                 ty: real("N", Some("kN"), Some(0.0)),
                 depends_on: &[],
+                derivative: None,
             });
         }
     }
@@ -209,6 +212,7 @@ fn build_variables() -> Vec<Variable> {
             initial: Some(Exact),
             ty: real("m", Some("mm"), Some(0.0)),
             depends_on: &[],
+            derivative: None,
         });
     }
     for (i, &name) in vel.iter().enumerate() {
@@ -224,6 +228,7 @@ fn build_variables() -> Vec<Variable> {
             initial: Some(Exact),
             ty: real("m/s", None, Some(0.0)),
             depends_on: &[],
+            derivative: None,
         });
     }
     for i in 0..MAX_STOREYS {
@@ -246,6 +251,7 @@ fn build_variables() -> Vec<Variable> {
             initial: Some(Calculated),
             ty: real("m/s2", Some("g"), None),
             depends_on: Box::leak(deps.into_boxed_slice()),
+            derivative: None,
         });
     }
     for i in 0..MAX_STOREYS {
@@ -268,6 +274,7 @@ fn build_variables() -> Vec<Variable> {
             initial: Some(Calculated),
             ty: real("m", Some("mm"), None),
             depends_on: Box::leak(deps.into_boxed_slice()),
+            derivative: None,
         });
     }
     for (i, name) in period.iter().enumerate() {
@@ -283,6 +290,7 @@ fn build_variables() -> Vec<Variable> {
             initial: Some(Calculated),
             ty: real("s", None, None),
             depends_on: modal,
+            derivative: None,
         });
     }
     v
@@ -402,6 +410,7 @@ pub static SHEAR_FRAME: LazyLock<ModelDescription> = LazyLock::new(|| {
     license: common::LICENSE,
     generation_tool: common::GENERATION_TOOL,
     co_simulation: common::co_simulation("ShearFrame"),
+    model_exchange: None,
     units: UNITS,
     types: TYPES,
     log_categories: LOG_CATEGORIES,

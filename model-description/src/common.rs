@@ -1,8 +1,8 @@
 //! What every FMU of this project declares alike: who made it, under which
-//! licence, and the co-simulation capabilities of the generic FMI 2.0 layer
+//! licence, and the co-simulation and model-exchange capabilities of the generic FMI 2.0 layer
 //! (`fmi2-export`), which are the layer's, not a model's.
 
-use crate::schema::CoSimulation;
+use crate::schema::{CoSimulation, ModelExchange};
 
 pub const AUTHOR: &str = "RockingBlock developers";
 pub const COPYRIGHT: &str = "RockingBlock developers";
@@ -26,5 +26,25 @@ pub const fn co_simulation(model_identifier: &'static str) -> CoSimulation {
         can_get_and_set_fmu_state: true,
         can_serialize_fmu_state: true,
         provides_directional_derivative: false,
+    }
+}
+
+/// The `<ModelExchange>` element of an FMU served by `fmi2-export` with
+/// `event_indicators` event indicators: FMU states saved and serialized;
+/// `fmi2CompletedIntegratorStep` is wanted (the model keeps books there).
+pub const fn model_exchange(
+    model_identifier: &'static str,
+    event_indicators: u32,
+) -> ModelExchange {
+    ModelExchange {
+        model_identifier,
+        needs_execution_tool: false,
+        completed_integrator_step_not_needed: false,
+        can_be_instantiated_only_once_per_process: false,
+        can_not_use_memory_management_functions: true,
+        can_get_and_set_fmu_state: true,
+        can_serialize_fmu_state: true,
+        provides_directional_derivative: false,
+        event_indicators,
     }
 }

@@ -182,6 +182,11 @@ pub struct Variable {
     /// variables with `initial = exact`). Its subset of inputs is its
     /// dependency list in `ModelStructure/Outputs`. Empty for the others.
     pub depends_on: &'static [&'static str],
+    /// For a state derivative (Model Exchange): the name of the continuous
+    /// state it is the derivative of (`derivative` attribute); it is then
+    /// listed in `ModelStructure/Derivatives`, with the inputs and states
+    /// of `depends_on` as its dependencies.
+    pub derivative: Option<&'static str>,
 }
 
 impl Variable {
@@ -195,6 +200,7 @@ impl Variable {
         initial: None,
         ty: Type::REAL,
         depends_on: &[],
+        derivative: None,
     };
 
     /// The effective `initial` (FMI 2.0 Table on p. 50: defaults when absent).
@@ -214,8 +220,15 @@ impl Variable {
     }
 
     /// Whether the variable belongs to `ModelStructure/InitialUnknowns`
-    /// (FMI 2.0 §2.2.8; no continuous states are exposed in co-simulation).
+    /// (FMI 2.0 §2.2.8): outputs and locals that are calculated, calculated
+    /// parameters, and the state derivatives (Model Exchange).
     pub fn is_initial_unknown(&self) -> bool {
+        if self.derivative.is_some() {
+            return matches!(
+                self.effective_initial(),
+                Some(Initial::Approx | Initial::Calculated)
+            );
+        }
         match self.causality {
             Causality::CalculatedParameter => true,
             Causality::Output => matches!(
@@ -316,6 +329,22 @@ pub struct CoSimulation {
     pub provides_directional_derivative: bool,
 }
 
+/// The `<ModelExchange>` element: capabilities of an FMU's Model Exchange
+/// interface (FMI 2.0 §3.3).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModelExchange {
+    pub model_identifier: &'static str,
+    pub needs_execution_tool: bool,
+    pub completed_integrator_step_not_needed: bool,
+    pub can_be_instantiated_only_once_per_process: bool,
+    pub can_not_use_memory_management_functions: bool,
+    pub can_get_and_set_fmu_state: bool,
+    pub can_serialize_fmu_state: bool,
+    pub provides_directional_derivative: bool,
+    /// `numberOfEventIndicators` of the model description.
+    pub event_indicators: u32,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DefaultExperiment {
     pub start_time: f64,
@@ -335,6 +364,8 @@ pub struct ModelDescription {
     pub license: &'static str,
     pub generation_tool: &'static str,
     pub co_simulation: CoSimulation,
+    /// The Model Exchange interface, if the FMU has one.
+    pub model_exchange: Option<ModelExchange>,
     pub units: &'static [Unit],
     pub types: &'static [EnumType],
     pub log_categories: &'static [LogCategory],
@@ -441,6 +472,17 @@ impl ModelDescription {
                     "{} lists dependencies but is no initial unknown",
                     v.name
                 ));
+            }
+            if let Some(x) = v.derivative {
+                match self.variable(x) {
+                    Some(k)
+                        if k.variability == Variability::Continuous
+                            && k.ty.base() == BaseType::Real => {}
+                    _ => p.push(format!(
+                        "{} is the derivative of {x}, which is no continuous real",
+                        v.name
+                    )),
+                }
             }
             for d in v.depends_on {
                 match self.variable(d) {

@@ -24,6 +24,14 @@ fn flag(b: bool) -> Option<&'static str> {
     b.then_some("true")
 }
 
+fn tf(b: bool) -> &'static str {
+    if b {
+        "true"
+    } else {
+        "false"
+    }
+}
+
 #[derive(Serialize)]
 #[serde(rename = "fmiModelDescription")]
 struct Root {
@@ -49,6 +57,8 @@ struct Root {
     naming: &'static str,
     #[serde(rename = "@numberOfEventIndicators")]
     event_indicators: u32,
+    #[serde(rename = "ModelExchange", skip_serializing_if = "Option::is_none")]
+    model_exchange: Option<XModelExchange>,
     #[serde(rename = "CoSimulation")]
     co_simulation: XCoSimulation,
     #[serde(rename = "UnitDefinitions")]
@@ -63,6 +73,38 @@ struct Root {
     variables: XVariables,
     #[serde(rename = "ModelStructure")]
     structure: XStructure,
+}
+
+#[derive(Serialize)]
+struct XModelExchange {
+    #[serde(rename = "@modelIdentifier")]
+    model_identifier: &'static str,
+    #[serde(rename = "@needsExecutionTool")]
+    needs_execution_tool: &'static str,
+    #[serde(rename = "@completedIntegratorStepNotNeeded")]
+    completed_step_not_needed: &'static str,
+    #[serde(rename = "@canBeInstantiatedOnlyOncePerProcess")]
+    only_once: &'static str,
+    #[serde(
+        rename = "@canNotUseMemoryManagementFunctions",
+        skip_serializing_if = "Option::is_none"
+    )]
+    no_memory_management: Option<&'static str>,
+    #[serde(
+        rename = "@canGetAndSetFMUstate",
+        skip_serializing_if = "Option::is_none"
+    )]
+    get_set_state: Option<&'static str>,
+    #[serde(
+        rename = "@canSerializeFMUstate",
+        skip_serializing_if = "Option::is_none"
+    )]
+    serialize_state: Option<&'static str>,
+    #[serde(
+        rename = "@providesDirectionalDerivative",
+        skip_serializing_if = "Option::is_none"
+    )]
+    directional_derivative: Option<&'static str>,
 }
 
 #[derive(Serialize)]
@@ -268,6 +310,8 @@ struct XReal {
     max: Option<String>,
     #[serde(rename = "@start", skip_serializing_if = "Option::is_none")]
     start: Option<String>,
+    #[serde(rename = "@derivative", skip_serializing_if = "Option::is_none")]
+    derivative: Option<usize>,
 }
 
 #[derive(Serialize)]
@@ -288,6 +332,8 @@ struct XEnum {
 struct XStructure {
     #[serde(rename = "Outputs")]
     outputs: XUnknowns,
+    #[serde(rename = "Derivatives", skip_serializing_if = "Option::is_none")]
+    derivatives: Option<XUnknowns>,
     #[serde(rename = "InitialUnknowns")]
     initial_unknowns: XUnknowns,
 }
@@ -338,7 +384,7 @@ fn unit(u: &Unit) -> XUnit {
     }
 }
 
-fn variable(v: &Variable) -> XScalarVariable {
+fn variable(md: &ModelDescription, v: &Variable) -> XScalarVariable {
     let ty = match v.ty {
         Type::Real {
             unit,
@@ -352,6 +398,9 @@ fn variable(v: &Variable) -> XScalarVariable {
             min: min.map(fmt_real),
             max: max.map(fmt_real),
             start: start.map(fmt_real),
+            derivative: v
+                .derivative
+                .map(|x| md.index_of(x).expect("derivatives are checked")),
         }),
         Type::Integer { start } => XType::Integer(XStart {
             start: start.map(|s| s.to_string()),
@@ -396,7 +445,21 @@ fn indices<'a>(md: &ModelDescription, names: impl Iterator<Item = &'a str>) -> S
 fn structure(md: &ModelDescription) -> XStructure {
     let mut outputs = Vec::new();
     let mut initial = Vec::new();
+    let mut derivatives = Vec::new();
+    // the knowns of Model Exchange: inputs and continuous states
+    let is_known = |d: &&str| {
+        md.variable(d).is_some_and(|k| {
+            k.causality == Causality::Input
+                || md.variables.iter().any(|x| x.derivative == Some(k.name))
+        })
+    };
     for (i, v) in md.variables.iter().enumerate() {
+        if v.derivative.is_some() {
+            derivatives.push(XUnknown {
+                index: i + 1,
+                dependencies: indices(md, v.depends_on.iter().copied().filter(is_known)),
+            });
+        }
         if v.causality == Causality::Output {
             let inputs = v.depends_on.iter().copied().filter(|d| {
                 md.variable(d)
@@ -416,6 +479,9 @@ fn structure(md: &ModelDescription) -> XStructure {
     }
     XStructure {
         outputs: XUnknowns { unknowns: outputs },
+        derivatives: (!derivatives.is_empty()).then_some(XUnknowns {
+            unknowns: derivatives,
+        }),
         initial_unknowns: XUnknowns { unknowns: initial },
     }
 }
@@ -437,7 +503,17 @@ pub fn render(md: &ModelDescription, guid: &str) -> String {
         license: md.license,
         generation_tool: md.generation_tool,
         naming: "flat",
-        event_indicators: 0,
+        event_indicators: md.model_exchange.map_or(0, |me| me.event_indicators),
+        model_exchange: md.model_exchange.map(|me| XModelExchange {
+            model_identifier: me.model_identifier,
+            needs_execution_tool: tf(me.needs_execution_tool),
+            completed_step_not_needed: tf(me.completed_integrator_step_not_needed),
+            only_once: tf(me.can_be_instantiated_only_once_per_process),
+            no_memory_management: flag(me.can_not_use_memory_management_functions),
+            get_set_state: flag(me.can_get_and_set_fmu_state),
+            serialize_state: flag(me.can_serialize_fmu_state),
+            directional_derivative: flag(me.provides_directional_derivative),
+        }),
         co_simulation: XCoSimulation {
             model_identifier: cs.model_identifier,
             needs_execution_tool: if cs.needs_execution_tool {
@@ -501,7 +577,7 @@ pub fn render(md: &ModelDescription, guid: &str) -> String {
             step_size: fmt_real(md.default_experiment.step_size),
         },
         variables: XVariables {
-            variables: md.variables.iter().map(variable).collect(),
+            variables: md.variables.iter().map(|v| variable(md, v)).collect(),
         },
         structure: structure(md),
     };

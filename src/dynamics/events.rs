@@ -240,7 +240,7 @@ impl StepCx<'_, '_> {
 
 /// A zero crossing of `theta`: an impact too if the joint had opened since
 /// the previous one (see [`State::impacts`]).
-fn count_crossing(st: &mut State, ev: &mut Events) {
+pub(super) fn count_crossing(st: &mut State, ev: &mut Events) {
     st.zero_crossings += 1;
     ev.zero_crossings += 1;
     if st.opened {
@@ -297,7 +297,7 @@ impl Simulator {
     /// `theta = 0`). Below `rtol thetaOv` (the error floor) it is set to rest
     /// exactly: it would otherwise cross zero every half period for ever,
     /// decaying by `eta` each time.
-    fn settles(&self, omega: f64) -> bool {
+    pub(super) fn settles(&self, omega: f64) -> bool {
         let (kn, is) = match self.model.interface.law() {
             Law::Elastic { kn } | Law::ElastoPlastic { kn, .. } => {
                 (kn, self.model.interface.shape().second_moment())
@@ -314,7 +314,7 @@ impl Simulator {
     /// Whether a rigid body leaving an impact with `omega` under `ag` is at
     /// rest to the tolerance ([`rest_bound`](Self::rest_bound) below the
     /// step's absolute tolerances).
-    fn comes_to_rest(&self, omega: f64, ag: f64) -> bool {
+    pub(super) fn comes_to_rest(&self, omega: f64, ag: f64) -> bool {
         let rtol = self.effective_rtol();
         let (th, om) = self.scales();
         match self.rest_bound(omega, ag) {

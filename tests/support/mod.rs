@@ -4,6 +4,8 @@
 //! moment and the potential energy.
 #![allow(dead_code)]
 
+pub mod exact;
+
 use rocking::model::{LawKind, MassKind, ShapeKind};
 use rocking::{Model, Params};
 

@@ -5,6 +5,140 @@ use super::*;
 use Machine as M;
 
 impl Driver {
+    /// One Model Exchange call; after `fmi2OK` every value written is finite
+    /// (the nominals positive), and the driver follows the ME state machine.
+    pub(crate) fn model_exchange(&mut self, k: u8, which: u8, x: [f64; 2], n: usize) {
+        let mut out = [f64::from_bits(SENTINEL); 16];
+        let n = n.min(out.len());
+        let (mut enter, mut terminate) = (-1, -1);
+        let mut info = fmi2EventInfo {
+            newDiscreteStatesNeeded: -1,
+            terminateSimulation: -1,
+            nominalsOfContinuousStatesChanged: -1,
+            valuesOfContinuousStatesChanged: -1,
+            nextEventTimeDefined: -1,
+            nextEventTime: f64::NAN,
+        };
+        let p = out.as_mut_ptr();
+        // SAFETY (every arm): a live instance and arrays of at least `n` values.
+        let (what, allowed, st): (&str, &[M], _) = match which % 10 {
+            0 => (
+                "fmi2SetTime",
+                ME_SET_TIME,
+                self.call(k, "fmi2SetTime", ME_SET_TIME, |c| unsafe {
+                    fmu::fmi2SetTime(c, x[0])
+                }),
+            ),
+            1 => (
+                "fmi2SetContinuousStates",
+                ME_CONTINUOUS,
+                self.call(k, "fmi2SetContinuousStates", ME_CONTINUOUS, |c| unsafe {
+                    fmu::fmi2SetContinuousStates(c, x.as_ptr(), n.min(2))
+                }),
+            ),
+            2 => (
+                "fmi2GetContinuousStates",
+                ME_EVALUATE,
+                self.call(k, "fmi2GetContinuousStates", ME_EVALUATE, |c| unsafe {
+                    fmu::fmi2GetContinuousStates(c, p, n)
+                }),
+            ),
+            3 => (
+                "fmi2GetDerivatives",
+                ME_EVALUATE,
+                self.call(k, "fmi2GetDerivatives", ME_EVALUATE, |c| unsafe {
+                    fmu::fmi2GetDerivatives(c, p, n)
+                }),
+            ),
+            4 => (
+                "fmi2GetEventIndicators",
+                ME_EVALUATE,
+                self.call(k, "fmi2GetEventIndicators", ME_EVALUATE, |c| unsafe {
+                    fmu::fmi2GetEventIndicators(c, p, n)
+                }),
+            ),
+            5 => (
+                "fmi2GetNominalsOfContinuousStates",
+                ANY,
+                self.call(k, "fmi2GetNominalsOfContinuousStates", ANY, |c| unsafe {
+                    fmu::fmi2GetNominalsOfContinuousStates(c, p, n)
+                }),
+            ),
+            6 => (
+                "fmi2EnterEventMode",
+                ME_SET_TIME,
+                self.call(k, "fmi2EnterEventMode", ME_SET_TIME, |c| unsafe {
+                    fmu::fmi2EnterEventMode(c)
+                }),
+            ),
+            7 => (
+                "fmi2NewDiscreteStates",
+                ME_EVENT,
+                self.call(k, "fmi2NewDiscreteStates", ME_EVENT, |c| unsafe {
+                    fmu::fmi2NewDiscreteStates(c, &mut info)
+                }),
+            ),
+            8 => (
+                "fmi2EnterContinuousTimeMode",
+                ME_EVENT,
+                self.call(k, "fmi2EnterContinuousTimeMode", ME_EVENT, |c| unsafe {
+                    fmu::fmi2EnterContinuousTimeMode(c)
+                }),
+            ),
+            _ => (
+                "fmi2CompletedIntegratorStep",
+                ME_CONTINUOUS,
+                self.call(
+                    k,
+                    "fmi2CompletedIntegratorStep",
+                    ME_CONTINUOUS,
+                    |c| unsafe {
+                        fmu::fmi2CompletedIntegratorStep(c, fmi2True, &mut enter, &mut terminate)
+                    },
+                ),
+            ),
+        };
+        let _ = allowed;
+        let Some(st) = st else { return };
+        let me = self.slot(k).is_some_and(|s| s.me);
+        if !me {
+            assert_eq!(st, fmi2Error, "{what} on a co-simulation instance");
+            return;
+        }
+        if st != fmi2OK {
+            return;
+        }
+        self.stats.model_exchange_ok += 1;
+        if (2..=5).contains(&(which % 10)) {
+            for (i, v) in out[..n].iter().enumerate() {
+                assert!(v.is_finite(), "{what}: value {i} = {v} after fmi2OK");
+            }
+            if which % 10 == 5 {
+                assert!(out[..n].iter().all(|v| *v > 0.0), "{what}: {:?}", &out[..n]);
+            }
+        }
+        match which % 10 {
+            6 => self.set_machine(k, Some(M::EventMode)),
+            7 => {
+                for b in [
+                    info.newDiscreteStatesNeeded,
+                    info.terminateSimulation,
+                    info.valuesOfContinuousStatesChanged,
+                ] {
+                    assert!(b == fmi2True || b == fmi2False, "{what}: fmi2Boolean {b}");
+                }
+            }
+            8 => self.set_machine(k, Some(M::ContinuousTime)),
+            9 => assert!(
+                [enter, terminate]
+                    .iter()
+                    .all(|b| *b == fmi2True || *b == fmi2False),
+                "{what}: {enter}, {terminate}"
+            ),
+            _ => {}
+        }
+    }
+
     pub(crate) fn instantiate(&mut self, k: u8, spec: &InstSpec) {
         let k = k as usize % SLOTS;
         if self.slots[k].is_some() {
@@ -61,7 +195,7 @@ impl Driver {
             panic!("fmi2Instantiate: logger: {p}");
         }
         let valid = name.as_ref().is_some_and(|n| !n.is_empty())
-            && spec.fmu_type == fmi2CoSimulation
+            && (spec.fmu_type == fmi2CoSimulation || spec.fmu_type == fmi2ModelExchange)
             && matches!(spec.guid, Guid::Right);
         assert_eq!(
             !c.is_null(),
@@ -88,6 +222,7 @@ impl Driver {
             time: Some(0.0),
             forged: false,
             states: Vec::new(),
+            me: spec.fmu_type == fmi2ModelExchange,
         });
     }
 
@@ -170,7 +305,8 @@ impl Driver {
             }
         }
         if st == fmi2OK {
-            self.set_machine(k, Some(M::StepComplete));
+            let me = self.slot(k).is_some_and(|s| s.me);
+            self.set_machine(k, Some(if me { M::EventMode } else { M::StepComplete }));
         }
     }
 

@@ -13,6 +13,9 @@ pub enum Machine {
     StepFailed,
     Terminated,
     Error,
+    /// Model Exchange.
+    EventMode,
+    ContinuousTime,
 }
 
 use Machine as M;
@@ -24,19 +27,45 @@ pub(crate) const ANY: &[M] = &[
     M::StepFailed,
     M::Terminated,
     M::Error,
+    M::EventMode,
+    M::ContinuousTime,
 ];
 pub(crate) const NOWHERE: &[M] = &[];
 pub(crate) const INSTANTIATED: &[M] = &[M::Instantiated];
 pub(crate) const INIT: &[M] = &[M::Init];
-pub(crate) const TERMINATE: &[M] = &[M::StepComplete, M::StepFailed];
+pub(crate) const TERMINATE: &[M] = &[
+    M::StepComplete,
+    M::StepFailed,
+    M::EventMode,
+    M::ContinuousTime,
+];
 pub(crate) const GET: &[M] = &[
     M::Init,
     M::StepComplete,
     M::StepFailed,
     M::Terminated,
     M::Error,
+    M::EventMode,
+    M::ContinuousTime,
 ];
-pub(crate) const SET: &[M] = &[M::Instantiated, M::Init, M::StepComplete];
+pub(crate) const SET: &[M] = &[
+    M::Instantiated,
+    M::Init,
+    M::StepComplete,
+    M::EventMode,
+    M::ContinuousTime,
+];
+// Model Exchange (FMI 2.0 §3.2.3)
+pub(crate) const ME_SET_TIME: &[M] = &[M::EventMode, M::ContinuousTime];
+pub(crate) const ME_CONTINUOUS: &[M] = &[M::ContinuousTime];
+pub(crate) const ME_EVENT: &[M] = &[M::EventMode];
+pub(crate) const ME_EVALUATE: &[M] = &[
+    M::Init,
+    M::EventMode,
+    M::ContinuousTime,
+    M::Terminated,
+    M::Error,
+];
 pub(crate) const OUTPUT_DERIVATIVES: &[M] =
     &[M::StepComplete, M::StepFailed, M::Terminated, M::Error];
 pub(crate) const DO_STEP: &[M] = &[M::StepComplete];
@@ -168,10 +197,14 @@ pub(crate) struct Slot {
     /// state, e.g. its step size, is then arbitrary).
     pub(crate) forged: bool,
     pub(crate) states: Vec<FmuState>,
+    /// Instantiated as fmi2ModelExchange.
+    pub(crate) me: bool,
 }
 
 pub(crate) struct Blob {
     pub(crate) bytes: Vec<u8>,
+    /// Serialized by an instance of fmuType fmi2ModelExchange.
+    pub(crate) me: bool,
     /// What the state was, if it was genuine.
     pub(crate) known: Option<Known>,
 }
@@ -189,6 +222,8 @@ pub struct Stats {
     pub exit_init_error: u64,
     pub restores_checked: u64,
     pub deserialized: u64,
+    /// Model Exchange calls that returned fmi2OK on an ME instance.
+    pub model_exchange_ok: u64,
     pub by_status: [u64; 5],
 }
 
@@ -469,6 +504,7 @@ impl Driver {
                     fmu::fmi2GetDirectionalDerivative(c, &a, 1, &b, 1, &x, &mut y)
                 });
             }
+            Op::Me { slot, which, x, n } => self.model_exchange(*slot, *which, *x, *n),
             Op::Platform => {
                 let p = fmu::fmi2GetTypesPlatform();
                 let v = fmu::fmi2GetVersion();

@@ -217,6 +217,17 @@ pub enum Op {
     Deserialize(u8, u8, Mutation),
     DirectionalDerivative(u8),
     Platform,
+    /// Model Exchange: `which` 0 SetTime, 1 SetContinuousStates, 2
+    /// GetContinuousStates, 3 GetDerivatives, 4 GetEventIndicators, 5
+    /// GetNominalsOfContinuousStates, 6 EnterEventMode, 7 NewDiscreteStates,
+    /// 8 EnterContinuousTimeMode, 9 CompletedIntegratorStep; `x` the time or
+    /// the states; `n` the array length passed.
+    Me {
+        slot: u8,
+        which: u8,
+        x: [f64; 2],
+        n: usize,
+    },
 }
 
 pub(crate) fn slot(b: &mut Bytes) -> u8 {
@@ -279,7 +290,7 @@ pub(crate) fn spec(b: &mut Bytes) -> InstSpec {
         _ => Guid::Right,
     };
     let fmu_type = match b.below(16) {
-        0 => fmi2ModelExchange,
+        0 | 2..=5 => fmi2ModelExchange,
         1 => b.u32() as c_int,
         _ => fmi2CoSimulation,
     };
@@ -357,13 +368,23 @@ pub(crate) fn state_ref(b: &mut Bytes, own: u8) -> StateRef {
 pub(crate) const OP_TABLE: [u8; 64] = [
     0, 3, 4, 5, 6, 7, 7, 7, 7, 10, 11, 11, 11, 12, 12, 40, 40, 40, 15, 15, 17, 18, 19, 19, 19, 21,
     22, 23, 24, 24, 24, 26, 41, 41, 27, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 28, 32,
-    33, 33, 34, 35, 35, 35, 36, 36, 37, 38, 38, 39, 39, 39,
+    33, 33, 34, 35, 42, 42, 42, 42, 37, 38, 38, 39, 39, 42,
 ];
 
 pub fn decode_op(b: &mut Bytes) -> Op {
     let s = slot(b);
     match OP_TABLE[b.below(64)] {
         40 => Op::SetReal(s, vec![vr::AG], vec![b.int() as f64 * 2.5]),
+        42 => Op::Me {
+            slot: s,
+            which: b.u8(),
+            x: [b.near(0.05), b.near(0.0)],
+            n: if b.chance(1) {
+                [0, 1, 3, 8, 10][b.below(5)]
+            } else {
+                [2, 2, 9, 9][b.below(4)]
+            },
+        },
         41 => Op::SetInputDerivatives(s, vec![vr::AG], vec![1], vec![b.int() as f64 * 10.0]),
         0..=2 => Op::Instantiate(s, spec(b)),
         3 => Op::Free(s),

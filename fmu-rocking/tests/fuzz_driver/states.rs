@@ -205,22 +205,36 @@ impl Driver {
         if self.pool.len() >= POOL {
             self.pool.remove(0);
         }
-        self.pool.push(Blob { bytes: buf, known });
+        let me = self.slots[owner].as_ref().is_some_and(|o| o.me);
+        self.pool.push(Blob {
+            bytes: buf,
+            known,
+            me,
+        });
     }
 
     pub(crate) fn deserialize(&mut self, k: u8, from: u8, m: &Mutation) {
         if self.slot(k).is_none() {
             return;
         }
-        let (mut bytes, known) = match m {
-            Mutation::Random(b) => (b.clone(), None),
-            _ if self.pool.is_empty() => (Vec::new(), None),
+        let (mut bytes, known, source_me) = match m {
+            Mutation::Random(b) => (b.clone(), None, false),
+            _ if self.pool.is_empty() => (Vec::new(), None, false),
             _ => {
                 let blob = &self.pool[from as usize % self.pool.len()];
-                (blob.bytes.clone(), blob.known.clone())
+                (blob.bytes.clone(), blob.known.clone(), blob.me)
             }
         };
-        let genuine = known.is_some() && matches!(m, Mutation::None);
+        // a state of one fmuType's own states does not restore into an
+        // instance of the other (fmu_state.rs)
+        let target_me = self.slot(k).is_some_and(|s| s.me);
+        let fits = known.as_ref().is_some_and(|kn| match kn.machine {
+            Some(M::EventMode | M::ContinuousTime) => target_me,
+            Some(M::StepComplete | M::StepFailed) => !target_me,
+            Some(_) => true,
+            None => source_me == target_me,
+        });
+        let genuine = fits && matches!(m, Mutation::None);
         match m {
             Mutation::None | Mutation::Random(_) => {}
             Mutation::Flip { pos, bit } => {

@@ -83,6 +83,11 @@ impl Host {
 
     /// As [`Host::new`] with `loggingOn`.
     pub fn with_logging(on: bool) -> Host {
+        Host::instantiate(fmi2CoSimulation, on)
+    }
+
+    /// An instance of `fmu_type` (`fmi2CoSimulation` or `fmi2ModelExchange`).
+    pub fn instantiate(fmu_type: fmi2Type, on: bool) -> Host {
         let log: Box<Log> = Box::new(Mutex::new(Vec::new()));
         let callbacks = Box::new(fmi2CallbackFunctions {
             // SAFETY: same ABI for calls without variadic arguments (x86-64
@@ -110,7 +115,7 @@ impl Host {
         let c = unsafe {
             fmi2Instantiate(
                 name.as_ptr(),
-                fmi2CoSimulation,
+                fmu_type,
                 guid.as_ptr(),
                 ptr::null(),
                 &*callbacks,

@@ -1,0 +1,251 @@
+//! Model Exchange: the motion as a host's own solver integrates it
+//! (docs/model-exchange.md). The host integrates `(theta, omega)` with
+//! [`Simulator::derivatives`], watches [`Simulator::event_indicators`] for sign
+//! changes and, at each one, calls [`Simulator::event_update`]; this module
+//! only evaluates. The equation of motion is the one [`Eom`] gives the
+//! co-simulation integrator, the impact map and the rest criteria are the
+//! co-simulation's ([`Simulator::comes_to_rest`], [`Simulator::settles`]).
+//!
+//! Event indicators (a state event where one changes sign), in this order:
+//!
+//! | index | indicator | event |
+//! |---|---|---|
+//! | 0 | `side theta` | zero crossing (impact): `omega <- eta omega`, the toe switches (docs/model.md §3) |
+//! | 1 | `thetaOv - abs(theta)` | overturning: the run ends |
+//! | 2 | `g tan(alpha) - abs(ag)` while a rigid body rests, else 1 | uplift from rest |
+//! | 3.. | `abs(theta) - level` per kink of `af` ([`KINK_SLOTS`], unused ones 1) | none: the solver restarts at the kink |
+//!
+//! `side` (the toe the body rocks about, `±1`) is a discrete state: the
+//! crossing indicator is positive on the toe's side, so a body that the
+//! impact map leaves exactly at `theta = 0` moving into the other side does
+//! not fire again.
+
+use crate::interface::Law;
+
+use super::eom::{side_of, Eom};
+use super::events::count_crossing;
+use super::{Events, GroundInput, Simulator, State};
+
+/// Event-indicator slots for the kinks of `af` (docs/model.md §2: `thetaJo`,
+/// `thetaC`, and up to two corners of the width function, each passed by the
+/// contact edge and by the plastic edge).
+pub const KINK_SLOTS: usize = 6;
+/// Number of event indicators: crossing, overturning, uplift, kinks.
+pub const EVENT_INDICATORS: usize = 3 + KINK_SLOTS;
+
+/// The state of a run under Model Exchange: the co-simulation [`State`]
+/// (its `theta`, `omega` are the continuous states; `t` the host's time;
+/// the integrator fields unused) and the toe.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Continuous {
+    pub state: State,
+    /// The toe the body rocks about, `+1` or `-1` (see the module doc).
+    pub side: f64,
+    /// `|omega|` just after the last impact of a rigid body, rad/s (0: none
+    /// since the start or the last uplift): see [`Simulator::event_update`].
+    pub left_with: f64,
+}
+
+/// What an event update did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct EventUpdate {
+    /// `theta` or `omega` were changed (the host must re-read them).
+    pub states_changed: bool,
+    /// A zero crossing of `theta` was applied (impact map).
+    pub crossing: bool,
+    /// The body came to rest.
+    pub came_to_rest: bool,
+    /// A rigid body at rest lifted off.
+    pub uplift: bool,
+    /// The body overturned: the run is over.
+    pub overturned: bool,
+}
+
+impl Simulator {
+    /// The state at the start of a run from `theta0`, `omega0` (rad, rad/s)
+    /// under the ground acceleration `ag` (m/s²).
+    pub fn continuous(&self, theta0: f64, omega0: f64, ag: f64) -> Continuous {
+        Continuous {
+            state: self.initial_state(theta0, omega0),
+            side: side_of(theta0, omega0, ag),
+            left_with: 0.0,
+        }
+    }
+
+    /// `[theta', omega']` (rad/s, rad/s²) at `c` under the ground
+    /// acceleration `ag` (m/s²): the equation of motion of docs/model.md §3
+    /// on the toe `c.side`; zero while a rigid body rests and after
+    /// overturning, whatever states the host sets (a solver probing its
+    /// Jacobian): rest ends at uplift only, which sets the states to 0.
+    pub fn derivatives(&self, c: &Continuous, ag: f64) -> [f64; 2] {
+        let st = &c.state;
+        if st.overturned || (st.at_rest && self.is_rigid()) {
+            return [0.0, 0.0];
+        }
+        let eom = Eom::new(&self.model, st.t, GroundInput { ag, dag: 0.0 });
+        let mut hint = st.a;
+        [
+            st.omega,
+            eom.accel(st.t, st.theta, st.omega, c.side, &mut hint),
+        ]
+    }
+
+    /// The event indicators at `c` under `ag` (see the module doc).
+    pub fn event_indicators(&self, c: &Continuous, ag: f64) -> [f64; EVENT_INDICATORS] {
+        let mut z = [1.0; EVENT_INDICATORS];
+        let st = &c.state;
+        if st.overturned {
+            return z;
+        }
+        let phi = st.theta.abs();
+        z[1] = self.model.theta_ov - phi;
+        if st.at_rest && self.is_rigid() {
+            z[2] = self.uplift_acceleration() - ag.abs();
+            return z;
+        }
+        z[0] = c.side * st.theta;
+        for (zi, level) in z[3..].iter_mut().zip(self.kinks.as_slice()) {
+            *zi = phi - level;
+        }
+        z
+    }
+
+    /// The event update at `c` under `ag`: overturning, uplift from rest, or
+    /// the zero crossing of `theta` (impact map, then the rest criteria),
+    /// whichever the state shows; nothing at a kink. The state is examined,
+    /// not the indicator that fired, so a repeated or a spurious call
+    /// changes nothing.
+    ///
+    /// Rest of a rigid body (docs/model-exchange.md): at an impact, either
+    /// the co-simulation criterion (the remaining chattering is below the
+    /// tolerance, [`Simulator::rest_bound`]), or, without ground motion
+    /// (`ag = 0` at this impact and the previous one), the host no longer
+    /// resolves the chattering: the body came back faster than `1/sqrt(eta)`
+    /// times the speed it left the previous impact with. Without ground
+    /// motion energy is conserved between impacts, so a resolved excursion
+    /// returns at the speed it left with; a host whose error adds per
+    /// excursion more than half the energy an impact takes out (a fixed
+    /// step near the excursion's duration: explicit Euler settles into
+    /// impacts every few steps that never decay) would chatter for ever.
+    pub fn event_update(&self, c: &mut Continuous, ag: f64) -> EventUpdate {
+        let mut u = EventUpdate::default();
+        self.completed_step(c);
+        let rigid = self.is_rigid();
+        let st = &mut c.state;
+        if st.overturned {
+            return u;
+        }
+        if st.theta.abs() >= self.model.theta_ov {
+            st.overturned = true;
+            u.overturned = true;
+            return u;
+        }
+        if st.at_rest {
+            if rigid && !self.held_at_rest(ag) {
+                st.theta = 0.0;
+                st.omega = 0.0;
+                st.at_rest = false;
+                c.side = side_of(0.0, 0.0, ag);
+                c.left_with = 0.0;
+                leave_zero(c.side, &mut st.theta);
+                u.uplift = true;
+                u.states_changed = true;
+            }
+            return u;
+        }
+        if !crossed(c.side, st) {
+            return u;
+        }
+        u.crossing = true;
+        u.states_changed = true;
+        let eta = self.model.eta;
+        let unresolved = rigid
+            && eta < 1.0
+            && c.left_with > 0.0
+            && ag == 0.0
+            && st.omega.abs() * eta.sqrt() >= c.left_with;
+        if rigid {
+            // docs/model.md §3: for the rigid law every crossing is an impact
+            st.opened = true;
+        }
+        count_crossing(st, &mut Events::default());
+        st.omega *= eta;
+        c.left_with = if rigid && ag == 0.0 {
+            st.omega.abs()
+        } else {
+            0.0
+        };
+        c.side = -c.side;
+        leave_zero(c.side, &mut st.theta);
+        let rest = if rigid {
+            unresolved || self.comes_to_rest(st.omega, ag)
+        } else {
+            ag == 0.0 && self.settles(st.omega)
+        };
+        if rest {
+            st.theta = 0.0;
+            st.omega = 0.0;
+            st.at_rest = true;
+            c.left_with = 0.0;
+            u.came_to_rest = true;
+        } else if st.omega == 0.0 && !self.held_at_rest(ag) {
+            // eta = 0: stopped dead above the uplift threshold
+            c.side = side_of(0.0, 0.0, ag);
+            leave_zero(c.side, &mut st.theta);
+        }
+        u
+    }
+
+    /// Bookkeeping after an accepted step of the host: whether the joint
+    /// opened (for the impact count), and a flexible body that was set to
+    /// rest and has moved again. Returns whether the host must enter event
+    /// mode: `theta` has crossed zero without a state event (a host whose
+    /// solver could not resolve an excursion, which started at the level
+    /// of its tolerance, saw no sign change), and the impact map is due.
+    pub fn completed_step(&self, c: &mut Continuous) -> bool {
+        if !c.state.at_rest && !c.state.overturned && c.side * c.state.theta < 0.0 {
+            return true;
+        }
+        let st = &mut c.state;
+        if st.theta.abs() > self.model.interface.theta_jo() {
+            st.opened = true;
+        }
+        if st.at_rest && !self.is_rigid() && (st.theta != 0.0 || st.omega != 0.0) {
+            // a flexible body leaves rest on the side the ground pushed it to
+            st.at_rest = false;
+            c.side = side_of(st.theta, st.omega, 0.0);
+        }
+        false
+    }
+
+    /// Nominal values of `(theta, omega)`: the scales of the motion
+    /// ([`Simulator::scales`]), rad and rad/s.
+    pub fn nominals(&self) -> [f64; 2] {
+        let (th, om) = self.scales();
+        [th, om]
+    }
+
+    fn is_rigid(&self) -> bool {
+        self.model.interface.law() == Law::Rigid
+    }
+}
+
+/// Puts `theta` strictly on the toe's side after an impact or an uplift, so
+/// that the crossing indicator `side theta` starts positive: a host that
+/// stopped just short of the crossing left `theta` on the old side, and one
+/// that stopped exactly on it left 0, from which a solver that tracks sign
+/// changes (CVode, fmpy's Euler) would miss the next crossing if the
+/// excursion were shorter than its next step. The mirror image moves `theta`
+/// by no more than the host's own error in locating the event.
+fn leave_zero(side: f64, theta: &mut f64) {
+    *theta = side * theta.abs().max(f64::MIN_POSITIVE);
+}
+
+/// `theta` has crossed zero from the toe's side: it is beyond, or exactly
+/// on zero and not moving back into the toe's side (a host that located the
+/// crossing at the apex of an excursion below its resolution returns
+/// `theta = omega = 0`).
+fn crossed(side: f64, st: &State) -> bool {
+    let s = side * st.theta;
+    s < 0.0 || (s == 0.0 && side * st.omega <= 0.0)
+}
