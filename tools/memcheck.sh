@@ -9,7 +9,8 @@
 #       ships; ROUNDS x STEPS, default 3 x 1000 steps per case) and in the dev
 #       profile (no optimisation, overflow checks; DEV_ROUNDS x DEV_STEPS,
 #       default 1 x 400). Fails on any memcheck error or definite/indirect
-#       leak. This is what tools/test.sh runs (about 1 minute).
+#       leak. Then the Model Exchange tests (fmu-rocking/tests/model_exchange.rs)
+#       under memcheck. This is what tools/test.sh runs (about 1 minute).
 #   tools/memcheck.sh --suites
 #       every test binary of fmu-rocking (fmu_import among them, which dlopens
 #       the packaged FMU) and fmi2-export, under memcheck
@@ -110,6 +111,14 @@ case "${1:-}" in
     "${vg[@]}" --suppressions="$supp" --log-file="$log" "$target/$dir/examples/c_api_loop" "$rounds" "$steps" | tail -n 1 || status=1
     summary "$log"
   done
+  # the Model Exchange call sequences (fmu-rocking/tests/model_exchange.rs)
+  root=$PWD
+  while read -r name exe dir; do
+    log="$out/model_exchange.log"
+    echo "-- memcheck: the Model Exchange tests (release profile)"
+    (cd "$dir" && "${vg[@]}" --suppressions="$root/$supp" --log-file="$log" "$exe" -q) | tail -n 2 || status=1
+    summary "$log"
+  done < <(test_binaries -p fmu-rocking --test model_exchange)
   ;;
 esac
 if [ "$status" -ne 0 ]; then
