@@ -148,7 +148,7 @@ fn exercise(case: &Case, round: usize, steps: usize) -> Summary {
 
 /// The error paths, each followed by the way out of the error state.
 fn error_paths() {
-    // wrong GUID and wrong type: NULL, a message to the logger
+    // wrong GUID and an unknown fmuType: NULL, a message to the logger
     let name = CString::new("bad").unwrap();
     let wrong = CString::new("{not-the-guid}").unwrap();
     let guid = CString::new(GUID).unwrap();
@@ -165,7 +165,7 @@ fn error_paths() {
         assert!(c.is_null());
         let c = fmi2Instantiate(
             name.as_ptr(),
-            fmi2ModelExchange,
+            7, // neither fmi2ModelExchange (0) nor fmi2CoSimulation (1)
             guid.as_ptr(),
             ptr::null(),
             ptr::null(),
