@@ -17,6 +17,7 @@ import hashlib
 import importlib.util
 import os
 import sys
+import uuid
 from pathlib import Path
 
 from distributed import Client, LocalCluster, WorkerPlugin, as_completed
@@ -112,8 +113,11 @@ def execute(client, tasks, store, progress=None, stop_after=None):
     if not todo:
         return 0, 0, failures
     by_future = {}
+    # Dask keys unique to this call: a key cancelled by an earlier, interrupted call may
+    # still be cancelling on the scheduler, and would cancel its namesake submitted now.
+    call = uuid.uuid4().hex[:8]
     for key, fn, args, expected in todo:
-        fut = client.submit(fn, *args, key=f"rocking-{hashlib.sha1(key.encode()).hexdigest()[:24]}",
+        fut = client.submit(fn, *args, key=f"rocking-{hashlib.sha1(key.encode()).hexdigest()[:24]}-{call}",
                             pure=False)
         by_future[fut] = (key, expected)
     pending = as_completed(list(by_future))
