@@ -52,8 +52,9 @@ pub mod continuous;
 pub use output_rates::{Jet, OutputRates};
 pub use work::{Limited, WorkLimit};
 
-use crate::interface::{Law, Regime};
+use crate::interface::{Contact, ContactTable, Law, Regime};
 use crate::model::Model;
+use std::sync::Arc;
 
 use erk::Tol;
 use kinks::Kinks;
@@ -196,6 +197,9 @@ pub struct Simulator {
     /// Kinks of the right-hand side (computed from `model` by `new`: a
     /// changed model needs a new simulator).
     kinks: Kinks,
+    /// The contact solve tabulated up to `thetaOv` (flexible laws, built by
+    /// `new`); `None`: every contact is solved.
+    table: Option<Arc<ContactTable>>,
 }
 
 impl Simulator {
@@ -207,11 +211,52 @@ impl Simulator {
     pub fn with_method(model: Model, rtol: f64, method: Method) -> Simulator {
         Simulator {
             kinks: Kinks::of(&model),
+            table: ContactTable::shared(&model.interface, model.theta_ov),
             model,
             rtol,
             method,
             stiff_mode: true,
             work_limit: None,
+        }
+    }
+
+    /// Whether contacts come from the table ([`ContactTable`], within about
+    /// 1e-13 of the solve and a few times cheaper) where it answers, or are
+    /// all solved (`false`: for measurements and comparisons).
+    pub fn set_contact_table(&mut self, on: bool) {
+        self.table = if on {
+            ContactTable::shared(&self.model.interface, self.model.theta_ov)
+        } else {
+            None
+        };
+    }
+
+    /// The table in use, if any.
+    pub fn contact_table(&self) -> Option<&ContactTable> {
+        self.table.as_deref()
+    }
+
+    /// The contact at `phi = |theta|` (rad, docs/model.md §2): from the
+    /// table where it answers, else solved starting from `a_hint` (m; NaN
+    /// for none).
+    #[inline]
+    pub fn contact(&self, phi: f64, a_hint: f64) -> Contact {
+        let it = &self.model.interface;
+        match self.table.as_ref().and_then(|t| t.contact(it, phi)) {
+            Some(c) => c,
+            None => it.contact_near(phi, a_hint),
+        }
+    }
+
+    /// [`contact`](Self::contact) for the equation of motion: where the
+    /// table answers, only `af` and `af'` (`a`, `a'` and the contact length
+    /// are NaN).
+    #[inline]
+    pub(crate) fn reaction(&self, phi: f64, a_hint: f64) -> Contact {
+        let it = &self.model.interface;
+        match self.table.as_ref().and_then(|t| t.reaction(it, phi)) {
+            Some(c) => c,
+            None => it.contact_near(phi, a_hint),
         }
     }
 

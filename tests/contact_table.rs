@@ -140,3 +140,146 @@ fn table_agrees_with_the_solve_on_dense_grids() {
     }
 }
 
+/// The Dharahara tower (docs/model.md §4) on an interface of stiffness `kn`
+/// crushing at `fm`.
+fn dharahara(kn: f64, fm: f64) -> rocking::Model {
+    use rocking::model::{LawKind, MassKind, ShapeKind};
+    let (w, hg, g, ro, ri) = (24_003.94e3, 30.2, 9.81, 3.99, 2.12);
+    let m = w / g;
+    rocking::Params {
+        shape: ShapeKind::HollowCircle,
+        ro,
+        ri,
+        mass_model: MassKind::Lumped,
+        w,
+        hg,
+        ic: m * ((2.0 * hg) * (2.0 * hg) / 12.0 + (ro * ro + ri * ri) / 4.0),
+        interface: if fm.is_finite() {
+            LawKind::ElastoPlastic
+        } else {
+            LawKind::Elastic
+        },
+        kn,
+        fm,
+        g,
+        ..rocking::Params::default()
+    }
+    .build()
+    .expect("valid")
+}
+
+/// A two-cycle sine pulse of `amp` m/s² and period 1.5 s, as a master
+/// passes it in steps of 0.01 s: `(t_end, ag, dag)`.
+fn pulse(amp: f64) -> impl Iterator<Item = (f64, GroundInput)> {
+    let ag = move |t: f64| {
+        if t < 3.0 {
+            amp * (2.0 * std::f64::consts::PI * t / 1.5).sin()
+        } else {
+            0.0
+        }
+    };
+    (0..800).map(move |k| {
+        let (t0, t1) = (0.01 * k as f64, 0.01 * (k + 1) as f64);
+        let (a0, a1) = (ag(t0), ag(t1));
+        (
+            t1,
+            GroundInput {
+                ag: a0,
+                dag: (a1 - a0) / 0.01,
+            },
+        )
+    })
+}
+
+use rocking::dynamics::{GroundInput, Simulator, State};
+
+fn run(sim: &Simulator, amp: f64) -> Vec<State> {
+    let mut st = sim.initial_state(0.0, 0.0);
+    let mut states = vec![st];
+    for (t_end, input) in pulse(amp) {
+        sim.advance(&mut st, t_end, input);
+        states.push(st);
+        if st.overturned {
+            break;
+        }
+    }
+    states
+}
+
+#[test]
+fn the_integrator_takes_its_contacts_from_the_table_within_1e12_of_the_solve() {
+    for (kn, fm) in [(85e6, 2e6), (15e9, f64::INFINITY), (15e9, 2e6)] {
+        let model = dharahara(kn, fm);
+        let sim = Simulator::new(model, 1e-9);
+        let table = sim.contact_table().expect("a flexible law has a table");
+        let (lo, _) = table.range();
+        let mut served = 0;
+        for st in run(&sim, 2.5) {
+            let phi = st.theta.abs();
+            let (c, solved) = (sim.contact(phi, f64::NAN), model.interface.contact(phi));
+            if phi > lo && c.iterations == 0 && solved.iterations > 0 {
+                served += 1;
+            }
+            let rel = |x: f64, y: f64| (x - y).abs() / y.abs().max(f64::MIN_POSITIVE);
+            // (at theta = 0 both have a = infinity: the closure is 0)
+            let a_ok = (c.a == solved.a) || rel(c.a, solved.a) <= 1e-12;
+            assert!(
+                rel(c.af, solved.af) <= 1e-12 && a_ok,
+                "kn {kn:e} fm {fm:e} at theta {}: af {} vs {}",
+                st.theta,
+                c.af,
+                solved.af
+            );
+        }
+        assert!(
+            served > 50,
+            "kn {kn:e} fm {fm:e}: table used {served} times"
+        );
+    }
+}
+
+#[test]
+fn the_table_moves_the_motion_less_than_the_integrators_own_error() {
+    // The same pulse with contacts from the table and all solved, at rtol
+    // 1e-9: the runs differ by what a change of 1e-13 in af becomes (the
+    // step sizes chosen react to it). That must stay below the error the
+    // integrator makes anyway: the solved run's distance from one at rtol
+    // 1e-12.
+    let max_diff = |a: &[State], b: &[State]| {
+        assert_eq!(a.len(), b.len(), "overturning differs");
+        let d = a.iter().zip(b).map(|(x, y)| (x.theta - y.theta).abs());
+        d.fold(0.0, f64::max)
+    };
+    for (kn, fm) in [(85e6, 2e6), (15e9, f64::INFINITY), (15e9, 2e6)] {
+        let model = dharahara(kn, fm);
+        let tabled = Simulator::new(model, 1e-9);
+        let mut solved = tabled.clone();
+        solved.set_contact_table(false);
+        assert!(solved.contact_table().is_none());
+        let mut reference = Simulator::new(model, 1e-12);
+        reference.set_contact_table(false);
+        let (a, b, r) = (run(&tabled, 2.5), run(&solved, 2.5), run(&reference, 2.5));
+        let (table_effect, own_error) = (max_diff(&a, &b), max_diff(&b, &r));
+        let ov = model.theta_ov;
+        println!(
+            "kn {kn:e} fm {fm:e}: table {:.1e} thetaOv, integrator at 1e-9 {:.1e} thetaOv",
+            table_effect / ov,
+            own_error / ov
+        );
+        assert!(
+            table_effect <= own_error,
+            "kn {kn:e} fm {fm:e}: {table_effect:e} rad vs {own_error:e}"
+        );
+        assert_eq!(a.last().unwrap().impacts, b.last().unwrap().impacts);
+    }
+}
+
+#[test]
+fn simulators_of_one_body_share_one_table() {
+    let model = dharahara(85e6, 2e6);
+    let (a, b) = (Simulator::new(model, 1e-9), Simulator::new(model, 1e-6));
+    let other = Simulator::new(dharahara(86e6, 2e6), 1e-9);
+    let ptr = |s: &Simulator| s.contact_table().map(|t| t as *const ContactTable);
+    assert_eq!(ptr(&a), ptr(&b));
+    assert_ne!(ptr(&a), ptr(&other));
+}

@@ -82,7 +82,7 @@ impl Simulator {
         if st.overturned || (st.at_rest && self.is_rigid()) {
             return [0.0, 0.0];
         }
-        let eom = Eom::new(&self.model, st.t, GroundInput { ag, dag: 0.0 });
+        let eom = Eom::new(self, st.t, GroundInput { ag, dag: 0.0 });
         let mut hint = st.a;
         [
             st.omega,

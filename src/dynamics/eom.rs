@@ -5,15 +5,15 @@
 //! `af = 0`, `I = IO` and both coincide), with `phi = |theta|`, `s = sgn theta`.
 
 use crate::interface::Law;
-use crate::model::{Formulation, Model};
+use crate::model::Formulation;
 
-use super::GroundInput;
+use super::{GroundInput, Simulator};
 
 /// The equation of motion of one model under the ground input of one
 /// `advance` call: `ag(t) = ag + dag (t - t0)`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Eom<'a> {
-    model: &'a Model,
+    sim: &'a Simulator,
     pub rigid: bool,
     pivot_term: bool,
     w: f64,
@@ -27,11 +27,12 @@ pub(crate) struct Eom<'a> {
 }
 
 impl<'a> Eom<'a> {
-    pub fn new(model: &'a Model, t0: f64, input: GroundInput) -> Eom<'a> {
+    pub fn new(sim: &'a Simulator, t0: f64, input: GroundInput) -> Eom<'a> {
+        let model = &sim.model;
         let rigid = model.interface.law() == Law::Rigid;
         let body = &model.body;
         Eom {
-            model,
+            sim,
             rigid,
             pivot_term: !rigid && model.formulation == Formulation::ShiftingPivot,
             w: body.weight,
@@ -94,11 +95,11 @@ impl<'a> Eom<'a> {
             side
         };
         let phi = theta.abs();
-        let c = self.model.interface.contact_near(phi, *hint);
+        let c = self.sim.reaction(phi, *hint);
         if c.a.is_finite() {
             *hint = c.a;
         }
-        let l = self.model.levers(phi, &c);
+        let l = self.sim.model.levers(phi, &c);
         let mut num = -s * self.w * l.hw - self.mass * ag * l.hg;
         if self.pivot_term {
             num -= 0.5 * s * l.dinertia * omega * omega;

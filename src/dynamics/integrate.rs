@@ -69,7 +69,7 @@ impl Simulator {
         budget: Option<u64>,
     ) -> Events {
         let mut ev = Events::default();
-        let eom = Eom::new(&self.model, st.t, input);
+        let eom = Eom::new(self, st.t, input);
         let tol = self.tol();
         if st.theta == 0.0 && st.omega == 0.0 {
             st.at_rest = true;

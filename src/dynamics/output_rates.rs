@@ -169,7 +169,7 @@ impl Simulator {
         let c = if rigid {
             m.interface.contact(phi.max(f64::MIN_POSITIVE))
         } else {
-            m.interface.contact_near(phi, state.a)
+            self.contact(phi, state.a)
         };
         let (af2, a2) = m.interface.second_derivatives(&c);
         let af3 = if rigid {
@@ -203,7 +203,7 @@ impl Simulator {
         // theta'' itself as `Simulator::outputs` has it, to the bit; then
         // one more derivative per pass (the k-th of theta'' needs theta up
         // to order k + 1): theta''', then theta''''
-        let eom = Eom::new(m, state.t, GroundInput { ag, dag: 0.0 });
+        let eom = Eom::new(self, state.t, GroundInput { ag, dag: 0.0 });
         let mut hint = state.a;
         let theta_dd = eom.accel(state.t, state.theta, state.omega, s, &mut hint);
         let mut th = [state.theta, state.omega, theta_dd, 0.0, 0.0];

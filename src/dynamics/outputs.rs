@@ -58,7 +58,7 @@ impl Simulator {
         let b = &m.body;
         let side = side_of(state.theta, state.omega, ag);
         let eom = Eom::new(
-            m,
+            self,
             state.t,
             GroundInput {
                 ag,
@@ -72,7 +72,7 @@ impl Simulator {
         let c = if eom.rigid {
             m.interface.contact(phi.max(f64::MIN_POSITIVE))
         } else {
-            m.interface.contact_near(phi, state.a)
+            self.contact(phi, state.a)
         };
         let l = m.levers(phi, &c);
         let w2 = state.omega * state.omega;
