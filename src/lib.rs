@@ -22,6 +22,7 @@ pub mod dynamics;
 pub mod interface;
 pub mod model;
 pub mod shape;
+mod trig;
 
 pub use body::{Body, MassModel};
 pub use interface::{Contact, ContactTable, Interface, Law, Regime};

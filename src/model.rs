@@ -435,7 +435,7 @@ impl Model {
     #[inline]
     pub fn levers(&self, phi: f64, c: &Contact) -> Levers {
         let b = &self.body;
-        let (s, co) = phi.sin_cos();
+        let (s, co) = crate::trig::sin_cos(phi);
         // sin(alpha - phi), cos(alpha - phi)
         let sap = b.sin_alpha * co - b.cos_alpha * s;
         let cap = b.cos_alpha * co + b.sin_alpha * s;

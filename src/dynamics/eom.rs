@@ -75,7 +75,7 @@ impl<'a> Eom<'a> {
         let ag = self.ag(t);
         if self.rigid {
             let phi = side * theta;
-            let (sp, cp) = phi.sin_cos();
+            let (sp, cp) = crate::trig::sin_cos(phi);
             // R0 sin(alpha - phi) = b cos(phi) - hG sin(phi), R0 cos(alpha - phi) = hG cos(phi) + b sin(phi)
             let hw = self.b * cp - self.hg * sp;
             let hgl = self.hg * cp + self.b * sp;

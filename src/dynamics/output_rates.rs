@@ -245,7 +245,7 @@ impl Simulator {
     /// (docs/model.md §3) and their `phi`-derivatives, from those of `af`.
     fn geometry(&self, phi: f64, af: PhiDerivs) -> Geometry {
         let b = &self.model.body;
-        let (sp, cp) = phi.sin_cos();
+        let (sp, cp) = crate::trig::sin_cos(phi);
         let sap = b.sin_alpha * cp - b.cos_alpha * sp; // sin(alpha - phi)
         let cap = b.cos_alpha * cp + b.sin_alpha * sp; // cos(alpha - phi)
         let r = b.r0;
