@@ -45,6 +45,26 @@ impl Hermite {
         c[0] + tau * (c[1] + tau * (c[2] + tau * (c[3] + tau * (c[4] + tau * c[5]))))
     }
 
+    /// Bounds of `theta` on `[0, 1]`, widened by what rounding may add to
+    /// a value computed by [`theta`](Self::theta): the hull of the Bernstein
+    /// coefficients, which encloses the polynomial.
+    pub fn bounds(&self) -> (f64, f64) {
+        let c = &self.c;
+        let b = [
+            c[0],
+            c[0] + 0.2 * c[1],
+            c[0] + 0.4 * c[1] + 0.1 * c[2],
+            c[0] + 0.6 * c[1] + 0.3 * c[2] + 0.1 * c[3],
+            c[0] + 0.8 * c[1] + 0.6 * c[2] + 0.4 * c[3] + 0.2 * c[4],
+            c[0] + c[1] + c[2] + c[3] + c[4] + c[5],
+        ];
+        let margin = 16.0 * f64::EPSILON * c.iter().map(|x| x.abs()).sum::<f64>();
+        let (lo, hi) = b
+            .iter()
+            .fold((b[0], b[0]), |(l, h), &x| (l.min(x), h.max(x)));
+        (lo - margin, hi + margin)
+    }
+
     /// `d theta / d tau` (= `h omega`).
     #[inline]
     fn dtheta(&self, tau: f64) -> f64 {
@@ -79,6 +99,13 @@ const PIECES: usize = 8;
 /// on side `s` (`s theta >= 0` at the start): `(hit, tau)`. `kinks` are
 /// levels of `|theta|` in `(0, thetaOv)` crossed in either direction.
 pub(crate) fn first_event(p: &Hermite, s: f64, theta_ov: f64, kinks: &[f64]) -> Option<(Hit, f64)> {
+    // Nothing to find when the bounds of g keep clear of 0, thetaOv and
+    // every kink: each value the walk below computes lies within them.
+    let (lo, hi) = p.bounds();
+    let (g_min, g_max) = if s > 0.0 { (lo, hi) } else { (-hi, -lo) };
+    if g_min > 0.0 && g_max < theta_ov && kinks.iter().all(|&l| l < g_min || l > g_max) {
+        return None;
+    }
     // g(tau) = s theta(tau); g(0) >= 0. Walk the monotone pieces of g.
     let g = |tau: f64| s * p.theta(tau);
     let dg = |tau: f64| s * p.dtheta(tau);
