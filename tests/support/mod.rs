@@ -5,6 +5,7 @@
 #![allow(dead_code)]
 
 pub mod exact;
+pub mod rk4;
 
 use rocking::model::{LawKind, MassKind, ShapeKind};
 use rocking::{Model, Params};
