@@ -5,69 +5,49 @@
 mod support;
 
 use rocking::{Interface, Law, Regime, Shape};
+use support::base::{self, resultants, width, width_breaks};
 use support::integrate_pieces;
 
-/// Width function of docs/model.md §1, written again here from the table.
-fn width(shape: &Shape, x: f64) -> f64 {
-    // chord of a circle spanning [lo, hi] along x, from the distances to
-    // its two ends (no cancellation near the edges)
-    let chord = |lo: f64, hi: f64| {
-        if x > lo && x < hi {
-            2.0 * ((x - lo) * (hi - x)).sqrt()
-        } else {
-            0.0
-        }
-    };
-    match *shape {
-        Shape::SolidRectangle { b, l } => {
-            if (0.0..=b).contains(&x) {
-                l
-            } else {
-                0.0
-            }
-        }
-        Shape::HollowRectangle { b, l, t } => {
-            if !(0.0..=b).contains(&x) {
-                0.0
-            } else if x <= t || x >= b - t {
-                l
-            } else {
-                2.0 * t
-            }
-        }
-        Shape::SolidCircle { ro } => chord(0.0, 2.0 * ro),
-        Shape::HollowCircle { ro, ri } => chord(0.0, 2.0 * ro) - chord(ro - ri, ro + ri),
-    }
-}
-
-/// Points where the width function is not smooth.
-fn breaks(shape: &Shape) -> Vec<f64> {
-    match *shape {
-        Shape::HollowRectangle { b, t, .. } => vec![t, b - t],
-        Shape::HollowCircle { ro, ri } => vec![ro - ri, ro + ri],
-        _ => vec![],
-    }
-}
-
+/// The fixture's bases, a large hollow rectangle, the Dharahara's ring
+/// (docs/model.md §4) and a thin ring (its inner chord's square-root points
+/// nearly meet the outer one's).
 fn shapes() -> Vec<Shape> {
-    vec![
-        Shape::SolidRectangle { b: 0.8, l: 1.7 },
+    let mut out: Vec<Shape> = base::shapes().iter().map(|&(_, s)| s).collect();
+    out.extend([
         Shape::HollowRectangle {
             b: 3.0,
             l: 2.0,
             t: 0.35,
         },
-        Shape::SolidCircle { ro: 0.6 },
         Shape::HollowCircle { ro: 3.99, ri: 2.12 },
         Shape::HollowCircle { ro: 1.0, ri: 0.97 },
-    ]
+    ]);
+    out
+}
+
+#[test]
+fn full_moments_match_area_and_second_moment() {
+    for shape in shapes() {
+        let d = shape.depth();
+        let [s0, s1, s2] = shape.moments(d);
+        let a = shape.area();
+        // centroid at D/2, and Is = S2 - 2 c S1 + c^2 S0 with c = D/2
+        let c = d / 2.0;
+        let is = s2 - 2.0 * c * s1 + c * c * s0;
+        assert!((s0 / a - 1.0).abs() < 1e-14, "{shape:?} area {s0} vs {a}");
+        assert!((s1 / (a * c) - 1.0).abs() < 1e-14, "{shape:?} first moment");
+        assert!(
+            (is / shape.second_moment() - 1.0).abs() < 1e-12,
+            "{shape:?} Is {is}"
+        );
+    }
 }
 
 #[test]
 fn cumulative_moments_match_quadrature() {
     for shape in shapes() {
         let d = shape.depth();
-        let bk = breaks(&shape);
+        let bk = width_breaks(&shape);
         let mut worst: f64 = 0.0;
         for i in 0..=60 {
             // from 1e-7 D to D, geometric, plus the breakpoints themselves
@@ -226,13 +206,7 @@ fn check_by_quadrature(shape: Shape, w: f64, kn: f64, fm: f64) -> (f64, f64) {
     for i in 0..=120 {
         let th = 1e-7 * (0.5f64 / 1e-7).powf(i as f64 / 120.0);
         let c = it.contact(th);
-        let a = c.a;
-        let sigma = |x: f64| (kn * th * (a - x)).clamp(0.0, fm);
-        let mut bk = breaks(&shape);
-        bk.push(a - fm / (kn * th));
-        let top = a.min(d);
-        let n = integrate_pieces(&|x| sigma(x) * width(&shape, x), 0.0, top, &bk, 1e-15);
-        let m = integrate_pieces(&|x| sigma(x) * x * width(&shape, x), 0.0, top, &bk, 1e-15);
+        let [n, m] = resultants(&shape, kn, fm, th, c.a);
         let res = (n - w).abs() / w;
         let af = m / w;
         let rel = (c.af - af).abs() / af;
@@ -454,7 +428,6 @@ fn warm_started_solves_agree_with_cold_ones() {
     // The Taylor finish must leave the equilibrium residual below 1e-12 too.
     for shape in shapes() {
         let w = 0.3e6 * shape.area();
-        let d = shape.depth();
         for fm in [0.5e6, 2.0e6, f64::INFINITY] {
             let kn = 1e9;
             let law = if fm.is_finite() {
@@ -489,17 +462,7 @@ fn warm_started_solves_agree_with_cold_ones() {
                     cold.daf
                 );
                 if i % 97 == 0 {
-                    let a = warm.a;
-                    let sigma = |x: f64| (kn * th * (a - x)).clamp(0.0, fm);
-                    let mut bk = breaks(&shape);
-                    bk.push(a - fm / (kn * th));
-                    let nq = integrate_pieces(
-                        &|x| sigma(x) * width(&shape, x),
-                        0.0,
-                        a.min(d),
-                        &bk,
-                        1e-15,
-                    );
+                    let [nq, _] = resultants(&shape, kn, fm, th, warm.a);
                     assert!(
                         (nq - w).abs() < 1e-12 * w,
                         "{shape:?} fm={fm} theta={th}: residual {:e}",
