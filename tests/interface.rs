@@ -5,7 +5,7 @@
 mod support;
 
 use rocking::{Interface, Law, Regime, Shape};
-use support::base::{self, resultants, width, width_breaks};
+use support::base::{self, law, resultants, width, width_breaks};
 use support::integrate_pieces;
 
 /// The fixture's bases, a large hollow rectangle, the Dharahara's ring
@@ -133,12 +133,7 @@ fn solid_rectangle_matches_closed_forms() {
         (5.0e4, 8.0e8, f64::INFINITY),
     ];
     for (w, kn, fm) in cases {
-        let law = if fm.is_finite() {
-            Law::ElastoPlastic { kn, fm }
-        } else {
-            Law::Elastic { kn }
-        };
-        let it = Interface::new(Shape::SolidRectangle { b: bd, l }, law, w);
+        let it = Interface::new(Shape::SolidRectangle { b: bd, l }, law(kn, fm), w);
         let alpha = (bd / 2.0f64).atan2(1.5);
         let mut seen = std::collections::HashSet::new();
         for i in 0..=400 {
@@ -194,12 +189,7 @@ fn solid_rectangle_matches_closed_forms() {
 /// Every shape and law: equilibrium and reaction position recomputed by
 /// quadrature of the stress profile at the solver's `a`.
 fn check_by_quadrature(shape: Shape, w: f64, kn: f64, fm: f64) -> (f64, f64) {
-    let law = if fm.is_finite() {
-        Law::ElastoPlastic { kn, fm }
-    } else {
-        Law::Elastic { kn }
-    };
-    let it = Interface::new(shape, law, w);
+    let it = Interface::new(shape, law(kn, fm), w);
     let d = shape.depth();
     let mut worst_n: f64 = 0.0;
     let mut worst_af: f64 = 0.0;
@@ -323,12 +313,7 @@ fn all_shapes_and_laws_match_a_brute_force_fibre_model() {
         let w = 0.3e6 * shape.area();
         for fm in [0.5e6, 2.0e6, f64::INFINITY] {
             let kn = 1e9;
-            let law = if fm.is_finite() {
-                Law::ElastoPlastic { kn, fm }
-            } else {
-                Law::Elastic { kn }
-            };
-            let it = Interface::new(shape, law, w);
+            let it = Interface::new(shape, law(kn, fm), w);
             let mut worst: f64 = 0.0;
             for i in 0..=24 {
                 let th = 1e-6 * (1e-2f64 / 1e-6).powf(i as f64 / 24.0);
@@ -430,12 +415,7 @@ fn warm_started_solves_agree_with_cold_ones() {
         let w = 0.3e6 * shape.area();
         for fm in [0.5e6, 2.0e6, f64::INFINITY] {
             let kn = 1e9;
-            let law = if fm.is_finite() {
-                Law::ElastoPlastic { kn, fm }
-            } else {
-                Law::Elastic { kn }
-            };
-            let it = Interface::new(shape, law, w);
+            let it = Interface::new(shape, law(kn, fm), w);
             let n = 3000;
             let mut prev = it.contact(1e-7);
             let mut worst: f64 = 0.0;

@@ -6,8 +6,8 @@
 mod support;
 
 use proptest::prelude::*;
-use rocking::{Interface, Law, Shape};
-use support::base::resultants;
+use rocking::{Interface, Shape};
+use support::base::{law, resultants};
 
 fn shape_strategy() -> impl Strategy<Value = Shape> {
     prop_oneof![
@@ -36,8 +36,7 @@ proptest! {
         let w = stress * shape.area();
         let kn = 10f64.powf(kn_exp);
         let fm = fm_ratio * stress;
-        let law = if fm.is_finite() { Law::ElastoPlastic { kn, fm } } else { Law::Elastic { kn } };
-        let it = Interface::new(shape, law, w);
+        let it = Interface::new(shape, law(kn, fm), w);
         let d = shape.depth();
         prop_assert!(it.theta_jo() > 0.0 && it.theta_jo().is_finite());
         prop_assert!(it.theta_c() > 0.0);

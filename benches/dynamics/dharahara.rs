@@ -201,13 +201,7 @@ pub fn bench(csv: &mut Csv, budget: f64, quick: bool) {
             std::hint::black_box(run());
         });
         let t_run = out.overturn.unwrap_or(T_DHARAHARA);
-        let evals = 4.0 * t_run / h;
-        println!(
-            "{:<10} {h:>8.0e} {err:>10.2e} {:>9.1} µs {evals:>8.0}",
-            "RK4",
-            secs * 1e6
-        );
-        csv.row("dharahara", "RK4", h, err, secs, evals);
+        rk4_row(csv, "dharahara", h, err, secs, 4.0 * t_run / h);
     }
     let b = md.body;
     let scipy_rtols: &[f64] = if quick { &[1e-6] } else { &[1e-4, 1e-6, 1e-8] };

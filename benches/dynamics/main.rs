@@ -96,6 +96,16 @@ fn pair_rows<T>(
     dop853
 }
 
+/// One row of the RK4 reference: step `h` (s), error, time (s), evaluations.
+fn rk4_row(csv: &mut Csv, case: &str, h: f64, err: f64, secs: f64, evals: f64) {
+    println!(
+        "{:<10} {h:>8.0e} {err:>10.2e} {:>9.1} µs {evals:>8.0}",
+        "RK4",
+        secs * 1e6
+    );
+    csv.row(case, "RK4", h, err, secs, evals);
+}
+
 const RTOLS: [f64; 9] = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12];
 
 fn main() {

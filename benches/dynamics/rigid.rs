@@ -83,13 +83,7 @@ pub fn bench(csv: &mut Csv, budget: f64) {
         let secs = time_it(budget, || {
             std::hint::black_box(run());
         });
-        let evals = 4.0 * t_end / h;
-        println!(
-            "{:<10} {h:>8.0e} {err:>10.2e} {:>9.1} µs {evals:>8.0}",
-            "RK4",
-            secs * 1e6
-        );
-        csv.row("rigid", "RK4", h, err, secs, evals);
+        rk4_row(csv, "rigid", h, err, secs, 4.0 * t_end / h);
     }
     let req = format!(
         r#"{{"case":"rigid","repeat":3,"rtols":{},"params":{{"W":{:e},"R0":{:e},"alpha":{:e},"IO":{:e},"eta":{:e},"theta0":{:e},"impacts":{RIGID_IMPACTS}}}}}"#,

@@ -3,7 +3,7 @@
 //! written again from its table, the points where it is not smooth, and
 //! the resultants of a contact stress profile by quadrature.
 
-use rocking::Shape;
+use rocking::{Law, Shape};
 
 use super::integrate_pieces;
 
@@ -25,6 +25,16 @@ pub fn shapes() -> [(&'static str, Shape); 4] {
         ("solid circle", Shape::SolidCircle { ro: 0.4 }),
         ("hollow circle", Shape::HollowCircle { ro: 0.5, ri: 0.3 }),
     ]
+}
+
+/// The elasto-plastic law, or the elastic one when `fm` is infinite
+/// (`kn` in Pa/m, `fm` in Pa).
+pub fn law(kn: f64, fm: f64) -> Law {
+    if fm.is_finite() {
+        Law::ElastoPlastic { kn, fm }
+    } else {
+        Law::Elastic { kn }
+    }
 }
 
 /// Width of the base at `x` (m from the toe), m.
