@@ -82,15 +82,16 @@ fn solid_rectangle_exact(bd: f64, l: f64, w: f64, kn: f64, fm: f64, th: f64) -> 
     let area = bd * l;
     let k = kn * th;
     let crush_in_full = fm * area < 2.0 * w;
+    let full_contact = (
+        bd / 2.0 - k * (l * bd.powi(3) / 12.0) / w,
+        w / (k * area) + bd / 2.0,
+        Regime::FullContact,
+    );
     if crush_in_full {
         let theta_c = 2.0 * (fm - w / area) / (kn * bd);
         let theta_jo = fm * fm * l / (2.0 * kn * (fm * area - w));
         if th <= theta_c {
-            return (
-                bd / 2.0 - k * (l * bd.powi(3) / 12.0) / w,
-                w / (k * area) + bd / 2.0,
-                Regime::FullContact,
-            );
+            return full_contact;
         }
         if th <= theta_jo {
             // elastic zone of length e at the heel: e^2 = 2 (fm A - W)/(k L)
@@ -105,11 +106,7 @@ fn solid_rectangle_exact(bd: f64, l: f64, w: f64, kn: f64, fm: f64, th: f64) -> 
         let ac = 2.0 * w / (fm * l);
         let theta_c = fm / (kn * ac);
         if th <= theta_jo {
-            return (
-                bd / 2.0 - k * (l * bd.powi(3) / 12.0) / w,
-                w / (k * area) + bd / 2.0,
-                Regime::FullContact,
-            );
+            return full_contact;
         }
         if th <= theta_c {
             let a = (2.0 * w / (k * l)).sqrt();
