@@ -9,7 +9,7 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use rocking::{Interface, Law, Shape};
+use rocking::{Contact, Interface, Law, Shape};
 
 fn main() {
     let shapes = [
@@ -40,50 +40,56 @@ fn main() {
             let thetas: Vec<f64> = (0..n)
                 .map(|i| lo * (0.3 / lo).powf(i as f64 / (n - 1) as f64))
                 .collect();
-            let reps = 40;
-            let mut iters_cold = 0u64;
-            let t0 = Instant::now();
-            for _ in 0..reps {
-                for &th in &thetas {
-                    let c = it.contact(black_box(th));
-                    iters_cold += c.iterations as u64;
-                    black_box((c.af, c.daf));
-                }
-            }
-            let cold = t0.elapsed().as_nanos() as f64 / (reps * n) as f64;
-            let mut iters_near = 0u64;
-            let t0 = Instant::now();
-            for _ in 0..reps {
-                let mut a = f64::NAN;
-                for &th in &thetas {
-                    let c = it.contact_near(black_box(th), a);
+            let cold = time_sweeps(&thetas, || (), |_, th| it.contact(th));
+            let near = time_sweeps(
+                &thetas,
+                || f64::NAN,
+                |a, th| {
+                    let c = it.contact_near(th, *a);
                     if c.a.is_finite() {
-                        a = c.a;
+                        *a = c.a;
                     }
-                    iters_near += c.iterations as u64;
-                    black_box((c.af, c.daf));
-                }
-            }
-            let near = t0.elapsed().as_nanos() as f64 / (reps * n) as f64;
-            let mut iters_warm = 0u64;
-            let t0 = Instant::now();
-            for _ in 0..reps {
-                let mut prev = it.contact(thetas[0]);
-                for &th in &thetas {
-                    let c = it.contact_after(black_box(th), &prev);
-                    prev = c;
-                    iters_warm += c.iterations as u64;
-                    black_box((c.af, c.daf));
-                }
-            }
-            let warm = t0.elapsed().as_nanos() as f64 / (reps * n) as f64;
-            let per = (reps * n) as f64;
+                    c
+                },
+            );
+            let after = time_sweeps(
+                &thetas,
+                || it.contact(thetas[0]),
+                |prev, th| {
+                    *prev = it.contact_after(th, prev);
+                    *prev
+                },
+            );
             println!(
-                "| {name} | {lname} | {cold:.0} | {near:.0} | {warm:.0} | {:.2}, {:.2}, {:.2} |",
-                iters_cold as f64 / per,
-                iters_near as f64 / per,
-                iters_warm as f64 / per
+                "| {name} | {lname} | {:.0} | {:.0} | {:.0} | {:.2}, {:.2}, {:.2} |",
+                cold.0, near.0, after.0, cold.1, near.1, after.1
             );
         }
     }
+}
+
+/// `(ns, Newton iterations)` per solve of 40 sweeps of `solve` over
+/// `thetas`, each sweep from the state `start` gives it (the previous
+/// contact, its `a`, or nothing).
+fn time_sweeps<S>(
+    thetas: &[f64],
+    start: impl Fn() -> S,
+    solve: impl Fn(&mut S, f64) -> Contact,
+) -> (f64, f64) {
+    let reps = 40;
+    let mut iterations = 0u64;
+    let t0 = Instant::now();
+    for _ in 0..reps {
+        let mut state = start();
+        for &th in thetas {
+            let c = solve(&mut state, black_box(th));
+            iterations += c.iterations as u64;
+            black_box((c.af, c.daf));
+        }
+    }
+    let solves = (reps * thetas.len()) as f64;
+    (
+        t0.elapsed().as_nanos() as f64 / solves,
+        iterations as f64 / solves,
+    )
 }

@@ -301,36 +301,3 @@ fn segment_integrals(q: f64) -> [f64; 3] {
         out
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn full_moments_match_area_and_second_moment() {
-        let shapes = [
-            Shape::SolidRectangle { b: 0.7, l: 1.3 },
-            Shape::HollowRectangle {
-                b: 2.0,
-                l: 1.5,
-                t: 0.2,
-            },
-            Shape::SolidCircle { ro: 1.1 },
-            Shape::HollowCircle { ro: 3.99, ri: 2.12 },
-        ];
-        for s in shapes {
-            let d = s.depth();
-            let [s0, s1, s2] = s.moments(d);
-            let a = s.area();
-            // centroid at D/2, and Is = S2 - 2 c S1 + c^2 S0 with c = D/2
-            let c = d / 2.0;
-            let is = s2 - 2.0 * c * s1 + c * c * s0;
-            assert!((s0 / a - 1.0).abs() < 1e-14, "{s:?} area {s0} vs {a}");
-            assert!((s1 / (a * c) - 1.0).abs() < 1e-14, "{s:?} first moment");
-            assert!(
-                (is / s.second_moment() - 1.0).abs() < 1e-12,
-                "{s:?} Is {is}"
-            );
-        }
-    }
-}

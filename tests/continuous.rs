@@ -121,18 +121,31 @@ fn no_input(_: f64) -> f64 {
     0.0
 }
 
-#[test]
-fn rigid_free_rocking_matches_exact_impact_times() {
+impl<'a> Host<'a> {
+    /// Free rocking, RK4 steps of 1 ms.
+    fn unforced(sim: &'a Simulator) -> Host<'a> {
+        Host {
+            sim,
+            ag: &no_input,
+            h: 1e-3,
+        }
+    }
+}
+
+/// A rigid 0.25 m x 1 m block at the default tolerance, its exact
+/// solution, and the release rotation `fraction` alpha, rad.
+fn released(fraction: f64) -> (Simulator, Exact, f64) {
     let m = rigid_block(0.25, 1.0);
     let ex = Exact::new(&m);
-    let theta0 = 0.5 * ex.alpha;
+    let theta0 = fraction * ex.alpha;
+    (Simulator::new(m, DEFAULT_RTOL), ex, theta0)
+}
+
+#[test]
+fn rigid_free_rocking_matches_exact_impact_times() {
+    let (sim, ex, theta0) = released(0.5);
     let exact = ex.impacts(theta0, 10);
-    let sim = Simulator::new(m, DEFAULT_RTOL);
-    let host = Host {
-        sim: &sim,
-        ag: &no_input,
-        h: 1e-3,
-    };
+    let host = Host::unforced(&sim);
     let mut c = sim.continuous(theta0, 0.0, 0.0);
     let r = host.run(&mut c, 100.0, &|r| r.crossings.len() >= 10);
     assert_eq!(r.crossings.len(), 10, "{r:?}");
@@ -149,15 +162,8 @@ fn rigid_free_rocking_matches_exact_impact_times() {
 
 #[test]
 fn rigid_block_from_0_9_alpha_comes_to_rest_after_a_bounded_number_of_events() {
-    let m = rigid_block(0.25, 1.0);
-    let ex = Exact::new(&m);
-    let theta0 = 0.9 * ex.alpha;
-    let sim = Simulator::new(m, DEFAULT_RTOL);
-    let host = Host {
-        sim: &sim,
-        ag: &no_input,
-        h: 1e-3,
-    };
+    let (sim, ex, theta0) = released(0.9);
+    let host = Host::unforced(&sim);
     let mut c = sim.continuous(theta0, 0.0, 0.0);
     let r = host.run(&mut c, 1e3, &|r| r.rest_at.is_some());
     let t_rest = r.rest_at.expect("comes to rest");

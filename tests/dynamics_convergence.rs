@@ -5,12 +5,16 @@
 //! - Against the same code at a tolerance 1e-4 times tighter: the error
 //!   falls in proportion to `rtol`, and against the work at the order of the
 //!   method (8 for DOP853, 5 for DP5) within the spread of the events.
-//! - Against a second integrator written here: fixed-step classical RK4 on
-//!   the equation of motion of docs/model.md §3 (from `contact` and `levers`),
-//!   impacts located by bisection on the RK4 step, Richardson-checked.
+//! - Against a second integrator (`support::rk4`, also the benchmark's):
+//!   fixed-step classical RK4 on the equation of motion of docs/model.md §3
+//!   (from `contact` and `levers`), impacts located by bisection on the RK4
+//!   step, Richardson-checked.
+
+mod support;
 
 use rocking::dynamics::{GroundInput, Method, Simulator, State};
-use rocking::{Formulation, Model, Params};
+use rocking::{Model, Params};
+use support::rk4::{flexible_accel, Rk4};
 
 const T_END: f64 = 4.0;
 
@@ -56,90 +60,27 @@ fn run(m: &Model, rtol: f64, method: Method) -> (State, u32) {
     (st, evals)
 }
 
-/// `theta''` of docs/model.md §3, written out here.
-fn accel(m: &Model, theta: f64, omega: f64, ag: f64, side: f64) -> f64 {
-    let s = if theta != 0.0 { theta.signum() } else { side };
-    let phi = theta.abs();
-    let c = m.interface.contact(phi);
-    let l = m.levers(phi, &c);
-    let b = &m.body;
-    let pivot = if m.formulation == Formulation::ShiftingPivot {
-        0.5 * s * l.dinertia * omega * omega
-    } else {
-        0.0
-    };
-    (-s * b.weight * l.hw - b.mass * ag * l.hg - pivot) / l.inertia
-}
-
-/// Classical RK4 with fixed step `h` (a divisor of the pieces), impacts at
-/// zero crossings located by bisection on the step length.
+/// Fixed-step RK4 with step `h` (a divisor of the pieces), started on the
+/// toe the pulse pushes the body to.
 fn rk4(m: &Model, h: f64) -> State {
-    let step = |t: f64, y: [f64; 2], dt: f64, agf: &dyn Fn(f64) -> f64, side: f64| {
-        let f = |t: f64, y: [f64; 2]| [y[1], accel(m, y[0], y[1], agf(t), side)];
-        let k1 = f(t, y);
-        let k2 = f(
-            t + dt / 2.0,
-            [y[0] + dt / 2.0 * k1[0], y[1] + dt / 2.0 * k1[1]],
-        );
-        let k3 = f(
-            t + dt / 2.0,
-            [y[0] + dt / 2.0 * k2[0], y[1] + dt / 2.0 * k2[1]],
-        );
-        let k4 = f(t + dt, [y[0] + dt * k3[0], y[1] + dt * k3[1]]);
-        [
-            y[0] + dt / 6.0 * (k1[0] + 2.0 * k2[0] + 2.0 * k3[0] + k4[0]),
-            y[1] + dt / 6.0 * (k1[1] + 2.0 * k2[1] + 2.0 * k3[1] + k4[1]),
-        ]
+    let pieces = pulse(m);
+    let ag = |t: f64| {
+        let &(t0, t1, a0, a1) = pieces.iter().find(|p| t <= p.1).unwrap_or(&pieces[3]);
+        a0 + (a1 - a0) / (t1 - t0) * (t - t0)
     };
-    let mut y: [f64; 2] = [0.0, 0.0];
-    let mut impacts = 0;
-    for (t0, t1, a0, a1) in pulse(m) {
-        let agf = move |t: f64| a0 + (a1 - a0) / (t1 - t0) * (t - t0);
-        let n = ((t1 - t0) / h).round() as usize;
-        let mut t = t0;
-        for k in 0..n {
-            let t_next = t0 + (k + 1) as f64 * h;
-            loop {
-                let dt = t_next - t;
-                let side = if y[0] != 0.0 {
-                    y[0].signum()
-                } else if y[1] != 0.0 {
-                    y[1].signum()
-                } else {
-                    -agf(t).signum()
-                };
-                let y1 = step(t, y, dt, &agf, side);
-                if y[0] == 0.0 || y1[0] * side >= 0.0 {
-                    y = y1;
-                    t = t_next;
-                    break;
-                }
-                // crossing in (t, t_next]: bisect the step length
-                let (mut lo, mut hi) = (0.0, dt);
-                for _ in 0..200 {
-                    let mid = 0.5 * (lo + hi);
-                    if mid <= lo || mid >= hi {
-                        break;
-                    }
-                    if step(t, y, mid, &agf, side)[0] * side > 0.0 {
-                        lo = mid;
-                    } else {
-                        hi = mid;
-                    }
-                }
-                let yc = step(t, y, hi, &agf, side);
-                t += hi;
-                y = [0.0, m.eta * yc[1]];
-                impacts += 1;
-                if t >= t_next {
-                    break;
-                }
-            }
-        }
+    let accel =
+        |t: f64, theta: f64, omega: f64, side: f64| flexible_accel(m, ag(t), theta, omega, side);
+    let out = Rk4 {
+        accel: &accel,
+        eta: m.eta,
+        theta_ov: m.theta_ov,
+        h,
+        max_impacts: usize::MAX,
     }
-    let mut st = Simulator::new(*m, 1e-9).initial_state(y[0], y[1]);
+    .run([0.0, 0.0], -pieces[0].3.signum(), T_END);
+    let mut st = Simulator::new(*m, 1e-9).initial_state(out.end[0], out.end[1]);
     st.t = T_END;
-    st.impacts = impacts;
+    st.impacts = out.impacts.len() as u64;
     st
 }
 

@@ -5,69 +5,49 @@
 mod support;
 
 use rocking::{Interface, Law, Regime, Shape};
+use support::base::{self, law, resultants, width, width_breaks};
 use support::integrate_pieces;
 
-/// Width function of docs/model.md §1, written again here from the table.
-fn width(shape: &Shape, x: f64) -> f64 {
-    // chord of a circle spanning [lo, hi] along x, from the distances to
-    // its two ends (no cancellation near the edges)
-    let chord = |lo: f64, hi: f64| {
-        if x > lo && x < hi {
-            2.0 * ((x - lo) * (hi - x)).sqrt()
-        } else {
-            0.0
-        }
-    };
-    match *shape {
-        Shape::SolidRectangle { b, l } => {
-            if (0.0..=b).contains(&x) {
-                l
-            } else {
-                0.0
-            }
-        }
-        Shape::HollowRectangle { b, l, t } => {
-            if !(0.0..=b).contains(&x) {
-                0.0
-            } else if x <= t || x >= b - t {
-                l
-            } else {
-                2.0 * t
-            }
-        }
-        Shape::SolidCircle { ro } => chord(0.0, 2.0 * ro),
-        Shape::HollowCircle { ro, ri } => chord(0.0, 2.0 * ro) - chord(ro - ri, ro + ri),
-    }
-}
-
-/// Points where the width function is not smooth.
-fn breaks(shape: &Shape) -> Vec<f64> {
-    match *shape {
-        Shape::HollowRectangle { b, t, .. } => vec![t, b - t],
-        Shape::HollowCircle { ro, ri } => vec![ro - ri, ro + ri],
-        _ => vec![],
-    }
-}
-
+/// The fixture's bases, a large hollow rectangle, the Dharahara's ring
+/// (docs/model.md §4) and a thin ring (its inner chord's square-root points
+/// nearly meet the outer one's).
 fn shapes() -> Vec<Shape> {
-    vec![
-        Shape::SolidRectangle { b: 0.8, l: 1.7 },
+    let mut out: Vec<Shape> = base::shapes().iter().map(|&(_, s)| s).collect();
+    out.extend([
         Shape::HollowRectangle {
             b: 3.0,
             l: 2.0,
             t: 0.35,
         },
-        Shape::SolidCircle { ro: 0.6 },
         Shape::HollowCircle { ro: 3.99, ri: 2.12 },
         Shape::HollowCircle { ro: 1.0, ri: 0.97 },
-    ]
+    ]);
+    out
+}
+
+#[test]
+fn full_moments_match_area_and_second_moment() {
+    for shape in shapes() {
+        let d = shape.depth();
+        let [s0, s1, s2] = shape.moments(d);
+        let a = shape.area();
+        // centroid at D/2, and Is = S2 - 2 c S1 + c^2 S0 with c = D/2
+        let c = d / 2.0;
+        let is = s2 - 2.0 * c * s1 + c * c * s0;
+        assert!((s0 / a - 1.0).abs() < 1e-14, "{shape:?} area {s0} vs {a}");
+        assert!((s1 / (a * c) - 1.0).abs() < 1e-14, "{shape:?} first moment");
+        assert!(
+            (is / shape.second_moment() - 1.0).abs() < 1e-12,
+            "{shape:?} Is {is}"
+        );
+    }
 }
 
 #[test]
 fn cumulative_moments_match_quadrature() {
     for shape in shapes() {
         let d = shape.depth();
-        let bk = breaks(&shape);
+        let bk = width_breaks(&shape);
         let mut worst: f64 = 0.0;
         for i in 0..=60 {
             // from 1e-7 D to D, geometric, plus the breakpoints themselves
@@ -102,15 +82,16 @@ fn solid_rectangle_exact(bd: f64, l: f64, w: f64, kn: f64, fm: f64, th: f64) -> 
     let area = bd * l;
     let k = kn * th;
     let crush_in_full = fm * area < 2.0 * w;
+    let full_contact = (
+        bd / 2.0 - k * (l * bd.powi(3) / 12.0) / w,
+        w / (k * area) + bd / 2.0,
+        Regime::FullContact,
+    );
     if crush_in_full {
         let theta_c = 2.0 * (fm - w / area) / (kn * bd);
         let theta_jo = fm * fm * l / (2.0 * kn * (fm * area - w));
         if th <= theta_c {
-            return (
-                bd / 2.0 - k * (l * bd.powi(3) / 12.0) / w,
-                w / (k * area) + bd / 2.0,
-                Regime::FullContact,
-            );
+            return full_contact;
         }
         if th <= theta_jo {
             // elastic zone of length e at the heel: e^2 = 2 (fm A - W)/(k L)
@@ -125,11 +106,7 @@ fn solid_rectangle_exact(bd: f64, l: f64, w: f64, kn: f64, fm: f64, th: f64) -> 
         let ac = 2.0 * w / (fm * l);
         let theta_c = fm / (kn * ac);
         if th <= theta_jo {
-            return (
-                bd / 2.0 - k * (l * bd.powi(3) / 12.0) / w,
-                w / (k * area) + bd / 2.0,
-                Regime::FullContact,
-            );
+            return full_contact;
         }
         if th <= theta_c {
             let a = (2.0 * w / (k * l)).sqrt();
@@ -153,12 +130,7 @@ fn solid_rectangle_matches_closed_forms() {
         (5.0e4, 8.0e8, f64::INFINITY),
     ];
     for (w, kn, fm) in cases {
-        let law = if fm.is_finite() {
-            Law::ElastoPlastic { kn, fm }
-        } else {
-            Law::Elastic { kn }
-        };
-        let it = Interface::new(Shape::SolidRectangle { b: bd, l }, law, w);
+        let it = Interface::new(Shape::SolidRectangle { b: bd, l }, law(kn, fm), w);
         let alpha = (bd / 2.0f64).atan2(1.5);
         let mut seen = std::collections::HashSet::new();
         for i in 0..=400 {
@@ -214,25 +186,14 @@ fn solid_rectangle_matches_closed_forms() {
 /// Every shape and law: equilibrium and reaction position recomputed by
 /// quadrature of the stress profile at the solver's `a`.
 fn check_by_quadrature(shape: Shape, w: f64, kn: f64, fm: f64) -> (f64, f64) {
-    let law = if fm.is_finite() {
-        Law::ElastoPlastic { kn, fm }
-    } else {
-        Law::Elastic { kn }
-    };
-    let it = Interface::new(shape, law, w);
+    let it = Interface::new(shape, law(kn, fm), w);
     let d = shape.depth();
     let mut worst_n: f64 = 0.0;
     let mut worst_af: f64 = 0.0;
     for i in 0..=120 {
         let th = 1e-7 * (0.5f64 / 1e-7).powf(i as f64 / 120.0);
         let c = it.contact(th);
-        let a = c.a;
-        let sigma = |x: f64| (kn * th * (a - x)).clamp(0.0, fm);
-        let mut bk = breaks(&shape);
-        bk.push(a - fm / (kn * th));
-        let top = a.min(d);
-        let n = integrate_pieces(&|x| sigma(x) * width(&shape, x), 0.0, top, &bk, 1e-15);
-        let m = integrate_pieces(&|x| sigma(x) * x * width(&shape, x), 0.0, top, &bk, 1e-15);
+        let [n, m] = resultants(&shape, kn, fm, th, c.a);
         let res = (n - w).abs() / w;
         let af = m / w;
         let rel = (c.af - af).abs() / af;
@@ -349,12 +310,7 @@ fn all_shapes_and_laws_match_a_brute_force_fibre_model() {
         let w = 0.3e6 * shape.area();
         for fm in [0.5e6, 2.0e6, f64::INFINITY] {
             let kn = 1e9;
-            let law = if fm.is_finite() {
-                Law::ElastoPlastic { kn, fm }
-            } else {
-                Law::Elastic { kn }
-            };
-            let it = Interface::new(shape, law, w);
+            let it = Interface::new(shape, law(kn, fm), w);
             let mut worst: f64 = 0.0;
             for i in 0..=24 {
                 let th = 1e-6 * (1e-2f64 / 1e-6).powf(i as f64 / 24.0);
@@ -454,15 +410,9 @@ fn warm_started_solves_agree_with_cold_ones() {
     // The Taylor finish must leave the equilibrium residual below 1e-12 too.
     for shape in shapes() {
         let w = 0.3e6 * shape.area();
-        let d = shape.depth();
         for fm in [0.5e6, 2.0e6, f64::INFINITY] {
             let kn = 1e9;
-            let law = if fm.is_finite() {
-                Law::ElastoPlastic { kn, fm }
-            } else {
-                Law::Elastic { kn }
-            };
-            let it = Interface::new(shape, law, w);
+            let it = Interface::new(shape, law(kn, fm), w);
             let n = 3000;
             let mut prev = it.contact(1e-7);
             let mut worst: f64 = 0.0;
@@ -489,17 +439,7 @@ fn warm_started_solves_agree_with_cold_ones() {
                     cold.daf
                 );
                 if i % 97 == 0 {
-                    let a = warm.a;
-                    let sigma = |x: f64| (kn * th * (a - x)).clamp(0.0, fm);
-                    let mut bk = breaks(&shape);
-                    bk.push(a - fm / (kn * th));
-                    let nq = integrate_pieces(
-                        &|x| sigma(x) * width(&shape, x),
-                        0.0,
-                        a.min(d),
-                        &bk,
-                        1e-15,
-                    );
+                    let [nq, _] = resultants(&shape, kn, fm, th, warm.a);
                     assert!(
                         (nq - w).abs() < 1e-12 * w,
                         "{shape:?} fm={fm} theta={th}: residual {:e}",

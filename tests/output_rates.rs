@@ -19,9 +19,12 @@
 //! Errors are relative to the largest magnitude of the same derivative
 //! along the run; the tables print the measured worst cases.
 
+mod support;
+
 use rocking::dynamics::{GroundInput, Jet, OutputRates, Simulator, State};
 use rocking::interface::Interface;
 use rocking::{Formulation, Law, Params, Regime, Shape};
+use support::base;
 
 // ---------------------------------------------------------------- interface
 
@@ -87,19 +90,9 @@ fn curvature_error(it: &Interface, phi: f64) -> Option<(f64, f64)> {
 
 #[test]
 fn second_derivatives_of_the_contact_match_differences() {
-    let shapes = [
-        Shape::SolidRectangle { b: 0.5, l: 1.0 },
-        Shape::HollowRectangle {
-            b: 0.6,
-            l: 1.0,
-            t: 0.1,
-        },
-        Shape::SolidCircle { ro: 0.4 },
-        Shape::HollowCircle { ro: 0.5, ri: 0.3 },
-    ];
     let mut failures = Vec::new();
     println!("shape            law           regime   n  af'' err  a'' err");
-    for shape in shapes {
+    for (_, shape) in base::shapes() {
         let w = 2.0e4;
         let area = shape.area();
         let laws = [

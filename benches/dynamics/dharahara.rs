@@ -56,20 +56,25 @@ pub fn input_at(samples: &[f64], k: usize) -> GroundInput {
 }
 
 /// One FMU-like run: a call per 100 Hz interval; stops at overturning.
-/// Returns the states at the interval ends (and the final one).
-pub fn dharahara_run(sim: &Simulator, samples: &[f64], t_end: f64) -> Vec<State> {
+/// Returns the states at the interval ends (and the final one), and the
+/// right-hand-side evaluations.
+pub fn dharahara_run(sim: &Simulator, samples: &[f64], t_end: f64) -> (Vec<State>, u32) {
     let mut st = sim.initial_state(0.0, 0.0);
     let n = (t_end / DT).round() as usize;
     let mut out = Vec::with_capacity(n + 1);
+    let mut evals = 0;
     out.push(st);
     for k in 0..n {
-        sim.advance(&mut st, (k + 1) as f64 * DT, input_at(samples, k));
+        evals += sim
+            .advance(&mut st, (k + 1) as f64 * DT, input_at(samples, k))
+            .stats
+            .evals;
         out.push(st);
         if st.overturned {
             break;
         }
     }
-    out
+    (out, evals)
 }
 
 /// Quantities of a run: first impact time, first peak |theta|, overturning
@@ -131,17 +136,6 @@ pub fn quantity_error(q: &[f64; 3], r: &[f64; 3]) -> f64 {
         )
 }
 
-/// `theta''` of docs/model.md §3 for the RK4 reference (contact and levers from
-/// the model).
-pub fn flexible_accel(m: &Model, ag: f64, theta: f64, omega: f64, side: f64) -> f64 {
-    let s = if theta != 0.0 { theta.signum() } else { side };
-    let phi = theta.abs();
-    let c = m.interface.contact(phi);
-    let l = m.levers(phi, &c);
-    let b = &m.body;
-    (-s * b.weight * l.hw - b.mass * ag * l.hg - 0.5 * s * l.dinertia * omega * omega) / l.inertia
-}
-
 pub fn ag_linear(samples: &[f64], t: f64) -> f64 {
     let k = (t / DT) as usize;
     let a0 = samples.get(k).copied().unwrap_or(0.0);
@@ -155,7 +149,7 @@ pub fn bench(csv: &mut Csv, budget: f64, quick: bool) {
     let samples = pulse_samples(&md, 0.16, (T_DHARAHARA / DT) as usize);
     let reference = {
         let sim = Simulator::new(md, 1e-13);
-        let st = dharahara_run(&sim, &samples, T_DHARAHARA);
+        let (st, _) = dharahara_run(&sim, &samples, T_DHARAHARA);
         dharahara_quantities(&sim, &samples, &st)
     };
     println!(
@@ -169,41 +163,17 @@ pub fn bench(csv: &mut Csv, budget: f64, quick: bool) {
         "{:<10} {:>8} {:>10} {:>12} {:>8}",
         "solver", "rtol/h", "error", "time", "evals"
     );
-    let mut ours_dh = Vec::new();
-    for method in [Method::Dop853, Method::Dp5] {
-        for rtol in RTOLS {
-            let sim = Simulator::with_method(md, rtol, method);
-            let st = dharahara_run(&sim, &samples, T_DHARAHARA);
-            let q = dharahara_quantities(&sim, &samples, &st);
-            let err = quantity_error(&q, &reference);
-            let secs = time_it(budget, || {
-                std::hint::black_box(dharahara_run(&sim, &samples, T_DHARAHARA));
-            });
-            let evals: u32 = {
-                let mut s = sim.initial_state(0.0, 0.0);
-                let mut n = 0;
-                for k in 0..(T_DHARAHARA / DT) as usize {
-                    n += sim
-                        .advance(&mut s, (k + 1) as f64 * DT, input_at(&samples, k))
-                        .stats
-                        .evals;
-                    if s.overturned {
-                        break;
-                    }
-                }
-                n
-            };
-            let name = format!("{method:?}");
-            println!(
-                "{name:<10} {rtol:>8.0e} {err:>10.2e} {:>9.1} µs {evals:>8}",
-                secs * 1e6
-            );
-            csv.row("dharahara", &name, rtol, err, secs, evals as f64);
-            if method == Method::Dop853 {
-                ours_dh.push((rtol, err, secs));
-            }
-        }
-    }
+    let ours_dh = pair_rows(
+        csv,
+        "dharahara",
+        budget,
+        md,
+        |sim| dharahara_run(sim, &samples, T_DHARAHARA),
+        |sim, states| {
+            let q = dharahara_quantities(sim, &samples, states);
+            quantity_error(&q, &reference)
+        },
+    );
     let acc =
         |t: f64, th: f64, om: f64, s: f64| flexible_accel(&md, ag_linear(&samples, t), th, om, s);
     let hs: &[f64] = if quick {
@@ -212,18 +182,14 @@ pub fn bench(csv: &mut Csv, budget: f64, quick: bool) {
         &[1e-2, 3e-3, 1e-3, 3e-4, 1e-4]
     };
     for &h in hs {
-        let run = || {
-            rk4(
-                &acc,
-                [0.0, 0.0],
-                -1.0,
-                md.eta,
-                md.theta_ov,
-                h,
-                T_DHARAHARA,
-                usize::MAX,
-            )
+        let rk4 = Rk4 {
+            accel: &acc,
+            eta: md.eta,
+            theta_ov: md.theta_ov,
+            h,
+            max_impacts: usize::MAX,
         };
+        let run = || rk4.run([0.0, 0.0], -1.0, T_DHARAHARA);
         let out = run();
         let q = [
             out.impacts.first().map_or(f64::NAN, |x| x.0),
@@ -235,13 +201,7 @@ pub fn bench(csv: &mut Csv, budget: f64, quick: bool) {
             std::hint::black_box(run());
         });
         let t_run = out.overturn.unwrap_or(T_DHARAHARA);
-        let evals = 4.0 * t_run / h;
-        println!(
-            "{:<10} {h:>8.0e} {err:>10.2e} {:>9.1} µs {evals:>8.0}",
-            "RK4",
-            secs * 1e6
-        );
-        csv.row("dharahara", "RK4", h, err, secs, evals);
+        rk4_row(csv, "dharahara", h, err, secs, 4.0 * t_run / h);
     }
     let b = md.body;
     let scipy_rtols: &[f64] = if quick { &[1e-6] } else { &[1e-4, 1e-6, 1e-8] };

@@ -19,9 +19,8 @@
 mod costs;
 mod dharahara;
 mod rigid;
-mod rk4;
 mod scipy;
-// the quadratures of the physics tests
+// the physics tests' references: exact rigid rocking, a plain RK4
 #[path = "../../tests/support/mod.rs"]
 mod support;
 
@@ -33,8 +32,9 @@ use std::time::Instant;
 
 use costs::*;
 use dharahara::*;
-use rk4::*;
 use scipy::*;
+use support::exact::Exact;
+use support::rk4::{flexible_accel, Rk4};
 
 /// Minimum wall time of `f` over repetitions filling about `budget` s.
 fn time_it(budget: f64, mut f: impl FnMut()) -> f64 {
@@ -59,6 +59,51 @@ impl Csv {
             "{case},{solver},{param:e},{error:e},{seconds:e},{evals}"
         );
     }
+}
+
+/// DOP853 and DP5 on one case at each of `RTOLS`: `run` (timed) gives a
+/// simulator's result and its right-hand-side evaluations, `error` scores
+/// the result. Prints and writes a row per run; returns DOP853's `(rtol,
+/// error, seconds)` for the comparison with SciPy.
+fn pair_rows<T>(
+    csv: &mut Csv,
+    case: &str,
+    budget: f64,
+    model: Model,
+    run: impl Fn(&Simulator) -> (T, u32),
+    error: impl Fn(&Simulator, &T) -> f64,
+) -> Vec<(f64, f64, f64)> {
+    let mut dop853 = Vec::new();
+    for method in [Method::Dop853, Method::Dp5] {
+        for rtol in RTOLS {
+            let sim = Simulator::with_method(model, rtol, method);
+            let (got, evals) = run(&sim);
+            let err = error(&sim, &got);
+            let secs = time_it(budget, || {
+                std::hint::black_box(run(&sim));
+            });
+            let name = format!("{method:?}");
+            println!(
+                "{name:<10} {rtol:>8.0e} {err:>10.2e} {:>9.1} µs {evals:>8}",
+                secs * 1e6
+            );
+            csv.row(case, &name, rtol, err, secs, evals as f64);
+            if method == Method::Dop853 {
+                dop853.push((rtol, err, secs));
+            }
+        }
+    }
+    dop853
+}
+
+/// One row of the RK4 reference: step `h` (s), error, time (s), evaluations.
+fn rk4_row(csv: &mut Csv, case: &str, h: f64, err: f64, secs: f64, evals: f64) {
+    println!(
+        "{:<10} {h:>8.0e} {err:>10.2e} {:>9.1} µs {evals:>8.0}",
+        "RK4",
+        secs * 1e6
+    );
+    csv.row(case, "RK4", h, err, secs, evals);
 }
 
 const RTOLS: [f64; 9] = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12];

@@ -2,26 +2,17 @@
 //! accepted or a rejected step, the smallest step, and the limit on steps
 //! toward `theta = 0` in partial contact (docs/dynamics.md §3).
 
-use super::eom::Eom;
-use super::erk::Tol;
+use super::erk::{Start, Tol};
 
 /// Largest `h |omega / theta|` of a step toward `theta = 0` in partial
 /// contact (flexible laws).
 const R_MAX: f64 = 0.5;
 
-/// Hairer's starting step (Solving ODEs I, §II.4) at `(t, y)` where
-/// `theta'' = a0`, for a method of order `order`, s. One evaluation.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn initial_step(
-    eom: &Eom,
-    tol: &Tol,
-    t: f64,
-    y: [f64; 2],
-    a0: f64,
-    side: f64,
-    hint: &mut f64,
-    order: u32,
-) -> f64 {
+/// Hairer's starting step (Solving ODEs I, §II.4) from `s`, for a method
+/// of order `order`, s. One evaluation (`hint`: the contact solve's warm
+/// start, carried on).
+pub(super) fn initial_step(s: &Start, tol: &Tol, hint: &mut f64, order: u32) -> f64 {
+    let (y, a0) = (s.y0, s.a0);
     let sc = tol.scales(y, y);
     let norm = |u: f64, v: f64| ((u / sc[0]).powi(2) + (v / sc[1]).powi(2)).sqrt() / 2f64.sqrt();
     let d0 = norm(y[0], y[1]);
@@ -32,7 +23,7 @@ pub(super) fn initial_step(
         0.01 * d0 / d1
     };
     let y1 = [y[0] + h0 * y[1], y[1] + h0 * a0];
-    let a1 = eom.accel(t + h0, y1[0], y1[1], side, hint);
+    let a1 = s.accel(s.t + h0, y1, hint);
     let d2 = norm(y1[1] - y[1], a1 - a0) / h0;
     let dm = d1.max(d2);
     let h1 = if dm <= 1e-15 {

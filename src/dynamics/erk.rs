@@ -50,6 +50,29 @@ impl Tol {
     }
 }
 
+/// The point a step starts from, and the equation it follows.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Start<'a> {
+    pub eom: &'a Eom<'a>,
+    /// Time, s.
+    pub t: f64,
+    /// `(theta, omega)`, rad and rad/s.
+    pub y0: [f64; 2],
+    /// `theta''` at `(t, y0)`, rad/s².
+    pub a0: f64,
+    /// The toe the body rocks about (see `eom::side_of`).
+    pub side: f64,
+}
+
+impl Start<'_> {
+    /// `theta''` at `(t, y)` on the step's side, rad/s² (`hint`: the warm
+    /// start of the contact solve, see `Eom::accel`).
+    #[inline(always)]
+    pub fn accel(&self, t: f64, y: [f64; 2], hint: &mut f64) -> f64 {
+        self.eom.accel(t, y[0], y[1], self.side, hint)
+    }
+}
+
 /// One attempted step.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct StepOut {
@@ -85,17 +108,9 @@ pub(crate) trait Pair {
     const ERR_EXP: f64;
     /// Right-hand-side evaluations of an accepted step (FSAL counted once).
     const EVALS: u32;
-    #[allow(clippy::too_many_arguments)]
-    fn step(
-        eom: &Eom,
-        t: f64,
-        h: f64,
-        y0: [f64; 2],
-        a0: f64,
-        side: f64,
-        hint: &mut f64,
-        tol: &Tol,
-    ) -> StepOut;
+    /// A step of `h` from `s`; `hint` carries the contact solve's warm
+    /// start through the stages.
+    fn step(s: &Start, h: f64, hint: &mut f64, tol: &Tol) -> StepOut;
 }
 
 /// The stages of an explicit method of `S` stages (first same as last):
@@ -110,69 +125,61 @@ struct Stages<const S: usize> {
     th_last: f64,
 }
 
-/// Stage `i` of an explicit RK method: `y0 + h sum_j a_ij k_j` and its
-/// right-hand side, `(theta, omega, theta'')`.
+/// All stages of a step of `h` of the tableau `(c, a, b)` from `s`, and
+/// `f(y1)` at its end.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn stage<const S: usize>(
-    eom: &Eom,
-    t: f64,
-    h: f64,
-    y0: [f64; 2],
-    row: &[f64; S],
-    i: usize,
-    kw: &[f64; S],
-    ka: &[f64; S],
-    side: f64,
-    hint: &mut f64,
-) -> (f64, f64, f64) {
-    let mut sw = 0.0;
-    let mut sa = 0.0;
-    for j in 0..i {
-        sw += row[j] * kw[j];
-        sa += row[j] * ka[j];
-    }
-    let th = y0[0] + h * sw;
-    let om = y0[1] + h * sa;
-    (th, om, eom.accel(t, th, om, side, hint))
-}
-
-/// All stages of a step of the tableau `(c, a, b)` from `y0` (where
-/// `theta'' = a0`), and `f(y1)` at its end.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
 fn stages<const S: usize>(
-    eom: &Eom,
-    t: f64,
+    s: &Start,
     h: f64,
-    y0: [f64; 2],
-    a0: f64,
-    side: f64,
     hint: &mut f64,
     (c, a, b): (&[f64; S], &[[f64; S]], &[f64; S]),
 ) -> Stages<S> {
-    let mut kw = [0.0; S];
-    let mut ka = [0.0; S];
-    kw[0] = y0[1];
-    ka[0] = a0;
-    let mut th_last = y0[0];
+    let mut st = Stages {
+        kw: [0.0; S],
+        ka: [0.0; S],
+        y1: s.y0,
+        a1: s.a0,
+        th_last: s.y0[0],
+    };
+    st.kw[0] = s.y0[1];
+    st.ka[0] = s.a0;
     for i in 1..S {
-        let (th, w, acc) = stage(eom, t + c[i] * h, h, y0, &a[i], i, &kw, &ka, side, hint);
-        kw[i] = w;
-        ka[i] = acc;
-        th_last = th;
+        let y = st.combine(s.y0, h, &a[i], i);
+        st.kw[i] = y[1];
+        st.ka[i] = s.accel(s.t + c[i] * h, y, hint);
+        st.th_last = y[0];
     }
-    let (th1, w1, a1) = stage(eom, t + h, h, y0, b, S, &kw, &ka, side, hint);
-    Stages {
-        kw,
-        ka,
-        y1: [th1, w1],
-        a1,
-        th_last,
-    }
+    st.y1 = st.combine(s.y0, h, b, S);
+    st.a1 = s.accel(s.t + h, st.y1, hint);
+    st
 }
 
 impl<const S: usize> Stages<S> {
+    /// `y0 + h sum_j row_j k_j` over the first `i` stages: the state at
+    /// which stage `i` is evaluated.
+    #[inline(always)]
+    fn combine(&self, y0: [f64; 2], h: f64, row: &[f64; S], i: usize) -> [f64; 2] {
+        let mut sw = 0.0;
+        let mut sa = 0.0;
+        for ((r, w), a) in row[..i].iter().zip(&self.kw).zip(&self.ka) {
+            sw += r * w;
+            sa += r * a;
+        }
+        [y0[0] + h * sw, y0[1] + h * sa]
+    }
+
+    /// `init + sum_j e_j (kw_j, ka_j)`, summed in stage order: an error
+    /// estimate's combination of the stages.
+    #[inline(always)]
+    fn weighted(&self, init: [f64; 2], e: &[f64; S]) -> [f64; 2] {
+        let [mut w, mut a] = init;
+        for ((e, kw), ka) in e.iter().zip(&self.kw).zip(&self.ka) {
+            w += e * kw;
+            a += e * ka;
+        }
+        [w, a]
+    }
+
     /// The step's result with the scaled error `err`; `rho` from the last
     /// stage and the end, both at `c = 1` (Hairer's stiffness detection).
     fn out(&self, err: f64) -> StepOut {
@@ -219,16 +226,17 @@ const DP5_B: [f64; 6] = [
     -2187.0 / 6784.0,
     11.0 / 84.0,
 ];
-/// `b - b_hat` of the embedded 4th-order formula, the 7th weight on `f(y1)`.
-const DP5_E: [f64; 7] = [
+/// `b - b_hat` of the embedded 4th-order formula on the 6 stages...
+const DP5_E: [f64; 6] = [
     -71.0 / 57600.0,
     0.0,
     71.0 / 16695.0,
     -71.0 / 1920.0,
     17253.0 / 339200.0,
     -22.0 / 525.0,
-    1.0 / 40.0,
 ];
+/// ... and on `f(y1)`, the 7th stage (first same as last).
+const DP5_E_END: f64 = 1.0 / 40.0;
 
 impl Pair for Dp5 {
     const ORDER: u32 = 5;
@@ -236,24 +244,11 @@ impl Pair for Dp5 {
     const EVALS: u32 = 6;
 
     #[inline]
-    fn step(
-        eom: &Eom,
-        t: f64,
-        h: f64,
-        y0: [f64; 2],
-        a0: f64,
-        side: f64,
-        hint: &mut f64,
-        tol: &Tol,
-    ) -> StepOut {
-        let s = stages(eom, t, h, y0, a0, side, hint, (&DP5_C, &DP5_A, &DP5_B));
-        let mut ew = DP5_E[6] * s.y1[1];
-        let mut ea = DP5_E[6] * s.a1;
-        for ((e, w), a) in DP5_E[..6].iter().zip(&s.kw).zip(&s.ka) {
-            ew += e * w;
-            ea += e * a;
-        }
-        let sc = tol.scales(y0, s.y1);
+    fn step(start: &Start, h: f64, hint: &mut f64, tol: &Tol) -> StepOut {
+        let s = stages(start, h, hint, (&DP5_C, &DP5_A, &DP5_B));
+        let e_end = [DP5_E_END * s.y1[1], DP5_E_END * s.a1];
+        let [ew, ea] = s.weighted(e_end, &DP5_E);
+        let sc = tol.scales(start.y0, s.y1);
         let e0 = h * ew / sc[0];
         let e1 = h * ea / sc[1];
         s.out((0.5 * (e0 * e0 + e1 * e1)).sqrt())
@@ -388,26 +383,12 @@ impl Pair for Dop853 {
     const EVALS: u32 = 12;
 
     #[inline]
-    fn step(
-        eom: &Eom,
-        t: f64,
-        h: f64,
-        y0: [f64; 2],
-        a0: f64,
-        side: f64,
-        hint: &mut f64,
-        tol: &Tol,
-    ) -> StepOut {
+    fn step(start: &Start, h: f64, hint: &mut f64, tol: &Tol) -> StepOut {
         let tableau = (&DOP_C, &DOP_A[..N12], &DOP_A[N12]);
-        let s = stages(eom, t, h, y0, a0, side, hint, tableau);
-        let (mut e5w, mut e5a, mut e3w, mut e3a) = (0.0, 0.0, 0.0, 0.0);
-        for j in 0..N12 {
-            e5w += DOP_E5[j] * s.kw[j];
-            e5a += DOP_E5[j] * s.ka[j];
-            e3w += DOP_E3[j] * s.kw[j];
-            e3a += DOP_E3[j] * s.ka[j];
-        }
-        let sc = tol.scales(y0, s.y1);
+        let s = stages(start, h, hint, tableau);
+        let [e5w, e5a] = s.weighted([0.0; 2], &DOP_E5);
+        let [e3w, e3a] = s.weighted([0.0; 2], &DOP_E3);
+        let sc = tol.scales(start.y0, s.y1);
         let (e5w, e5a, e3w, e3a) = (e5w / sc[0], e5a / sc[1], e3w / sc[0], e3a / sc[1]);
         let n5 = e5w * e5w + e5a * e5a;
         let n3 = e3w * e3w + e3a * e3a;

@@ -4,7 +4,7 @@
 //! step is redone to end exactly there.
 
 use super::dense::{max_abs, Hermite, Hit};
-use super::eom::{side_of, Eom};
+use super::eom::side_of;
 use super::erk::{Pair, StepOut, Tol};
 use super::free::FreeRigid;
 use super::integrate::{Flow, StepCx, Stop, Trial};
@@ -171,7 +171,8 @@ impl StepCx<'_, '_> {
         hit: Hit,
         mut dt: f64,
     ) -> (f64, StepOut, EventStatus) {
-        let (eom, tol): (&Eom, &Tol) = (self.eom, self.tol);
+        let tol: &Tol = self.tol;
+        let start = self.start_at(tr.t, tr.y0);
         let target = self.level(hit);
         let h_max = tr.hh;
         let mut out = StepOut {
@@ -184,9 +185,7 @@ impl StepCx<'_, '_> {
         for _ in 0..4 {
             if dt > 0.0 {
                 let mut hh = self.hint;
-                out = stiffness::attempt::<P>(
-                    eom, tol, &tr.kind, tr.t, dt, tr.y0, self.a0, self.side, &mut hh, self.ev,
-                );
+                out = stiffness::attempt::<P>(&start, &tr.kind, dt, &mut hh, tol, self.ev);
                 self.ev.stats.steps += 1;
             }
             // relative to the size of the motion itself, not to the error

@@ -6,7 +6,7 @@
 use super::controller;
 use super::dense::{first_event, Hermite};
 use super::eom::{side_of, Eom};
-use super::erk::{Dop853, Dp5, Pair, StepOut, Tol};
+use super::erk::{Dop853, Dp5, Pair, Start, StepOut, Tol};
 use super::rodas::Jac;
 use super::stiffness::{self, Kind};
 use super::{Events, GroundInput, Limited, Method, Simulator, State};
@@ -230,16 +230,14 @@ impl<'c, 'm> StepCx<'c, 'm> {
         ev.stats.evals += 1;
         let mut h = st.h;
         if h.is_nan() || h <= 0.0 {
-            h = controller::initial_step(
+            let start = Start {
                 eom,
-                tol,
-                st.t,
-                [st.theta, st.omega],
+                t: st.t,
+                y0: [st.theta, st.omega],
                 a0,
                 side,
-                &mut hint,
-                P::ORDER,
-            );
+            };
+            h = controller::initial_step(&start, tol, &mut hint, P::ORDER);
             ev.stats.evals += 1;
         }
         if eom.rigid || !sim.stiff_mode {
@@ -328,18 +326,16 @@ impl<'c, 'm> StepCx<'c, 'm> {
         let t_new = if last { self.t_end } else { t + self.h };
         let hh = t_new - t;
         let kind = if self.st.stiff {
-            Kind::Rodas(self.stiff_jacobian(t, hh))
+            Kind::Rodas(self.stiff_jacobian(hh))
         } else {
             Kind::Explicit
         };
-        let y0 = [self.st.theta, self.st.omega];
+        let start = self.start();
         let mut hint = self.hint;
-        let out = stiffness::attempt::<P>(
-            self.eom, self.tol, &kind, t, hh, y0, self.a0, self.side, &mut hint, self.ev,
-        );
+        let out = stiffness::attempt::<P>(&start, &kind, hh, &mut hint, self.tol, self.ev);
         Trial {
             t,
-            y0,
+            y0: start.y0,
             t_new,
             hh,
             last,
@@ -355,34 +351,39 @@ impl<'c, 'm> StepCx<'c, 'm> {
     /// tolerance at the rocking scale, `rtol thetaOv`, is projected away
     /// (onto the linearised slow manifold), so that RODAS is not held to
     /// resolve it.
-    fn stiff_jacobian(&mut self, t: f64, hh: f64) -> Jac {
+    fn stiff_jacobian(&mut self, hh: f64) -> Jac {
         if let Some(j) = self.jac {
             return j;
         }
-        let (eom, tol) = (self.eom, self.tol);
-        let y0 = [self.st.theta, self.st.omega];
-        let mut j =
-            stiffness::jacobian(eom, tol, t, hh, y0, self.a0, self.side, self.hint, self.ev);
+        let tol = self.tol;
+        let start = self.start();
+        let mut j = stiffness::jacobian(&start, hh, self.hint, tol, self.ev);
         let negligible = tol.rtol * self.sim.model.theta_ov;
-        if let Some((th, om)) = stiffness::slow_state(&j, y0, self.a0, negligible) {
+        if let Some((th, om)) = stiffness::slow_state(&j, start.y0, start.a0, negligible) {
             self.st.theta = th;
             self.st.omega = om;
-            self.a0 = eom.accel(t, th, om, self.side, &mut self.hint);
+            self.a0 = start.accel(start.t, [th, om], &mut self.hint);
             self.ev.stats.evals += 1;
-            j = stiffness::jacobian(
-                eom,
-                tol,
-                t,
-                hh,
-                [th, om],
-                self.a0,
-                self.side,
-                self.hint,
-                self.ev,
-            );
+            j = stiffness::jacobian(&self.start(), hh, self.hint, tol, self.ev);
         }
         self.jac = Some(j);
         j
+    }
+
+    /// The step start at the state.
+    fn start(&self) -> Start<'c> {
+        self.start_at(self.st.t, [self.st.theta, self.st.omega])
+    }
+
+    /// The step start at `(t, y0)` with the context's `theta''` and side.
+    pub(super) fn start_at(&self, t: f64, y0: [f64; 2]) -> Start<'c> {
+        Start {
+            eom: self.eom,
+            t,
+            y0,
+            a0: self.a0,
+            side: self.side,
+        }
     }
 
     /// A rejected step: shorter by the controller, and cut just past a kink

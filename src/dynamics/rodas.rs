@@ -10,44 +10,60 @@
 //! exact: `a` is affine in the ground acceleration, which is linear in `t`).
 //! Each stage solves the 2x2 system `(I/(h gamma) - J) u = rhs` directly.
 
-use super::eom::Eom;
-use super::erk::{StepOut, Tol};
+use super::erk::{Start, StepOut, Tol};
 
 const GAMMA: f64 = 0.25;
-const C2: f64 = 0.386;
-const C3: f64 = 0.21;
-const C4: f64 = 0.63;
-const D1: f64 = 0.25;
-const D2: f64 = -0.1043;
-const D3: f64 = 0.1035;
-const D4: f64 = -0.0362;
+/// The stage times `c_i` of stages 1..5 (stage 6 at `c = 1` too).
+const NODES: [f64; 5] = [0.0, 0.386, 0.21, 0.63, 1.0];
+/// `gamma_i`, the weights of `df/dt` in stages 1..4 (0 in stages 5, 6).
+const D: [f64; 4] = [0.25, -0.1043, 0.1035, -0.0362];
 
-const A21: f64 = 1.544;
-const A31: f64 = 0.9466785280815826;
-const A32: f64 = 0.2557011698983284;
-const A41: f64 = 3.314825187068521;
-const A42: f64 = 2.896124015972201;
-const A43: f64 = 0.9986419139977817;
-const A51: f64 = 1.221224509226641;
-const A52: f64 = 6.019134481288629;
-const A53: f64 = 12.53708332932087;
-const A54: f64 = -0.687886036105895;
+/// `a_ij`: stage `i` is evaluated at `y0 + sum_j a_ij u_j`.
+const A: [[f64; 4]; 5] = [
+    [0.0; 4],
+    [1.544, 0.0, 0.0, 0.0],
+    [0.9466785280815826, 0.2557011698983284, 0.0, 0.0],
+    [
+        3.314825187068521,
+        2.896124015972201,
+        0.9986419139977817,
+        0.0,
+    ],
+    [
+        1.221224509226641,
+        6.019134481288629,
+        12.53708332932087,
+        -0.687886036105895,
+    ],
+];
 
-const C21: f64 = -5.6688;
-const C31: f64 = -2.430093356833875;
-const C32: f64 = -0.2063599157091915;
-const C41: f64 = -0.1073529058151375;
-const C42: f64 = -9.594562251023355;
-const C43: f64 = -20.47028614809616;
-const C51: f64 = 7.496443313967647;
-const C52: f64 = -10.24680431464352;
-const C53: f64 = -33.99990352819905;
-const C54: f64 = 11.7089089320616;
-const C61: f64 = 8.083246795921522;
-const C62: f64 = -7.981132988064893;
-const C63: f64 = -31.52159432874371;
-const C64: f64 = 16.31930543123136;
-const C65: f64 = -6.058818238834054;
+/// `c_ij`: stage `i` solves for `u_i` with `sum_j (c_ij / h) u_j` added.
+const C: [[f64; 5]; 6] = [
+    [0.0; 5],
+    [-5.6688, 0.0, 0.0, 0.0, 0.0],
+    [-2.430093356833875, -0.2063599157091915, 0.0, 0.0, 0.0],
+    [
+        -0.1073529058151375,
+        -9.594562251023355,
+        -20.47028614809616,
+        0.0,
+        0.0,
+    ],
+    [
+        7.496443313967647,
+        -10.24680431464352,
+        -33.99990352819905,
+        11.7089089320616,
+        0.0,
+    ],
+    [
+        8.083246795921522,
+        -7.981132988064893,
+        -31.52159432874371,
+        16.31930543123136,
+        -6.058818238834054,
+    ],
+];
 
 /// Order of the error estimate's leading term: `err ~ h^4`.
 pub(crate) const ERR_EXP: f64 = -1.0 / 4.0;
@@ -74,33 +90,23 @@ impl Jac {
     }
 }
 
-/// Differences for the Jacobian at `(t, y0)` where `theta'' = a0`, over a
-/// time scale `h`. `theta_scale` sets the increment of `theta`.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn jacobian(
-    eom: &Eom,
-    t: f64,
-    h: f64,
-    y0: [f64; 2],
-    a0: f64,
-    side: f64,
-    hint: &mut f64,
-    theta_scale: f64,
-    omega_scale: f64,
-) -> Jac {
+/// Differences for the Jacobian at the step start `s` over a time scale
+/// `h`; `scales` (rad, rad/s) set the increments of `theta` and `omega`;
+/// `hint` the warm start of the contact solves.
+pub(crate) fn jacobian(s: &Start, h: f64, mut hint: f64, scales: [f64; 2]) -> Jac {
+    let (t, y0, a0) = (s.t, s.y0, s.a0);
     let sq = f64::EPSILON.sqrt();
     // theta increment away from 0 (the side does not change)
-    let dth = sq * y0[0].abs().max(theta_scale);
-    let dth = if y0[0] < 0.0 || (y0[0] == 0.0 && side < 0.0) {
+    let dth = sq * y0[0].abs().max(scales[0]);
+    let dth = if y0[0] < 0.0 || (y0[0] == 0.0 && s.side < 0.0) {
         -dth
     } else {
         dth
     };
-    let mut hh = *hint;
-    let a_th = eom.accel(t, y0[0] + dth, y0[1], side, &mut hh);
-    let dom = sq * y0[1].abs().max(omega_scale);
-    let a_om = eom.accel(t, y0[0], y0[1] + dom, side, &mut hh);
-    let a_tt = eom.accel(t + h, y0[0], y0[1], side, &mut hh);
+    let a_th = s.accel(t, [y0[0] + dth, y0[1]], &mut hint);
+    let dom = sq * y0[1].abs().max(scales[1]);
+    let a_om = s.accel(t, [y0[0], y0[1] + dom], &mut hint);
+    let a_tt = s.accel(t + h, y0, &mut hint);
     Jac {
         a_theta: (a_th - a0) / dth,
         a_omega: (a_om - a0) / dom,
@@ -108,19 +114,24 @@ pub(crate) fn jacobian(
     }
 }
 
-/// One RODAS step from `(t, y0)`, `theta''(t, y0) = a0`, with Jacobian `j`.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn step(
-    eom: &Eom,
-    t: f64,
-    h: f64,
-    y0: [f64; 2],
-    a0: f64,
-    j: &Jac,
-    side: f64,
-    hint: &mut f64,
-    tol: &Tol,
-) -> StepOut {
+/// `sum_j k_j u_j` over the `u` given.
+#[inline(always)]
+fn comb(k: &[f64], u: &[[f64; 2]]) -> [f64; 2] {
+    let mut s = [0.0; 2];
+    for (k, u) in k.iter().zip(u) {
+        s[0] += k * u[0];
+        s[1] += k * u[1];
+    }
+    s
+}
+
+#[inline(always)]
+fn add(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] + b[0], a[1] + b[1]]
+}
+
+/// One RODAS step of `h` from `s` with Jacobian `j`.
+pub(crate) fn step(s: &Start, j: &Jac, h: f64, hint: &mut f64, tol: &Tol) -> StepOut {
     // E = I/(h gamma) - J = [[f, -1], [-a_theta, f - a_omega]]
     let f = 1.0 / (h * GAMMA);
     let e11 = f;
@@ -135,73 +146,36 @@ pub(crate) fn step(
         ]
     };
     let fx = j.a_t; // d/dt of (omega, theta'') = (0, a_t)
-    let rhs = |y: [f64; 2], tt: f64, hint: &mut f64| -> [f64; 2] {
-        [y[1], eom.accel(tt, y[0], y[1], side, hint)]
-    };
-    let comb = |c: &[(f64, [f64; 2])]| -> [f64; 2] {
-        let mut s = [0.0; 2];
-        for (k, u) in c {
-            s[0] += k * u[0];
-            s[1] += k * u[1];
-        }
-        s
-    };
-    let add = |a: [f64; 2], b: [f64; 2]| [a[0] + b[0], a[1] + b[1]];
     let hi = 1.0 / h;
+    // `sum_j (c_ij / h) u_j` of stage `i` over the stages before it
+    let c_sum = |i: usize, u: &[[f64; 2]]| -> [f64; 2] {
+        let k: [f64; 5] = C[i].map(|c| c * hi);
+        comb(&k[..i], u)
+    };
 
-    let u1 = solve([y0[1], a0 + h * D1 * fx]);
-
-    let y2 = add(y0, comb(&[(A21, u1)]));
-    let f2 = rhs(y2, t + C2 * h, hint);
-    let u2 = solve(add(f2, add(comb(&[(C21 * hi, u1)]), [0.0, h * D2 * fx])));
-
-    let y3 = add(y0, comb(&[(A31, u1), (A32, u2)]));
-    let f3 = rhs(y3, t + C3 * h, hint);
-    let u3 = solve(add(
-        f3,
-        add(comb(&[(C31 * hi, u1), (C32 * hi, u2)]), [0.0, h * D3 * fx]),
-    ));
-
-    let y4 = add(y0, comb(&[(A41, u1), (A42, u2), (A43, u3)]));
-    let f4 = rhs(y4, t + C4 * h, hint);
-    let u4 = solve(add(
-        f4,
-        add(
-            comb(&[(C41 * hi, u1), (C42 * hi, u2), (C43 * hi, u3)]),
-            [0.0, h * D4 * fx],
-        ),
-    ));
-
-    let y5 = add(y0, comb(&[(A51, u1), (A52, u2), (A53, u3), (A54, u4)]));
-    let f5 = rhs(y5, t + h, hint);
-    let u5 = solve(add(
-        f5,
-        comb(&[
-            (C51 * hi, u1),
-            (C52 * hi, u2),
-            (C53 * hi, u3),
-            (C54 * hi, u4),
-        ]),
-    ));
-
+    let mut u = [[0.0; 2]; 6];
+    u[0] = solve([s.y0[1], s.a0 + h * D[0] * fx]);
+    let mut y = s.y0;
+    for i in 1..5 {
+        y = add(s.y0, comb(&A[i][..i], &u[..i]));
+        let fi = [y[1], s.accel(s.t + NODES[i] * h, y, hint)];
+        let g = c_sum(i, &u[..i]);
+        let g = if i < D.len() {
+            add(g, [0.0, h * D[i] * fx])
+        } else {
+            g
+        };
+        u[i] = solve(add(fi, g));
+    }
     // embedded (order 3) solution, then the last stage is the correction
-    let y6 = add(y5, u5);
-    let f6 = rhs(y6, t + h, hint);
-    let u6 = solve(add(
-        f6,
-        comb(&[
-            (C61 * hi, u1),
-            (C62 * hi, u2),
-            (C63 * hi, u3),
-            (C64 * hi, u4),
-            (C65 * hi, u5),
-        ]),
-    ));
-    let y1 = add(y6, u6);
-    let a1 = eom.accel(t + h, y1[0], y1[1], side, hint);
-    let sc = tol.scales(y0, y1);
-    let e0 = u6[0] / sc[0];
-    let e1 = u6[1] / sc[1];
+    let y6 = add(y, u[4]);
+    let f6 = [y6[1], s.accel(s.t + h, y6, hint)];
+    u[5] = solve(add(f6, c_sum(5, &u[..5])));
+    let y1 = add(y6, u[5]);
+    let a1 = s.accel(s.t + h, y1, hint);
+    let sc = tol.scales(s.y0, y1);
+    let e0 = u[5][0] / sc[0];
+    let e1 = u[5][1] / sc[1];
     StepOut {
         y: y1,
         accel: a1,

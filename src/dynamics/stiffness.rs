@@ -2,8 +2,7 @@
 //! pair while it is held by accuracy, RODAS with a projection on the slow
 //! manifold while an explicit method would be held by stability.
 
-use super::eom::Eom;
-use super::erk::{Pair, StepOut, Tol};
+use super::erk::{Pair, Start, StepOut, Tol};
 use super::rodas::{self, Jac};
 use super::Events;
 
@@ -54,25 +53,20 @@ pub(super) fn switch(stiff: &mut bool, switch_count: &mut u32, hh: f64, rho: f64
     }
 }
 
-/// One step attempt with the current kind of method.
-#[allow(clippy::too_many_arguments)]
+/// One step attempt of `h` from `s` with the current kind of method.
 #[inline]
 pub(super) fn attempt<P: Pair>(
-    eom: &Eom,
-    tol: &Tol,
+    s: &Start,
     kind: &Kind,
-    t: f64,
     h: f64,
-    y0: [f64; 2],
-    a0: f64,
-    side: f64,
     hint: &mut f64,
+    tol: &Tol,
     ev: &mut Events,
 ) -> StepOut {
     match kind {
         Kind::Explicit => {
             ev.stats.evals += P::EVALS;
-            P::step(eom, t, h, y0, a0, side, hint, tol)
+            P::step(s, h, hint, tol)
         }
         Kind::Rodas(j) => {
             ev.stats.evals += rodas::EVALS - 3;
@@ -84,37 +78,16 @@ pub(super) fn attempt<P: Pair>(
                 atol_omega: tol.atol_omega.max(tol.atol_theta * j.rho()),
                 ..*tol
             };
-            rodas::step(eom, t, h, y0, a0, j, side, hint, &stiff_tol)
+            rodas::step(s, j, h, hint, &stiff_tol)
         }
     }
 }
 
-/// The Jacobian for RODAS at the start of a step (three evaluations).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn jacobian(
-    eom: &Eom,
-    tol: &Tol,
-    t: f64,
-    h: f64,
-    y0: [f64; 2],
-    a0: f64,
-    side: f64,
-    hint: f64,
-    ev: &mut Events,
-) -> Jac {
-    let mut jh = hint;
+/// The Jacobian for RODAS at the step start `s` (three evaluations).
+pub(super) fn jacobian(s: &Start, h: f64, hint: f64, tol: &Tol, ev: &mut Events) -> Jac {
     ev.stats.evals += 3;
-    rodas::jacobian(
-        eom,
-        t,
-        h,
-        y0,
-        a0,
-        side,
-        &mut jh,
-        tol.atol_theta / tol.rtol,
-        tol.atol_omega / tol.rtol,
-    )
+    let scales = [tol.atol_theta / tol.rtol, tol.atol_omega / tol.rtol];
+    rodas::jacobian(s, h, hint, scales)
 }
 
 /// The state on the linearised slow manifold near `y0` when the fast

@@ -1,10 +1,13 @@
 //! Support for the physics tests, written independently of the code under
 //! test: quadratures (tanh-sinh for integrable endpoint singularities,
 //! Gauss-Legendre), model builders, the non-smooth points of the restoring
-//! moment and the potential energy.
+//! moment and the potential energy; the bases and their width ([`base`]),
+//! exact rigid rocking ([`exact`]), a plain RK4 ([`rk4`]).
 #![allow(dead_code)]
 
+pub mod base;
 pub mod exact;
+pub mod rk4;
 
 use rocking::model::{LawKind, MassKind, ShapeKind};
 use rocking::{Model, Params};
@@ -149,18 +152,14 @@ pub fn rigid_block(b: f64, h: f64) -> Model {
 /// plastic edge `xp = a - fm / (kn phi)` passes a corner of the width
 /// function (hollow sections). Found by bisection on the contact solve.
 pub fn moment_breaks(m: &Model, phi: f64) -> Vec<f64> {
-    use rocking::{Law, Shape};
+    use rocking::Law;
     let mut out = Vec::new();
     for l in [m.interface.theta_jo(), m.interface.theta_c()] {
         if l > 0.0 && l < phi {
             out.push(l);
         }
     }
-    let corners: Vec<f64> = match *m.interface.shape() {
-        Shape::HollowRectangle { b, t, .. } => vec![t, b - t],
-        Shape::HollowCircle { ro, ri } => vec![ro - ri, ro + ri],
-        _ => vec![],
-    };
+    let corners = base::width_breaks(m.interface.shape());
     let (kn, fm) = match m.interface.law() {
         Law::Elastic { kn } => (kn, f64::INFINITY),
         Law::ElastoPlastic { kn, fm } => (kn, fm),
