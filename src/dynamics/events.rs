@@ -229,8 +229,13 @@ impl StepCx<'_, '_> {
     pub(super) fn note_opening(&mut self, p: &Hermite, tau_end: f64) {
         let theta_jo = self.sim.model.interface.theta_jo();
         // the end first: the turning-point search only while the joint has
-        // not opened in this half-cycle
-        if !self.st.opened && (p.theta(tau_end).abs() > theta_jo || max_abs(p, tau_end) > theta_jo)
+        // not opened in this half-cycle, and only where the step's bounds
+        // reach thetaJo
+        let (lo, hi) = p.bounds();
+        let reaches = lo.abs().max(hi.abs()) > theta_jo;
+        if !self.st.opened
+            && reaches
+            && (p.theta(tau_end).abs() > theta_jo || max_abs(p, tau_end) > theta_jo)
         {
             self.st.opened = true;
         }
