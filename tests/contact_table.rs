@@ -120,7 +120,7 @@ fn table_agrees_with_the_solve_on_dense_grids() {
             let phi0 = it.theta_jo().min(it.theta_c());
             let octaves = (hi / lo).log2();
             assert!(
-                lo == phi0 && hi >= PHI_MAX && hi < 2.0 * PHI_MAX && octaves == octaves.round(),
+                lo == phi0 && (PHI_MAX..2.0 * PHI_MAX).contains(&hi) && octaves == octaves.round(),
                 "{name} {law:?}: range {lo}..{hi}"
             );
             let (pieces, open) = table.pieces();
@@ -239,12 +239,12 @@ fn the_integrator_takes_its_contacts_from_the_table_within_1e12_of_the_solve() {
 }
 
 #[test]
-fn the_table_moves_the_motion_less_than_the_integrators_own_error() {
-    // The same pulse with contacts from the table and all solved, at rtol
-    // 1e-9: the runs differ by what a change of 1e-13 in af becomes (the
-    // step sizes chosen react to it). That must stay below the error the
-    // integrator makes anyway: the solved run's distance from one at rtol
-    // 1e-12.
+fn the_table_leaves_the_integrator_as_accurate_as_the_solve() {
+    // The same pulse at rtol 1e-9 with contacts from the table and all
+    // solved, each against a run at rtol 1e-12 (solved). A change of 1e-13
+    // in af changes the steps the controller picks, so the two runs differ
+    // at the level of the integrator's own error; the table must not make
+    // that error larger (a table off by 1e-8 in af would, by orders).
     let max_diff = |a: &[State], b: &[State]| {
         assert_eq!(a.len(), b.len(), "overturning differs");
         let d = a.iter().zip(b).map(|(x, y)| (x.theta - y.theta).abs());
@@ -259,16 +259,17 @@ fn the_table_moves_the_motion_less_than_the_integrators_own_error() {
         let mut reference = Simulator::new(model, 1e-12);
         reference.set_contact_table(false);
         let (a, b, r) = (run(&tabled, 2.5), run(&solved, 2.5), run(&reference, 2.5));
-        let (table_effect, own_error) = (max_diff(&a, &b), max_diff(&b, &r));
+        let (with_table, without) = (max_diff(&a, &r), max_diff(&b, &r));
         let ov = model.theta_ov;
         println!(
-            "kn {kn:e} fm {fm:e}: table {:.1e} thetaOv, integrator at 1e-9 {:.1e} thetaOv",
-            table_effect / ov,
-            own_error / ov
+            "kn {kn:e} fm {fm:e}: error at rtol 1e-9 with the table {:.1e} thetaOv, without {:.1e}, between them {:.1e}",
+            with_table / ov,
+            without / ov,
+            max_diff(&a, &b) / ov
         );
         assert!(
-            table_effect <= own_error,
-            "kn {kn:e} fm {fm:e}: {table_effect:e} rad vs {own_error:e}"
+            with_table <= 3.0 * without,
+            "kn {kn:e} fm {fm:e}: {with_table:e} rad vs {without:e}"
         );
         assert_eq!(a.last().unwrap().impacts, b.last().unwrap().impacts);
     }

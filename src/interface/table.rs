@@ -9,10 +9,12 @@
 //! rectangle's flange edge, a hollow circle's inner edge) the four are
 //! analytic in `phi`, except that a circle's chord has a square-root end, so
 //! that beside those rotations they are analytic in `sqrt(phi - phi_k)`.
-//! Each interval is therefore cut in two, and each half fitted by a
-//! Chebyshev series in `s`, `phi = end + L s²` (`s` in `[0, 1]`), from its
-//! outer end; pieces span at most a factor 2 in `phi` (for a stiff interface
-//! `a` goes as `phi^(-1/2)` over decades). Every piece is checked against
+//! The rotations are cut at those, and at every octave from the first
+//! iterative regime (for a stiff interface `a` goes as `phi^(-1/2)` over
+//! decades); each interval is cut in two, and each half fitted by a
+//! Chebyshev series in `s` (in `[0, 1]`) from its outer end: `phi = end +
+//! L s²` when that end is one of the rotations above (the square-root end
+//! becomes smooth in `s`), `phi = end + L s` otherwise (an octave). Every piece is checked against
 //! the solver between its nodes and halved until the four agree to
 //! `FIT_RTOL`; a piece that does not after `MAX_DEPTH` halvings is left to
 //! the solver (`contact` returns `None` there).
@@ -46,10 +48,12 @@ const MAX_DEPTH: u32 = 8;
 struct Piece {
     lo: f64,
     hi: f64,
-    /// The end the square-root map starts from, and the reciprocal of the
-    /// signed length `len`: `phi = end + len s²`.
+    /// The end the map starts from, and the reciprocal of the signed
+    /// length `len`: `phi = end + len s²` beside a rotation where the
+    /// resultants have a square-root end (`sqrt`), else `phi = end + len s`.
     end: f64,
     inv_len: f64,
+    sqrt: bool,
     /// Chebyshev coefficients of `[af, af']` and of `[a, a']`, lowest
     /// first, each cut after the last term that matters (`truncate`);
     /// empty: the solver answers on this piece.
@@ -61,7 +65,8 @@ impl Piece {
     /// The Chebyshev variable `x = 2 s - 1` at `phi`.
     #[inline(always)]
     fn x(&self, phi: f64) -> f64 {
-        2.0 * ((phi - self.end) * self.inv_len).clamp(0.0, 1.0).sqrt() - 1.0
+        let u = ((phi - self.end) * self.inv_len).clamp(0.0, 1.0);
+        2.0 * if self.sqrt { u.sqrt() } else { u } - 1.0
     }
 
     /// Clenshaw's sum of `coef` at `x`, with `c_k - b_{k+2}` taken off
@@ -137,14 +142,14 @@ fn truncate(coef: &[[f64; 4]], pair: usize, tol: [f64; 2]) -> Vec<[f64; 2]> {
 
 /// Chebyshev fit of the solver on `[lo, hi]` from `end`, or `None` when it
 /// misses `FIT_RTOL` between the nodes.
-fn fit(it: &Interface, lo: f64, hi: f64, end: f64) -> Option<Piece> {
+fn fit(it: &Interface, lo: f64, hi: f64, end: f64, sqrt: bool) -> Option<Piece> {
     let n = DEGREE;
     let len = if end == lo { hi - lo } else { lo - hi };
     let angle = |k: usize, j: f64| std::f64::consts::PI * k as f64 * j / n as f64;
     let vals: Vec<[f64; 4]> = (0..n)
         .map(|j| {
             let s = 0.5 * (angle(1, j as f64 + 0.5).cos() + 1.0);
-            solved(it, end + len * s * s)
+            solved(it, end + len * if sqrt { s * s } else { s })
         })
         .collect();
     let coef: Vec<[f64; 4]> = (0..n)
@@ -174,6 +179,7 @@ fn fit(it: &Interface, lo: f64, hi: f64, end: f64) -> Option<Piece> {
         hi,
         end,
         inv_len: 1.0 / len,
+        sqrt,
         af: truncate(&coef, 0, [cut[0], cut[1]]),
         a: truncate(&coef, 2, [cut[2], cut[3]]),
     };
@@ -181,7 +187,7 @@ fn fit(it: &Interface, lo: f64, hi: f64, end: f64) -> Option<Piece> {
     // derivatives differ there)
     let ok = (1..n).all(|j| {
         let s = 0.5 * (angle(1, j as f64).cos() + 1.0);
-        let phi = end + len * s * s;
+        let phi = end + len * if sqrt { s * s } else { s };
         let (t, r) = (piece.at(phi), solved(it, phi));
         (0..4).all(|q| (t[q] - r[q]).abs() <= FIT_RTOL[q] * r[q].abs().max(scale[q]))
     });
@@ -262,15 +268,17 @@ impl ContactTable {
         let mut cuts: Vec<f64> = std::iter::successors(Some(phi0), |&p| Some(2.0 * p))
             .take_while(|&p| p <= top)
             .collect();
-        cuts.extend([jo, c].into_iter().filter(|&x| x > phi0 && x < top));
+        // where the resultants have a square-root end or a kink
+        let mut singular = vec![jo, c];
         let above = |x: f64| x * (1.0 + 1e-12);
         for edge in width_kinks(it.shape()) {
-            cuts.extend(crossing(|p| it.contact(p).a, edge, above(jo), PHI_CAP));
+            singular.extend(crossing(|p| it.contact(p).a, edge, above(jo), PHI_CAP));
             if fm.is_finite() && above(c) < PHI_CAP {
                 let xp = |p: f64| it.contact(p).a - fm / (kn * p);
-                cuts.extend(crossing(xp, edge, above(c), PHI_CAP));
+                singular.extend(crossing(xp, edge, above(c), PHI_CAP));
             }
         }
+        cuts.extend(singular.iter().filter(|&&x| x > phi0));
         cuts.retain(|&x| x < top);
         cuts.push(top);
         cuts.sort_by(f64::total_cmp);
@@ -280,8 +288,9 @@ impl ContactTable {
             let (lo, hi) = (w[0], w[1]);
             let mid = 0.5 * (lo + hi);
             // the halves from the interval's ends (kinks or not)
-            Self::cover(it, lo, mid, lo, 0, &mut pieces);
-            Self::cover(it, mid, hi, hi, 0, &mut pieces);
+            let singular = |x: f64| singular.contains(&x);
+            Self::cover(it, lo, mid, lo, singular(lo), 0, &mut pieces);
+            Self::cover(it, mid, hi, hi, singular(hi), 0, &mut pieces);
         }
         if pieces.is_empty() {
             return None;
@@ -312,8 +321,16 @@ impl ContactTable {
 
     /// Fits `[lo, hi]` from `end`; where that misses, each half from its
     /// outer end (so the half beside `end` keeps it), to `MAX_DEPTH`.
-    fn cover(it: &Interface, lo: f64, hi: f64, end: f64, depth: u32, out: &mut Vec<Piece>) {
-        if let Some(p) = fit(it, lo, hi, end) {
+    fn cover(
+        it: &Interface,
+        lo: f64,
+        hi: f64,
+        end: f64,
+        sqrt: bool,
+        depth: u32,
+        out: &mut Vec<Piece>,
+    ) {
+        if let Some(p) = fit(it, lo, hi, end, sqrt) {
             out.push(p);
         } else if depth >= MAX_DEPTH {
             out.push(Piece {
@@ -321,13 +338,16 @@ impl ContactTable {
                 hi,
                 end: lo,
                 inv_len: 1.0 / (hi - lo),
+                sqrt: false,
                 af: Vec::new(),
                 a: Vec::new(),
             });
         } else {
             let mid = 0.5 * (lo + hi);
-            Self::cover(it, lo, mid, lo, depth + 1, out);
-            Self::cover(it, mid, hi, hi, depth + 1, out);
+            // the half beside `end` keeps its map
+            let (at_lo, at_hi) = (sqrt && end == lo, sqrt && end == hi);
+            Self::cover(it, lo, mid, lo, at_lo, depth + 1, out);
+            Self::cover(it, mid, hi, hi, at_hi, depth + 1, out);
         }
     }
 
