@@ -440,7 +440,7 @@ fn fmu_state_restores_the_toe_and_the_run_repeats_bit_for_bit() {
             trace.push(x[0]);
         }
     }
-    let (s, t_s, x_s) = saved.unwrap();
+    let (mut s, t_s, x_s) = saved.unwrap();
     assert_eq!(me.0.set_state(s), fmi2OK);
     let (mut t, mut x) = (t_s, x_s);
     assert_eq!(me.x(), x);
@@ -466,7 +466,7 @@ fn fmu_state_restores_the_toe_and_the_run_repeats_bit_for_bit() {
         .iter()
         .zip(&again)
         .all(|(a, b)| a.to_bits() == b.to_bits()));
-    me.0.free_state(s);
+    me.0.free_state(&mut s);
 }
 
 #[test]
@@ -478,20 +478,20 @@ fn a_serialized_state_restores_only_into_its_own_fmu_type() {
             fmi2DeSerializeFMUstate(h.c, buf.as_ptr() as *const fmi2Byte, buf.len(), &mut s)
         };
         if !s.is_null() {
-            assert_eq!(h.free_state(s), fmi2OK);
+            assert_eq!(h.free_state(&mut s), fmi2OK);
         }
         st
     };
     let me = Me::new(false);
     me.0.init();
-    let s = me.0.get_state();
+    let mut s = me.0.get_state();
     let me_buf = me.0.serialize(s);
-    me.0.free_state(s);
+    me.0.free_state(&mut s);
     let cs = Host::new();
     cs.init();
-    let s = cs.get_state();
+    let mut s = cs.get_state();
     let cs_buf = cs.serialize(s);
-    cs.free_state(s);
+    cs.free_state(&mut s);
     // eventMode into a co-simulation instance, stepComplete into an ME one
     assert_eq!(deserialize(&cs, &me_buf), fmi2Error);
     let me2 = Me::new(false);
