@@ -66,6 +66,31 @@ pub fn vr_of<S: Slave>(name: &str) -> u32 {
         .vr
 }
 
+/// `fmi2Instantiate` of `S` with no callbacks (NULL) and `name`, `guid`
+/// NULL where `None`, for the tests of refused instantiations: the
+/// component, NULL if refused (else the caller frees it).
+pub fn bare_instance<S: Slave>(
+    name: Option<&str>,
+    fmu_type: fmi2Type,
+    guid: Option<&str>,
+) -> fmi2Component {
+    let name = name.map(|n| CString::new(n).unwrap());
+    let guid = guid.map(|g| CString::new(g).unwrap());
+    let or_null = |s: &Option<CString>| s.as_ref().map_or(ptr::null(), |s| s.as_ptr());
+    // SAFETY: valid strings or NULL; NULL callbacks are allowed.
+    unsafe {
+        ffi::instantiate::<S>(
+            or_null(&name),
+            fmu_type,
+            or_null(&guid),
+            ptr::null(),
+            ptr::null(),
+            fmi2False,
+            fmi2False,
+        )
+    }
+}
+
 impl<S: Slave> Host<S> {
     /// An instance as [`Options::default`] says.
     pub fn new() -> Self {

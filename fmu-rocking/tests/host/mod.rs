@@ -22,3 +22,8 @@ pub type Host = fmi2_export::test_host::Host<fmu_rocking::RockingSlave>;
 pub fn vr_of(name: &str) -> u32 {
     fmi2_export::test_host::vr_of::<fmu_rocking::RockingSlave>(name)
 }
+
+/// `fmi2Instantiate` with no callbacks (see `test_host::bare_instance`).
+pub fn bare_instance(name: Option<&str>, fmu_type: fmi2Type, guid: Option<&str>) -> fmi2Component {
+    fmi2_export::test_host::bare_instance::<fmu_rocking::RockingSlave>(name, fmu_type, guid)
+}
