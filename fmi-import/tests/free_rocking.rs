@@ -18,7 +18,6 @@
 #[path = "../../fmu-rocking/tests/packaged/mod.rs"]
 mod packaged;
 
-use std::path::{Path, PathBuf};
 use std::sync::{Mutex, OnceLock};
 
 use fmi::fmi2::import::Fmi2Import;
