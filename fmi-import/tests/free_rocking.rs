@@ -15,7 +15,9 @@
 //! The test packages the FMU first (`cargo xtask fmu` in the repository,
 //! a no-op when it is up to date).
 
-use std::path::{Path, PathBuf};
+#[path = "../../fmu-rocking/tests/packaged/mod.rs"]
+mod packaged;
+
 use std::sync::{Mutex, OnceLock};
 
 use fmi::fmi2::import::Fmi2Import;
@@ -36,32 +38,6 @@ const RTOL: f64 = 1e-9;
 /// that the law is rigid on the outputs (`af = 0` throughout).
 const INTERFACE_RIGID: i32 = 1;
 
-/// Packages the FMU (`cargo xtask fmu` in the repository, once per test
-/// process) and returns the archive's path.
-fn fmu_path() -> &'static Path {
-    static PATH: OnceLock<PathBuf> = OnceLock::new();
-    PATH.get_or_init(|| {
-        let root = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .parent()
-            .expect("fmi-import/ lies in the repository")
-            .to_path_buf();
-        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-        let status = std::process::Command::new(cargo)
-            .current_dir(&root)
-            .args(["xtask", "fmu"])
-            .status()
-            .expect("run cargo xtask fmu");
-        assert!(status.success(), "cargo xtask fmu failed");
-        let target = std::env::var_os("CARGO_TARGET_DIR")
-            .map(PathBuf::from)
-            .map(|p| if p.is_absolute() { p } else { root.join(p) })
-            .unwrap_or_else(|| root.join("target"));
-        let p = target.join("fmu").join("RockingBlock.fmu");
-        assert!(p.is_file(), "{} not found", p.display());
-        p
-    })
-}
-
 /// Imports the FMU: the crate extracts it into a temporary directory that
 /// lives as long as the import. Installs the capturing logger on first use.
 fn import() -> Fmi2Import {
@@ -70,7 +46,7 @@ fn import() -> Fmi2Import {
         log::set_logger(&LOG).expect("one logger");
         log::set_max_level(log::LevelFilter::Trace);
     });
-    fmi::import::from_path(fmu_path()).expect("the fmi crate imports the FMU")
+    fmi::import::from_path(packaged::rocking_block_fmu()).expect("the fmi crate imports the FMU")
 }
 
 /// The FMU's messages as the `fmi` crate delivers them: its C logger

@@ -7,7 +7,7 @@ use std::ptr;
 
 use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
 use fmi2_export::model_description::*;
-use fmi2_export::test_host::{self, logged};
+use fmi2_export::test_host::Host;
 use fmi2_export::types::*;
 use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Values};
 
@@ -184,22 +184,22 @@ impl Slave for Mock {
 
 fmi2_export::export_fmi2!(Mock);
 
-fn instantiate() -> fmi2Component {
-    test_host::instantiate::<Mock>("mock")
+fn instantiate() -> Host<Mock> {
+    Host::named("mock")
 }
 
 #[test]
 fn a_panicking_model_is_an_error_and_the_state_is_kept() {
-    let c = instantiate();
+    let host = instantiate();
+    let c = host.c;
     unsafe {
         assert_eq!(fmi2EnterInitializationMode(c), fmi2OK);
         assert_eq!(fmi2ExitInitializationMode(c), fmi2OK);
         let u = 13.0;
         assert_eq!(fmi2SetReal(c, &1, 1, &u), fmi2OK);
         assert_eq!(fmi2DoStep(c, 0.0, 0.1, 1), fmi2Error);
-        assert!(logged(
-            "internal error in the model during fmi2DoStep: the model exploded at u = 13"
-        ));
+        assert!(host
+            .logged("internal error in the model during fmi2DoStep: the model exploded at u = 13"));
         // x was corrupted inside the model, then restored
         let mut x = 0.0;
         assert_eq!(fmi2GetReal(c, &2, 1, &mut x), fmi2OK);
@@ -212,26 +212,26 @@ fn a_panicking_model_is_an_error_and_the_state_is_kept() {
         let u = -13.0;
         assert_eq!(fmi2SetReal(c, &1, 1, &u), fmi2OK);
         assert_eq!(fmi2GetReal(c, &2, 1, &mut x), fmi2Error);
-        assert!(logged("get_real exploded"));
-        fmi2FreeInstance(c);
+        assert!(host.logged("get_real exploded"));
     }
 }
 
 #[test]
 fn invalid_parameters_and_null_pointers() {
-    let c = instantiate();
+    let host = instantiate();
+    let c = host.c;
     unsafe {
         let k = -1.0;
         assert_eq!(fmi2SetReal(c, &0, 1, &k), fmi2OK);
         assert_eq!(fmi2EnterInitializationMode(c), fmi2OK);
         assert_eq!(fmi2ExitInitializationMode(c), fmi2Error);
-        assert!(logged("k = -1: must be >= 0"));
+        assert!(host.logged("k = -1: must be >= 0"));
         assert_eq!(fmi2Reset(c), fmi2OK);
         assert_eq!(fmi2SetReal(c, ptr::null(), 1, &k), fmi2Error);
-        assert!(logged("vr is NULL"));
+        assert!(host.logged("vr is NULL"));
         assert_eq!(fmi2Reset(c), fmi2OK);
         assert_eq!(fmi2GetFMUstate(c, ptr::null_mut()), fmi2Error);
-        fmi2FreeInstance(c);
+        host.free();
         fmi2FreeInstance(ptr::null_mut()); // harmless
     }
 }

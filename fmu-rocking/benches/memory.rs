@@ -14,12 +14,12 @@
 //! cargo bench -p fmu-rocking --bench memory [-- STEPS]
 //! ```
 
-#[path = "../tests/chost/mod.rs"]
-mod chost;
+#[path = "../tests/host/mod.rs"]
+mod host;
 
 use std::time::Instant;
 
-use chost::*;
+use host::*;
 
 const CYCLES: usize = 10_000;
 const MARKS: [usize; 5] = [1_000, 2_000, 5_000, 10_000, usize::MAX];
@@ -80,7 +80,7 @@ fn main() {
 
     cycles(
         "## 10 000 bare fmi2Instantiate / fmi2FreeInstance cycles",
-        |_| drop(Fmu::new("bare", false)),
+        |_| drop(long_run_host("bare", false)),
     );
 
     let rigid = rigid_case(1.0, 2.0);
@@ -101,8 +101,8 @@ fn main() {
         "steps",
         "simulated time s | impacts | steps ending in a crushing regime | max abs theta rad | µs per step (since the row above)",
     );
-    let fmu = Fmu::new("record", false);
-    fmu.init(&case);
+    let fmu = long_run_host("record", false);
+    fmu.init_case(&case);
     row("0".into(), mem(), "0 | 0 | 0 | 0 | ".into());
     let marks: Vec<usize> = [10_000, 100_000, 200_000, 500_000, 1_000_000]
         .into_iter()
@@ -122,7 +122,7 @@ fn main() {
             let mut st = fmu.get_state();
             let b = fmu.serialize(st);
             assert!(!b.is_empty());
-            fmu.free_state(&mut st);
+            fmu.check("fmi2FreeFMUstate", fmu.free_state(&mut st));
         }
         if n == steps / 10 {
             at_10pct = mem();

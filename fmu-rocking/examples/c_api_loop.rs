@@ -15,17 +15,16 @@
 //! cargo run --release -p fmu-rocking --example c_api_loop [-- ROUNDS [STEPS]]
 //! ```
 
-#[path = "../tests/chost/mod.rs"]
-mod chost;
+#[path = "../tests/host/mod.rs"]
+mod host;
 
 use std::ffi::CString;
 use std::ptr;
 use std::time::Instant;
 
-use chost::*;
-use fmi2_export::types::*;
 use fmu_rocking::description::vr;
 use fmu_rocking::*;
+use host::*;
 
 const ALL_CATEGORIES: [&str; 4] = ["logEvents", "logStatusWarning", "logStatusError", "logAll"];
 
@@ -36,14 +35,15 @@ fn bits(samples: &[Sample]) -> Vec<[u64; 12]> {
 
 /// Runs `steps` steps from step `from`; returns the samples (fewer if it
 /// overturned) and whether it overturned.
-fn run_from(fmu: &Fmu, case: &Case, from: usize, steps: usize) -> (Vec<Sample>, bool) {
+fn run_from(fmu: &Host, case: &Case, from: usize, steps: usize) -> (Vec<Sample>, bool) {
     let mut out = Vec::with_capacity(steps);
     for k in from..from + steps {
         let (a, d) = case.input(k);
         let s = fmu.step(k as f64 * case.h, case.h, a, d);
         if s == fmi2Discard {
-            assert!(
+            assert_eq!(
                 fmu.terminated(),
+                (fmi2OK, true),
                 "{}: discard without termination",
                 case.name
             );
@@ -64,13 +64,19 @@ struct Summary {
 
 /// One instance through its whole life on `case`.
 fn exercise(case: &Case, round: usize, steps: usize) -> Summary {
-    let fmu = Fmu::new(&format!("{} #{round}", case.name), true);
+    let fmu = long_run_host(&format!("{} #{round}", case.name), true);
     if round.is_multiple_of(2) {
-        fmu.debug_logging(true, &ALL_CATEGORIES);
+        fmu.check(
+            "fmi2SetDebugLogging",
+            fmu.debug_logging(true, &ALL_CATEGORIES),
+        );
     } else {
-        fmu.debug_logging(true, &["logEvents"]);
+        fmu.check(
+            "fmi2SetDebugLogging",
+            fmu.debug_logging(true, &["logEvents"]),
+        );
     }
-    fmu.init(case);
+    fmu.init_case(case);
     // the state is saved at 1.5 s at the latest (before the overturning cases tip over)
     let half = (steps / 2).min(150);
 
@@ -83,8 +89,8 @@ fn exercise(case: &Case, round: usize, steps: usize) -> Summary {
     // second half, three times: straight on, from the saved state, from the
     // deserialized one
     let (a, over_a) = run_from(&fmu, case, half, steps - half);
-    let t_over = over_a.then(|| fmu.last_successful_time());
-    fmu.set_state(saved);
+    let t_over = over_a.then(|| fmu.last_successful_time().1);
+    fmu.check("fmi2SetFMUstate", fmu.set_state(saved));
     let (b, over_b) = run_from(&fmu, case, half, steps - half);
     assert_eq!(
         bits(&a),
@@ -94,7 +100,7 @@ fn exercise(case: &Case, round: usize, steps: usize) -> Summary {
     );
     assert_eq!(over_a, over_b);
     let restored = fmu.deserialize(&bytes);
-    fmu.set_state(restored);
+    fmu.check("fmi2SetFMUstate", fmu.set_state(restored));
     let (c, over_c) = run_from(&fmu, case, half, steps - half);
     assert_eq!(
         bits(&a),
@@ -105,21 +111,21 @@ fn exercise(case: &Case, round: usize, steps: usize) -> Summary {
     assert_eq!(over_a, over_c);
     if over_c {
         assert_eq!(
-            fmu.last_successful_time().to_bits(),
+            fmu.last_successful_time().1.to_bits(),
             t_over.unwrap().to_bits()
         );
     }
 
     // overwrite the saved state with the end state, serialize it again
-    fmu.update_state(&mut saved);
+    fmu.check("fmi2GetFMUstate (overwrite)", fmu.update_state(&mut saved));
     let end_bytes = fmu.serialize(saved);
     assert!(!end_bytes.is_empty());
-    fmu.free_state(&mut saved);
+    fmu.check("fmi2FreeFMUstate", fmu.free_state(&mut saved));
     // `restored` stays alive: fmi2FreeInstance frees it
 
-    fmu.terminate();
-    fmu.reset();
-    fmu.init(case);
+    fmu.check("fmi2Terminate", fmu.terminate());
+    fmu.check("fmi2Reset", fmu.reset());
+    fmu.init_case(case);
     let (again, _) = run_from(&fmu, case, 0, half);
     assert_eq!(
         bits(&first),
@@ -148,39 +154,20 @@ fn exercise(case: &Case, round: usize, steps: usize) -> Summary {
 
 /// The error paths, each followed by the way out of the error state.
 fn error_paths() {
-    // wrong GUID and an unknown fmuType: NULL, a message to the logger
-    let name = CString::new("bad").unwrap();
-    let wrong = CString::new("{not-the-guid}").unwrap();
-    let guid = CString::new(GUID).unwrap();
-    unsafe {
-        let c = fmi2Instantiate(
-            name.as_ptr(),
-            fmi2CoSimulation,
-            wrong.as_ptr(),
-            ptr::null(),
-            ptr::null(),
-            fmi2False,
-            fmi2False,
-        );
-        assert!(c.is_null());
-        let c = fmi2Instantiate(
-            name.as_ptr(),
-            7, // neither fmi2ModelExchange (0) nor fmi2CoSimulation (1)
-            guid.as_ptr(),
-            ptr::null(),
-            ptr::null(),
-            fmi2False,
-            fmi2False,
-        );
-        assert!(c.is_null());
-    }
+    // wrong GUID and an unknown fmuType: NULL (no logger to tell)
+    assert!(bare_instance(Some("bad"), fmi2CoSimulation, Some("{not-the-guid}")).is_null());
+    // neither fmi2ModelExchange (0) nor fmi2CoSimulation (1)
+    assert!(bare_instance(Some("bad"), 7, Some(GUID)).is_null());
 
-    let f = Fmu::new("errors", true);
-    f.debug_logging(true, &ALL_CATEGORIES);
+    let f = long_run_host("errors", true);
+    f.check(
+        "fmi2SetDebugLogging",
+        f.debug_logging(true, &ALL_CATEGORIES),
+    );
     unsafe {
         // a step before initialization
         assert_eq!(fmi2DoStep(f.c, 0.0, 0.01, fmi2False), fmi2Error);
-        f.reset();
+        f.check("fmi2Reset", f.reset());
         // an unknown category: a warning
         let cat = CString::new("noSuchCategory").unwrap();
         let p = cat.as_ptr();
@@ -189,23 +176,23 @@ fn error_paths() {
         assert_eq!(f.set_reals(&[(vr::FM, 1.0)]), fmi2OK);
         assert_eq!(fmi2EnterInitializationMode(f.c), fmi2OK);
         assert_eq!(fmi2ExitInitializationMode(f.c), fmi2Error);
-        f.reset();
+        f.check("fmi2Reset", f.reset());
         // an unknown value reference, an enumeration value out of range
         assert_eq!(f.set_reals(&[(9999, 1.0)]), fmi2Error);
-        f.reset();
+        f.check("fmi2Reset", f.reset());
         assert_eq!(f.set_integers(&[(vr::SHAPE, 17)]), fmi2Error);
-        f.reset();
+        f.check("fmi2Reset", f.reset());
         assert_eq!(fmi2EnterInitializationMode(f.c), fmi2OK);
         assert_eq!(fmi2ExitInitializationMode(f.c), fmi2OK);
         // a non-finite input
         let nan = f64::NAN;
         assert_eq!(fmi2SetReal(f.c, &vr::AG, 1, &nan), fmi2Error);
-        f.reset();
+        f.check("fmi2Reset", f.reset());
         assert_eq!(fmi2EnterInitializationMode(f.c), fmi2OK);
         assert_eq!(fmi2ExitInitializationMode(f.c), fmi2OK);
         // a mismatched communication point
         assert_eq!(fmi2DoStep(f.c, 5.0, 0.01, fmi2False), fmi2Error);
-        f.reset();
+        f.check("fmi2Reset", f.reset());
         assert_eq!(fmi2EnterInitializationMode(f.c), fmi2OK);
         assert_eq!(fmi2ExitInitializationMode(f.c), fmi2OK);
         assert_eq!(fmi2DoStep(f.c, 0.0, 0.01, fmi2False), fmi2OK);
@@ -220,42 +207,43 @@ fn error_paths() {
             fmi2Error
         );
         assert!(out.is_null());
-        f.reset();
+        f.check("fmi2Reset", f.reset());
         assert_eq!(
             fmi2DeSerializeFMUstate(f.c, bytes.as_ptr() as *const fmi2Byte, n / 3, &mut out),
             fmi2Error
         );
-        f.reset();
+        f.check("fmi2Reset", f.reset());
         let mut padded = f.serialize(st);
         padded.resize(n + 64, 0);
         let s2 = f.deserialize(&padded);
-        f.set_state(s2);
+        f.check("fmi2SetFMUstate", f.set_state(s2));
         // a buffer too small for fmi2SerializeFMUstate
         let mut small = vec![0u8; 8];
         assert_eq!(
             fmi2SerializeFMUstate(f.c, st, small.as_mut_ptr() as *mut fmi2Byte, 8),
             fmi2Error
         );
-        f.reset();
+        f.check("fmi2Reset", f.reset());
         // another instance's state, a freed state, a made-up pointer
-        let g = Fmu::new("other", false);
+        let g = long_run_host("other", false);
         let foreign = g.get_state();
         assert_eq!(fmi2SetFMUstate(f.c, foreign), fmi2Error);
-        f.reset();
+        f.check("fmi2Reset", f.reset());
         let mut gone = f.get_state();
         let stale = gone;
-        f.free_state(&mut gone);
+        f.check("fmi2FreeFMUstate", f.free_state(&mut gone));
         assert_eq!(fmi2SetFMUstate(f.c, stale), fmi2Error);
-        f.reset();
+        f.check("fmi2Reset", f.reset());
         assert_eq!(fmi2SetFMUstate(f.c, 0x1234_5678 as fmi2FMUstate), fmi2Error);
-        f.reset();
+        f.check("fmi2Reset", f.reset());
         // NULL arguments
         assert_eq!(fmi2GetReal(f.c, ptr::null(), 3, ptr::null_mut()), fmi2Error);
-        f.reset();
+        f.check("fmi2Reset", f.reset());
         assert_eq!(fmi2GetFMUstate(f.c, ptr::null_mut()), fmi2Error);
         drop(g); // `foreign` is freed with its instance
     }
-    assert!(f.sink.errors.load(std::sync::atomic::Ordering::Relaxed) >= 10);
+    let counts = f.log.counts();
+    assert!(counts[fmi2Error as usize] + counts[fmi2Fatal as usize] >= 10);
 }
 
 fn main() {

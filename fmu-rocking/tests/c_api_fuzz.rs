@@ -69,22 +69,6 @@ fn run_bounded(ops: Vec<Op>) -> Stats {
     }
 }
 
-fn plain_instance(slot: u8) -> Op {
-    Op::Instantiate(
-        slot,
-        InstSpec {
-            name: Name::Plain,
-            fmu_type: fmi2CoSimulation,
-            guid: Guid::Right,
-            resource: None,
-            logger: true,
-            inspect: true,
-            logging_on: fmi2False,
-            visible: fmi2False,
-        },
-    )
-}
-
 /// [`plain_instance`] of fmuType fmi2ModelExchange.
 fn me_instance(slot: u8) -> Op {
     let Op::Instantiate(_, mut spec) = plain_instance(slot) else {

@@ -4,7 +4,7 @@
 
 mod host;
 
-use std::ffi::{c_char, CStr, CString};
+use std::ffi::{c_char, CStr};
 use std::ptr;
 
 use fmi2_export::model_description::{Causality, Type};
@@ -89,52 +89,16 @@ fn default_tolerance_is_the_engines() {
 
 #[test]
 fn instantiate_checks_the_guid_and_the_type() {
-    let name = CString::new("x").unwrap();
-    let wrong = CString::new("{00000000-0000-0000-0000-000000000000}").unwrap();
-    let guid = CString::new(GUID).unwrap();
+    let wrong = "{00000000-0000-0000-0000-000000000000}";
+    let c = bare_instance(Some("x"), fmi2CoSimulation, Some(wrong));
+    assert!(c.is_null());
+    // Model Exchange is supported, an unknown fmuType is not
+    let c = bare_instance(Some("x"), fmi2ModelExchange, Some(GUID));
+    assert!(!c.is_null());
+    unsafe { fmi2FreeInstance(c) };
+    assert!(bare_instance(Some("x"), 7, Some(GUID)).is_null());
+    assert!(bare_instance(None, fmi2CoSimulation, Some(GUID)).is_null());
     unsafe {
-        let c = fmi2Instantiate(
-            name.as_ptr(),
-            fmi2CoSimulation,
-            wrong.as_ptr(),
-            ptr::null(),
-            ptr::null(),
-            0,
-            0,
-        );
-        assert!(c.is_null());
-        // Model Exchange is supported, an unknown fmuType is not
-        let c = fmi2Instantiate(
-            name.as_ptr(),
-            fmi2ModelExchange,
-            guid.as_ptr(),
-            ptr::null(),
-            ptr::null(),
-            0,
-            0,
-        );
-        assert!(!c.is_null());
-        fmi2FreeInstance(c);
-        let c = fmi2Instantiate(
-            name.as_ptr(),
-            7,
-            guid.as_ptr(),
-            ptr::null(),
-            ptr::null(),
-            0,
-            0,
-        );
-        assert!(c.is_null());
-        let c = fmi2Instantiate(
-            ptr::null(),
-            fmi2CoSimulation,
-            guid.as_ptr(),
-            ptr::null(),
-            ptr::null(),
-            0,
-            0,
-        );
-        assert!(c.is_null());
         assert_eq!(
             CStr::from_ptr(fmi2GetTypesPlatform() as *const c_char)
                 .to_str()

@@ -23,6 +23,8 @@
 //! crate always passes its own logger and the parsed GUID), and compares the
 //! FMU with the engine run directly, bit for bit.
 
+mod packaged;
+
 use std::collections::HashMap;
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
 use std::fs;
@@ -74,32 +76,6 @@ extern "C" fn logger(
         .to_string_lossy()
         .replace("%%", "%");
     log.lock().unwrap().push((status, c, m));
-}
-
-/// Packages the FMU (`cargo xtask fmu`) and returns the archive's path.
-fn fmu_path() -> PathBuf {
-    // the workspace root, where `cargo xtask` is defined and `target/` lives
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("fmu-rocking is a folder of the workspace");
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let status = std::process::Command::new(cargo)
-        .current_dir(root)
-        .args(["xtask", "fmu"])
-        .status()
-        .expect("run cargo xtask fmu");
-    assert!(status.success(), "cargo xtask fmu failed");
-    let target = std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
-        .map(|p| if p.is_absolute() { p } else { root.join(p) })
-        .unwrap_or_else(|| root.join("target"));
-    let p = target.join("fmu").join("RockingBlock.fmu");
-    assert!(
-        p.is_file(),
-        "{} not found after cargo xtask fmu",
-        p.display()
-    );
-    p
 }
 
 /// Extracts the archive into a fresh temporary directory.
@@ -198,7 +174,7 @@ type Free = unsafe extern "C" fn(Component);
 
 #[test]
 fn free_rocking_through_the_packaged_fmu() {
-    let dir = unzip(&fmu_path());
+    let dir = unzip(packaged::rocking_block_fmu());
     let xml = fs::read_to_string(dir.join("modelDescription.xml")).unwrap();
     let (guid, id, vr) = read_description(&xml);
     assert_eq!(id, "RockingBlock");

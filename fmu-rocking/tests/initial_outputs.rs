@@ -32,7 +32,7 @@ fn start(interface: i32, ag: impl Fn(&Host) -> f64) -> (f64, f64, f64, f64, Host
     assert_eq!(contact, ["af", "contactLength", "MR"].map(|n| h.real(n)));
     assert_eq!(regime, h.integer("regime"));
     assert_eq!(h.set_real("ag", a), fmi2OK);
-    let s0 = h.get_state();
+    let mut s0 = h.get_state();
     let mut step = 1e-3;
     let mut prev = f64::NAN;
     let mut fd = f64::NAN;
@@ -47,7 +47,7 @@ fn start(interface: i32, ag: impl Fn(&Host) -> f64) -> (f64, f64, f64, f64, Host
         step *= 0.5;
     }
     assert_eq!(h.set_state(s0), fmi2OK);
-    assert_eq!(h.free_state(s0), fmi2OK);
+    assert_eq!(h.free_state(&mut s0), fmi2OK);
     (dd, fd, fx, fz, h)
 }
 

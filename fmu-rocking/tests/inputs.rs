@@ -198,7 +198,7 @@ fn bad_inputs_and_communication_points_keep_the_last_good_step() {
         start(&h);
         let first = steps(&h, 0, BAD_AT);
         assert_eq!(first[..], reference[..BAD_AT * per_step], "{}", b.what);
-        let saved = h.get_state();
+        let mut saved = h.get_state();
         let at_saved = h.snapshot_payload();
         if let Some(p) = &b.prepare {
             p(&h);
@@ -245,7 +245,7 @@ fn bad_inputs_and_communication_points_keep_the_last_good_step() {
             "{}: the continued run differs",
             b.what
         );
-        assert_eq!(h.free_state(saved), fmi2OK);
+        assert_eq!(h.free_state(&mut saved), fmi2OK);
         drop(h);
 
         // --- refused, then reset: a new run is a fresh instance's ----------

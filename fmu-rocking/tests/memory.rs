@@ -23,9 +23,9 @@
 //! are not checked there and the record is 1e4 steps: their leak checks do
 //! that job.
 
-mod chost;
+mod host;
 
-use chost::*;
+use host::*;
 
 const CYCLES: usize = 10_000;
 const ANON_BOUND_KIB: i64 = 256;
@@ -90,15 +90,15 @@ fn memory_stays_flat_over_instance_lives_and_a_long_record() {
 
     let steps = steps();
     let (case, _) = record_case();
-    let fmu = Fmu::new("record", false);
-    fmu.init(&case);
+    let fmu = long_run_host("record", false);
+    fmu.init_case(&case);
     let mut at_10pct = Mem::default();
     let done = run(&fmu, &case, steps, |k, _| {
         let n = k + 1;
         if n % 1000 == 0 {
             let mut st = fmu.get_state();
             assert!(!fmu.serialize(st).is_empty());
-            fmu.free_state(&mut st);
+            fmu.check("fmi2FreeFMUstate", fmu.free_state(&mut st));
         }
         if n == steps / 10 {
             at_10pct = mem();

@@ -116,6 +116,35 @@ fn at(me: &Me, ag: &dyn Fn(f64) -> f64, t: f64, x: [f64; NX]) -> [f64; NZ] {
     me.z()
 }
 
+/// Explicit Euler steps of 1 ms from `(t, x)` (event indicators `z0`) to
+/// t = 1.5 s, each crossing of an indicator handled as an event; after each
+/// step `each(t, x, event)`, where `x` is the state after any event.
+fn euler(
+    me: &Me,
+    ag: &dyn Fn(f64) -> f64,
+    (mut t, mut x): (f64, [f64; NX]),
+    mut z0: [f64; NZ],
+    mut each: impl FnMut(f64, [f64; NX], bool),
+) {
+    let h = 1e-3;
+    while t < 1.5 {
+        let d = me.dx();
+        x = [x[0] + h * d[0], x[1] + h * d[1]];
+        t += h;
+        let z = at(me, ag, t, x);
+        me.completed_step();
+        let event = crossed(&z0, &z);
+        if event {
+            me.enter_event_mode();
+            me.event_iteration();
+            me.enter_continuous();
+            x = me.x();
+        }
+        z0 = me.z();
+        each(t, x, event);
+    }
+}
+
 /// Runs an ME instance from `t = 0` to `t_end` with step `h`; returns
 /// `theta` at every multiple of `sample`, and the time of termination.
 fn run_me(
@@ -413,60 +442,33 @@ fn fmu_state_restores_the_toe_and_the_run_repeats_bit_for_bit() {
     me.event_iteration();
     me.enter_continuous();
     // integrate to just past the first impact (about 0.65 s) with Euler
-    let h = 1e-3;
-    let (mut t, mut x) = (0.0, me.x());
-    let mut z0 = at(&me, &ag, t, x);
+    let x0 = me.x();
+    let z0 = at(&me, &ag, 0.0, x0);
     let mut impacts = 0;
     let mut saved = None;
     let mut trace = Vec::new();
-    while t < 1.5 {
-        let d = me.dx();
-        x = [x[0] + h * d[0], x[1] + h * d[1]];
-        t += h;
-        let z = at(&me, &ag, t, x);
-        me.completed_step();
-        if crossed(&z0, &z) {
-            me.enter_event_mode();
-            me.event_iteration();
-            me.enter_continuous();
-            x = me.x();
+    euler(&me, &ag, (0.0, x0), z0, |t, x, event| {
+        if event {
             impacts += 1;
             if impacts == 1 {
                 saved = Some((me.0.get_state(), t, x));
             }
         }
-        z0 = me.z();
         if impacts >= 1 {
             trace.push(x[0]);
         }
-    }
-    let (s, t_s, x_s) = saved.unwrap();
+    });
+    let (mut s, t_s, x_s) = saved.unwrap();
     assert_eq!(me.0.set_state(s), fmi2OK);
-    let (mut t, mut x) = (t_s, x_s);
-    assert_eq!(me.x(), x);
-    let mut again = vec![x[0]];
-    let mut z0 = me.z();
-    while t < 1.5 {
-        let d = me.dx();
-        x = [x[0] + h * d[0], x[1] + h * d[1]];
-        t += h;
-        let z = at(&me, &ag, t, x);
-        me.completed_step();
-        if crossed(&z0, &z) {
-            me.enter_event_mode();
-            me.event_iteration();
-            me.enter_continuous();
-            x = me.x();
-        }
-        z0 = me.z();
-        again.push(x[0]);
-    }
+    assert_eq!(me.x(), x_s);
+    let mut again = vec![x_s[0]];
+    euler(&me, &ag, (t_s, x_s), me.z(), |_, x, _| again.push(x[0]));
     assert_eq!(trace.len(), again.len());
     assert!(trace
         .iter()
         .zip(&again)
         .all(|(a, b)| a.to_bits() == b.to_bits()));
-    me.0.free_state(s);
+    me.0.free_state(&mut s);
 }
 
 #[test]
@@ -478,20 +480,20 @@ fn a_serialized_state_restores_only_into_its_own_fmu_type() {
             fmi2DeSerializeFMUstate(h.c, buf.as_ptr() as *const fmi2Byte, buf.len(), &mut s)
         };
         if !s.is_null() {
-            assert_eq!(h.free_state(s), fmi2OK);
+            assert_eq!(h.free_state(&mut s), fmi2OK);
         }
         st
     };
     let me = Me::new(false);
     me.0.init();
-    let s = me.0.get_state();
+    let mut s = me.0.get_state();
     let me_buf = me.0.serialize(s);
-    me.0.free_state(s);
+    me.0.free_state(&mut s);
     let cs = Host::new();
     cs.init();
-    let s = cs.get_state();
+    let mut s = cs.get_state();
     let cs_buf = cs.serialize(s);
-    cs.free_state(s);
+    cs.free_state(&mut s);
     // eventMode into a co-simulation instance, stepComplete into an ME one
     assert_eq!(deserialize(&cs, &me_buf), fmi2Error);
     let me2 = Me::new(false);

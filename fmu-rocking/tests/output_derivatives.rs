@@ -319,7 +319,7 @@ fn refused_requests_name_the_variable_and_a_saved_state_restores_the_instance() 
     for fmu in [&reference, &h] {
         assert_eq!(fmu.do_step(0.0, 0.01), fmi2OK);
     }
-    let saved = h.get_state();
+    let mut saved = h.get_state();
     let bad: [(&str, i32, &str); 5] = [
         ("theta", 3, "order 3 outside 1..=2"),
         ("Fx", 0, "order 0 outside 1..=2"),
@@ -367,5 +367,5 @@ fn refused_requests_name_the_variable_and_a_saved_state_restores_the_instance() 
     let (s2, d2) = derivatives(&reference, &OUTPUTS, &[2; 9]);
     assert_eq!((s1, s2), (fmi2OK, fmi2OK));
     assert_eq!(d1, d2);
-    assert_eq!(h.free_state(saved), fmi2OK);
+    assert_eq!(h.free_state(&mut saved), fmi2OK);
 }

@@ -24,6 +24,8 @@ use host::*;
 mod invalid_params;
 
 use invalid_params::*;
+// the invalid parameters' cases, not host's runs
+use invalid_params::Case;
 
 /// The start value of an enumeration (model description).
 fn start_integer(name: &str) -> i32 {

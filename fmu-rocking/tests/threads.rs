@@ -6,13 +6,13 @@
 //! along the way, equal bit for bit those of the same runs done one after
 //! the other on one thread.
 
-mod chost;
+mod host;
 
 use std::sync::{Arc, Barrier};
 use std::thread;
 
-use chost::*;
 use fmu_rocking::description::vr;
+use host::*;
 
 const THREADS: usize = 8;
 const STEPS: usize = 10_000;
@@ -57,8 +57,8 @@ struct Trace {
 /// Runs both cases of a thread, stepping the two instances alternately.
 fn run_pair(cases: &[Case; 2]) -> [Trace; 2] {
     let fmus = [
-        Fmu::new(&cases[0].name, false),
-        Fmu::new(&cases[1].name, false),
+        long_run_host(&cases[0].name, false),
+        long_run_host(&cases[1].name, false),
     ];
     let mut traces: [Trace; 2] = std::array::from_fn(|_| Trace {
         outputs: Vec::with_capacity(STEPS),
@@ -66,7 +66,7 @@ fn run_pair(cases: &[Case; 2]) -> [Trace; 2] {
         overturned_at: None,
     });
     for (f, c) in fmus.iter().zip(cases) {
-        f.init(c);
+        f.init_case(c);
     }
     for k in 0..STEPS {
         for j in 0..2 {
@@ -77,8 +77,8 @@ fn run_pair(cases: &[Case; 2]) -> [Trace; 2] {
             let (a, d) = c.input(k);
             let s = f.step(k as f64 * c.h, c.h, a, d);
             if s == fmi2_export::types::fmi2Discard {
-                assert!(f.terminated());
-                tr.overturned_at = Some(f.last_successful_time().to_bits());
+                assert_eq!(f.terminated(), (fmi2OK, true));
+                tr.overturned_at = Some(f.last_successful_time().1.to_bits());
                 continue;
             }
             assert_eq!(s, fmi2_export::types::fmi2OK, "{} step {k}", c.name);
@@ -86,7 +86,7 @@ fn run_pair(cases: &[Case; 2]) -> [Trace; 2] {
             if (k + 1) % SNAPSHOT_EVERY == 0 {
                 let mut st = f.get_state();
                 tr.states.push(f.serialize(st));
-                f.free_state(&mut st);
+                f.check("fmi2FreeFMUstate", f.free_state(&mut st));
             }
         }
     }

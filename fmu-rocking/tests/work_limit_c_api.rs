@@ -28,7 +28,7 @@ fn start(h: &Host, params: &[(&str, f64)], ag: f64) {
 /// One pathological step: discarded at the limit, consistent, and the host
 /// goes on from the saved state in steps of 1 ms.
 fn discarded_at_the_limit(name: &str, h: &Host, step: f64) {
-    let saved = h.get_state();
+    let mut saved = h.get_state();
     let wall = Instant::now();
     let status = h.do_step(0.0, step);
     eprintln!(
@@ -61,7 +61,7 @@ fn discarded_at_the_limit(name: &str, h: &Host, step: f64) {
     // no step from stepFailed; back to the saved state and on
     assert_ne!(h.do_step(t_reached, 1e-3), fmi2OK);
     assert_eq!(h.set_state(saved), fmi2OK);
-    assert_eq!(h.free_state(saved), fmi2OK);
+    assert_eq!(h.free_state(&mut saved), fmi2OK);
     for k in 0..5 {
         assert_eq!(
             h.do_step(k as f64 * 1e-3, 1e-3),

@@ -4,13 +4,15 @@
 //! FMU, in `fmpy-tests/test_shear_frame.py`.
 
 use crate::description::vr;
-use fmi2_export::test_host::{self, logged, LOG};
+use fmi2_export::test_host;
 use fmi2_export::types::*;
 
 use crate::*;
 
-fn instantiate() -> fmi2Component {
-    test_host::instantiate::<crate::ShearFrameSlave>("frame")
+type Host = test_host::Host<crate::ShearFrameSlave>;
+
+fn instantiate() -> Host {
+    Host::named("frame")
 }
 
 fn set_real(c: fmi2Component, r: u32, x: f64) {
@@ -25,13 +27,6 @@ fn real(c: fmi2Component, r: u32) -> f64 {
     let mut x = f64::NAN;
     assert_eq!(unsafe { fmi2GetReal(c, &r, 1, &mut x) }, fmi2OK);
     x
-}
-
-fn initialize(c: fmi2Component) -> fmi2Status {
-    unsafe {
-        assert_eq!(fmi2EnterInitializationMode(c), fmi2OK);
-        fmi2ExitInitializationMode(c)
-    }
 }
 
 #[test]
@@ -51,43 +46,41 @@ fn every_bad_parameter_is_an_error_naming_it() {
         (&|c| set_real(c, vr::at(vr::U, 7), 0.1), "u[7] = 0.1 m"),
     ];
     for (set, message) in cases {
-        let c = instantiate();
-        set(c);
-        assert_eq!(initialize(c), fmi2Error, "{message}");
-        assert!(logged(message), "{message}");
-        unsafe { fmi2FreeInstance(c) };
+        let host = instantiate();
+        set(host.c);
+        assert_eq!(host.initialize(), fmi2Error, "{message}");
+        assert!(host.logged(message), "{message}");
     }
     // an enumeration value outside DampingKind is refused when set
-    let c = instantiate();
+    let host = instantiate();
     let (r, x) = (vr::DAMPING, 9);
-    assert_eq!(unsafe { fmi2SetInteger(c, &r, 1, &x) }, fmi2Error);
-    assert!(LOG
-        .lock()
-        .unwrap()
+    assert_eq!(unsafe { fmi2SetInteger(host.c, &r, 1, &x) }, fmi2Error);
+    assert!(host
+        .errors()
         .iter()
-        .any(|(st, m)| *st == fmi2Error && m.contains("damping") && m.contains('9')));
-    unsafe { fmi2FreeInstance(c) };
+        .any(|m| m.contains("damping") && m.contains('9')));
 }
 
 #[test]
 fn a_step_that_overflows_is_refused_and_the_state_kept() {
-    let c = instantiate();
+    let host = instantiate();
+    let c = host.c;
     set_integer(c, vr::N, 1);
     set_real(c, vr::at(vr::M, 1), 1e-3);
     set_real(c, vr::at(vr::K, 1), 1e-3);
     set_real(c, vr::at(vr::U, 1), 0.25);
-    assert_eq!(initialize(c), fmi2OK);
+    assert_eq!(host.initialize(), fmi2OK);
     set_real(c, vr::at(vr::FX, 1), 1e308);
     assert_eq!(unsafe { fmi2DoStep(c, 0.0, 1.0, 1) }, fmi2Error);
-    assert!(logged("the step produced a non-finite state"));
+    assert!(host.logged("the step produced a non-finite state"));
     assert_eq!(real(c, vr::at(vr::U, 1)), 0.25);
-    unsafe { fmi2FreeInstance(c) };
 }
 
 #[test]
 fn output_derivatives_only_of_outputs_and_orders_1_and_2() {
-    let c = instantiate();
-    assert_eq!(initialize(c), fmi2OK);
+    let host = instantiate();
+    let c = host.c;
+    assert_eq!(host.initialize(), fmi2OK);
     let mut x = 0.0;
     unsafe {
         let r = vr::at(vr::U, 1);
@@ -96,15 +89,14 @@ fn output_derivatives_only_of_outputs_and_orders_1_and_2() {
             fmi2GetRealOutputDerivatives(c, &r, 1, &3, &mut x),
             fmi2Error
         );
-        assert!(logged("derivative order 3"));
+        assert!(host.logged("derivative order 3"));
         assert_eq!(fmi2Reset(c), fmi2OK);
-        assert_eq!(initialize(c), fmi2OK);
+        assert_eq!(host.initialize(), fmi2OK);
         let r = vr::at(vr::PERIOD, 1);
         assert_eq!(
             fmi2GetRealOutputDerivatives(c, &r, 1, &1, &mut x),
             fmi2Error
         );
-        fmi2FreeInstance(c);
     }
 }
 

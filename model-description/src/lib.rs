@@ -10,7 +10,8 @@
 //!   licence, the co-simulation capabilities of `fmi2-export`);
 //! - `xml` (feature `xml`): `modelDescription.xml` through serde + quick-xml,
 //!   and the GUID derived from its content (SHA-256 of the XML without it);
-//! - `html` (feature `xml`): `documentation/index.html` with the variable table.
+//! - `html` (feature `xml`): `documentation/index.html` with the variable table;
+//! - `build` (feature `xml`): the three files an FMU crate's `build.rs` writes.
 //!
 //! An FMU binary uses the table and the value references; its build script
 //! includes the same `description.rs` and generates the XML and the GUID, so
@@ -19,6 +20,8 @@
 pub mod common;
 pub mod schema;
 
+#[cfg(feature = "xml")]
+pub mod build;
 #[cfg(feature = "xml")]
 pub mod html;
 #[cfg(feature = "xml")]

@@ -20,31 +20,8 @@
  * Any other failure: a message on stderr, status 1 (an FMI call) or 2 (usage,
  * files, loading).
  *
- * The FMI 2.0 types are written here from the standard's function signatures
- * (only those used), not copied from its headers. */
-#include <dlfcn.h>
-#include <stdarg.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-
-typedef void *fmi2Component;
-typedef unsigned int fmi2ValueReference;
-typedef double fmi2Real;
-typedef int fmi2Integer;
-typedef int fmi2Boolean;
-typedef const char *fmi2String;
-typedef int fmi2Status;
-enum { fmi2OK = 0, fmi2Warning = 1, fmi2Discard = 2 };
-enum { fmi2CoSimulation = 1, fmi2LastSuccessfulTime = 2 };
-
-typedef struct {
-    void (*logger)(void *, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
-    void *(*allocateMemory)(size_t, size_t);
-    void (*freeMemory)(void *);
-    void (*stepFinished)(void *, fmi2Status);
-    void *componentEnvironment;
-} fmi2CallbackFunctions;
+ * The FMI 2.0 types and the loading are in fmi2_host.h. */
+#include "fmi2_host.h"
 
 typedef struct {
     fmi2Component (*instantiate)(fmi2String, int, fmi2String, fmi2String, const fmi2CallbackFunctions *,
@@ -79,28 +56,6 @@ static int out_i[MAX];
 static fmi2ValueReference out_vr[MAX];
 static int n_out;
 
-static void logger(void *env, fmi2String name, fmi2Status status, fmi2String category, fmi2String message,
-                   ...) {
-    va_list args;
-    (void)env;
-    fprintf(stderr, "[%s] status %d, %s: ", name, status, category);
-    va_start(args, message);
-    vfprintf(stderr, message, args);
-    va_end(args);
-    fputc('\n', stderr);
-}
-
-static void *allocate(size_t n, size_t size) { return calloc(n, size); }
-
-static void *symbol(void *library, const char *name) {
-    void *f = dlsym(library, name);
-    if (!f) {
-        fprintf(stderr, "dlsym(%s) failed: %s\n", name, dlerror());
-        exit(2);
-    }
-    return f;
-}
-
 static void check(fmi2Status status, const char *call, int i) {
     if (status != fmi2OK && status != fmi2Warning) {
         fprintf(stderr, "%s of instance %d returned status %d\n", call, i, status);
@@ -109,11 +64,7 @@ static void check(fmi2Status status, const char *call, int i) {
 }
 
 static void load(int i, const char *path, const char *guid, const char *resources) {
-    void *lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    if (!lib) {
-        fprintf(stderr, "dlopen(%s) failed: %s\n", path, dlerror());
-        exit(2);
-    }
+    library_t lib = open_library(path);
     Instance *f = &inst[i];
     *(void **)&f->instantiate = symbol(lib, "fmi2Instantiate");
     *(void **)&f->setup = symbol(lib, "fmi2SetupExperiment");

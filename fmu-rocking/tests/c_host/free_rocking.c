@@ -16,40 +16,10 @@
  * on failure a message on stderr and exit status 1 (the FMI call failed) or 2
  * (the library or a function could not be loaded; the loader's error code).
  *
- * The FMI 2.0 types are written here from the standard's function signatures
- * (only those used), not copied from its headers. */
+ * The FMI 2.0 types and the loading are in fmi2_host.h. */
 #include <inttypes.h>
-#include <stdarg.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
 
-#ifdef _WIN32
-#include <windows.h>
-typedef HMODULE library_t;
-#else
-#include <dlfcn.h>
-typedef void *library_t;
-#endif
-
-typedef void *fmi2Component;
-typedef void *fmi2ComponentEnvironment;
-typedef unsigned int fmi2ValueReference;
-typedef double fmi2Real;
-typedef int fmi2Integer;
-typedef int fmi2Boolean;
-typedef const char *fmi2String;
-typedef int fmi2Status; /* fmi2OK = 0, Warning, Discard, Error, Fatal, Pending */
-enum { fmi2OK = 0, fmi2Warning = 1 };
-enum { fmi2CoSimulation = 1 };
-
-typedef struct {
-    void (*logger)(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
-    void *(*allocateMemory)(size_t, size_t);
-    void (*freeMemory)(void *);
-    void (*stepFinished)(fmi2ComponentEnvironment, fmi2Status);
-    fmi2ComponentEnvironment componentEnvironment;
-} fmi2CallbackFunctions;
+#include "fmi2_host.h"
 
 typedef const char *(*GetVersionFn)(void);
 typedef const char *(*GetTypesPlatformFn)(void);
@@ -64,38 +34,6 @@ typedef fmi2Status (*SetIntegerFn)(fmi2Component, const fmi2ValueReference *, si
 typedef fmi2Status (*SetRealFn)(fmi2Component, const fmi2ValueReference *, size_t, const fmi2Real *);
 typedef fmi2Status (*GetRealFn)(fmi2Component, const fmi2ValueReference *, size_t, fmi2Real *);
 typedef fmi2Status (*DoStepFn)(fmi2Component, fmi2Real, fmi2Real, fmi2Boolean);
-
-static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
-                   fmi2String category, fmi2String message, ...) {
-    va_list args;
-    (void)env;
-    fprintf(stderr, "[%s] status %d, %s: ", name, status, category);
-    va_start(args, message);
-    vfprintf(stderr, message, args);
-    va_end(args);
-    fputc('\n', stderr);
-}
-
-static void *allocate(size_t n, size_t size) { return calloc(n, size); }
-
-static library_t library;
-
-static void *symbol(const char *name) {
-#ifdef _WIN32
-    void *f = (void *)GetProcAddress(library, name);
-    if (!f) {
-        fprintf(stderr, "GetProcAddress(%s) failed: error %lu\n", name, GetLastError());
-        exit(2);
-    }
-#else
-    void *f = dlsym(library, name);
-    if (!f) {
-        fprintf(stderr, "dlsym(%s) failed: %s\n", name, dlerror());
-        exit(2);
-    }
-#endif
-    return f;
-}
 
 static double real_from_hex(const char *s) {
     uint64_t bits = strtoull(s, NULL, 16);
@@ -132,31 +70,19 @@ int main(int argc, char **argv) {
     double theta0 = real_from_hex(argv[10]);
     fmi2ValueReference vr_omega = (fmi2ValueReference)strtoul(argv[11], NULL, 10);
 
-#ifdef _WIN32
-    library = LoadLibraryA(path);
-    if (!library) {
-        fprintf(stderr, "LoadLibrary(%s) failed: error %lu\n", path, GetLastError());
-        return 2;
-    }
-#else
-    library = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    if (!library) {
-        fprintf(stderr, "dlopen(%s) failed: %s\n", path, dlerror());
-        return 2;
-    }
-#endif
-    GetVersionFn get_version = (GetVersionFn)symbol("fmi2GetVersion");
-    GetTypesPlatformFn get_types_platform = (GetTypesPlatformFn)symbol("fmi2GetTypesPlatform");
-    InstantiateFn instantiate = (InstantiateFn)symbol("fmi2Instantiate");
-    SetupExperimentFn setup = (SetupExperimentFn)symbol("fmi2SetupExperiment");
-    ComponentOnlyFn enter_init = (ComponentOnlyFn)symbol("fmi2EnterInitializationMode");
-    ComponentOnlyFn exit_init = (ComponentOnlyFn)symbol("fmi2ExitInitializationMode");
-    ComponentOnlyFn terminate = (ComponentOnlyFn)symbol("fmi2Terminate");
-    FreeInstanceFn free_instance = (FreeInstanceFn)symbol("fmi2FreeInstance");
-    SetIntegerFn set_integer = (SetIntegerFn)symbol("fmi2SetInteger");
-    SetRealFn set_real = (SetRealFn)symbol("fmi2SetReal");
-    GetRealFn get_real = (GetRealFn)symbol("fmi2GetReal");
-    DoStepFn do_step = (DoStepFn)symbol("fmi2DoStep");
+    library_t library = open_library(path);
+    GetVersionFn get_version = (GetVersionFn)symbol(library, "fmi2GetVersion");
+    GetTypesPlatformFn get_types_platform = (GetTypesPlatformFn)symbol(library, "fmi2GetTypesPlatform");
+    InstantiateFn instantiate = (InstantiateFn)symbol(library, "fmi2Instantiate");
+    SetupExperimentFn setup = (SetupExperimentFn)symbol(library, "fmi2SetupExperiment");
+    ComponentOnlyFn enter_init = (ComponentOnlyFn)symbol(library, "fmi2EnterInitializationMode");
+    ComponentOnlyFn exit_init = (ComponentOnlyFn)symbol(library, "fmi2ExitInitializationMode");
+    ComponentOnlyFn terminate = (ComponentOnlyFn)symbol(library, "fmi2Terminate");
+    FreeInstanceFn free_instance = (FreeInstanceFn)symbol(library, "fmi2FreeInstance");
+    SetIntegerFn set_integer = (SetIntegerFn)symbol(library, "fmi2SetInteger");
+    SetRealFn set_real = (SetRealFn)symbol(library, "fmi2SetReal");
+    GetRealFn get_real = (GetRealFn)symbol(library, "fmi2GetReal");
+    DoStepFn do_step = (DoStepFn)symbol(library, "fmi2DoStep");
     printf("version %s, types platform %s\n", get_version(), get_types_platform());
 
     fmi2CallbackFunctions callbacks = {logger, allocate, free, NULL, NULL};

@@ -165,18 +165,11 @@ impl Driver {
             .resource
             .as_ref()
             .map(|r| CString::new(r.clone()).expect("no NUL"));
-        let sink = LogSink::new(
-            name.as_deref().unwrap_or(b""),
-            spec.logging_on != fmi2False,
-            spec.inspect,
-        );
-        let callbacks = Box::new(Callbacks {
-            logger: spec.logger.then_some(logger as PlainLogger),
-            allocate_memory: None,
-            free_memory: None,
-            step_finished: None,
-            environment: &*sink as *const LogSink as *mut c_void,
-        });
+        // the FMU passes back the lossy UTF-8 of the name
+        let name_back = name.as_deref().unwrap_or(b"").to_vec();
+        let debug = spec.logging_on != fmi2False;
+        let log = new_log(spec.inspect);
+        let callbacks = Box::new(log.callbacks(spec.logger));
         let p0 = panics();
         let c = unsafe {
             fmu::fmi2Instantiate(
@@ -184,14 +177,14 @@ impl Driver {
                 spec.fmu_type,
                 guid.as_ref().map_or(ptr::null(), |s| s.as_ptr()),
                 resource.as_ref().map_or(ptr::null(), |s| s.as_ptr()),
-                &*callbacks as *const Callbacks as *const fmi2CallbackFunctions,
+                &*callbacks,
                 spec.visible,
                 spec.logging_on,
             )
         };
         self.stats.calls += 1;
         assert_eq!(panics(), p0, "fmi2Instantiate: the FMU panicked");
-        if let Some(p) = sink.take_problem() {
+        if let Some(p) = problem(&log, [0; 5], &name_back, debug) {
             panic!("fmi2Instantiate: logger: {p}");
         }
         let valid = name.as_ref().is_some_and(|n| !n.is_empty())
@@ -205,7 +198,7 @@ impl Driver {
         if c.is_null() {
             if spec.logger {
                 assert!(
-                    sink.counts()[fmi2Error as usize] > 0,
+                    log.counts()[fmi2Error as usize] > 0,
                     "refused without a message"
                 );
             }
@@ -214,9 +207,11 @@ impl Driver {
         self.stats.instantiated += 1;
         self.slots[k] = Some(Slot {
             c,
-            sink,
+            log,
             callbacks,
             logger: spec.logger,
+            name: name_back,
+            debug,
             machine: Some(M::Instantiated),
             stored: Some(Stored::start()),
             time: Some(0.0),
@@ -229,12 +224,13 @@ impl Driver {
     pub(crate) fn free(&mut self, k: u8) {
         let k = k as usize % SLOTS;
         if let Some(s) = self.slots[k].take() {
+            let before = s.log.counts();
             let p0 = panics();
             // SAFETY: a live instance of ours; its FMU states go with it.
             unsafe { fmu::fmi2FreeInstance(s.c) };
             self.stats.calls += 1;
             assert_eq!(panics(), p0, "fmi2FreeInstance: the FMU panicked");
-            if let Some(p) = s.sink.take_problem() {
+            if let Some(p) = problem(&s.log, before, &s.name, s.debug) {
                 panic!("fmi2FreeInstance: logger: {p}");
             }
             drop(s);

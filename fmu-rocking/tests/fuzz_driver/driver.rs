@@ -186,9 +186,14 @@ pub(crate) struct FmuState {
 
 pub(crate) struct Slot {
     pub(crate) c: fmi2Component,
-    pub(crate) sink: Box<LogSink>,
-    pub(crate) callbacks: Box<Callbacks>,
+    /// What the logger recorded (the callbacks point at it).
+    pub(crate) log: Box<Log>,
+    pub(crate) callbacks: Box<fmi2CallbackFunctions>,
     pub(crate) logger: bool,
+    /// The instance name the FMU must pass back to the logger.
+    pub(crate) name: Vec<u8>,
+    /// Whether debug logging is on (OK messages allowed).
+    pub(crate) debug: bool,
     pub(crate) machine: Option<Machine>,
     pub(crate) stored: Option<Stored>,
     /// The end of the last step as the driver followed it.
@@ -317,18 +322,18 @@ impl Driver {
         f: impl FnOnce(fmi2Component) -> fmi2Status,
     ) -> Option<fmi2Status> {
         let s = self.slots[k as usize % SLOTS].as_mut()?;
-        let before = s.sink.counts();
+        let before = s.log.counts();
         let p0 = panics();
         let status = f(s.c);
         self.stats.calls += 1;
         assert_eq!(panics(), p0, "{what}: the FMU panicked (caught or not)");
         check_status(status, what);
         self.stats.by_status[status as usize] += 1;
-        if let Some(p) = s.sink.take_problem() {
+        if let Some(p) = problem(&s.log, before, &s.name, s.debug) {
             panic!("{what}: logger: {p}");
         }
         if status != fmi2OK && s.logger {
-            let after = s.sink.counts();
+            let after = s.log.counts();
             assert!(
                 after[status as usize] > before[status as usize],
                 "{what}: status {status} without a message of that status"
@@ -487,7 +492,7 @@ impl Driver {
                 }) {
                     if st == fmi2OK || st == fmi2Warning {
                         let s = self.slot(*k).expect("called");
-                        s.sink.debug.set(*on != fmi2False);
+                        s.debug = *on != fmi2False;
                     }
                 }
             }

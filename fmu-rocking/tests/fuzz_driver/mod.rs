@@ -40,12 +40,13 @@
 #![allow(dead_code, non_upper_case_globals)]
 
 use std::cell::Cell;
-use std::ffi::{c_int, c_void, CStr, CString};
+use std::ffi::{c_int, CStr, CString};
 use std::ptr;
 use std::sync::Once;
 
 use fmi2_export::bytes;
 use fmi2_export::model_description::{BaseType, Causality, Type, Variable};
+use fmi2_export::test_host::{Keep, Log, Message};
 use fmi2_export::types::*;
 use fmu_rocking as fmu;
 use fmu_rocking::description::{enums, vr, LOG_CATEGORIES, VARIABLES};
@@ -54,12 +55,12 @@ use rocking::{Formulation, Params, Restitution};
 
 mod calls;
 mod driver;
-mod logger;
+mod messages;
 mod ops;
 mod states;
 
 pub use driver::*;
-pub use logger::*;
+pub(crate) use messages::*;
 pub use ops::*;
 
 /// Instances the driver juggles at once.

@@ -525,6 +525,24 @@ pub fn decode_op(b: &mut Bytes) -> Op {
     }
 }
 
+/// Instantiate into `slot` a co-simulation instance with the right GUID, a
+/// logger whose messages are inspected, debug logging off.
+pub fn plain_instance(slot: u8) -> Op {
+    Op::Instantiate(
+        slot,
+        InstSpec {
+            name: Name::Plain,
+            fmu_type: fmi2CoSimulation,
+            guid: Guid::Right,
+            resource: None,
+            logger: true,
+            inspect: true,
+            logging_on: fmi2False,
+            visible: fmi2False,
+        },
+    )
+}
+
 /// The operations encoded by `data` (at most [`MAX_OPS`]).
 pub fn decode(data: &[u8]) -> Vec<Op> {
     let mut b = Bytes::new(data);
@@ -533,27 +551,12 @@ pub fn decode(data: &[u8]) -> Vec<Op> {
     // initialized (2, 4) with default settings, so that short inputs reach
     // running instances.
     if !b.is_empty() {
-        let plain = |k: u8| {
-            Op::Instantiate(
-                k,
-                InstSpec {
-                    name: Name::Plain,
-                    fmu_type: fmi2CoSimulation,
-                    guid: Guid::Right,
-                    resource: None,
-                    logger: true,
-                    inspect: true,
-                    logging_on: fmi2False,
-                    visible: fmi2False,
-                },
-            )
-        };
         match b.u8() % 4 {
             0 => {}
-            1 => ops.push(plain(0)),
+            1 => ops.push(plain_instance(0)),
             n => {
                 for k in 0..if n == 2 { 2 } else { 4 } {
-                    ops.push(plain(k));
+                    ops.push(plain_instance(k));
                     ops.push(Op::Init(k));
                 }
             }
