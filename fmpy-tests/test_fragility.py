@@ -253,6 +253,25 @@ def test_worker_killed_mid_sweep_every_run_once(client, fmu_path, local_fmu, tmp
         assert t_ov == row["t_overturn"] or (math.isnan(t_ov) and math.isnan(row["t_overturn"]))
 
 
+def test_each_record_goes_to_the_cluster_once(client, fmu_path, local_fmu, tmp_path, monkeypatch):
+    """4 records x 4 tasks each: the records travel in 4 submissions (a task each that the
+    runs depend on), not inside the 16 runs' tasks."""
+    study = _study("msa", stripes=tuple(np.linspace(0.5, 6.0, 8)), chunk=2)
+    tasks = study.tasks(local_fmu, cluster.register_fmu(client, fmu_path))
+    carried = []
+    submit = client.submit
+
+    def spy(fn, *args, **kw):
+        values = [x for a in args for x in (a.values() if isinstance(a, dict) else [a])]
+        carried.append(sum(isinstance(x, gm.Record) for x in values))
+        return submit(fn, *args, **kw)
+
+    monkeypatch.setattr(client, "submit", spy)
+    finished, written, failures = cluster.execute(client, tasks, ResultStore(tmp_path / "runs"))
+    assert not failures and finished == len(tasks) == 16 and written == 32
+    assert len(carried) == 16 + 4 and sum(carried) == 4 and max(carried) == 1
+
+
 def test_resume_skips_finished_tasks(client, fmu_path, local_fmu, tmp_path):
     study = _study("msa", stripes=(1.0, 2.0, 4.0, 8.0), chunk=2)
     tasks = study.tasks(local_fmu, cluster.register_fmu(client, fmu_path))

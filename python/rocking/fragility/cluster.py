@@ -5,6 +5,9 @@ otherwise, with the same code.
   worker writes and opens it when it starts (also a worker that replaces a lost
   one), so workers need the `rocking` package but neither the repository nor a
   shared file system.
+- Each record travels to the cluster once, as the value of a task of its own that the
+  runs depend on (not inside every task that uses it): the scheduler keeps it, so a
+  worker lost with it costs a recomputation, not the runs.
 - Tasks return rows only; as each finishes, its rows go to the ResultStore and
   the future is released: the client holds no results it did not ask for.
 - A task whose key is in the store is not submitted (resume). A task lost with
@@ -116,7 +119,9 @@ def execute(client, tasks, store, progress=None, stop_after=None):
     # Dask keys unique to this call: a key cancelled by an earlier, interrupted call may
     # still be cancelling on the scheduler, and would cancel its namesake submitted now.
     call = uuid.uuid4().hex[:8]
+    records = {}
     for key, fn, args, expected in todo:
+        args = tuple(_record_as_future(client, a, records, call) for a in args)
         fut = client.submit(fn, *args, key=f"rocking-{hashlib.sha1(key.encode()).hexdigest()[:24]}-{call}",
                             pure=False)
         by_future[fut] = (key, expected)
@@ -141,5 +146,23 @@ def execute(client, tasks, store, progress=None, stop_after=None):
     finally:
         if by_future:
             client.cancel(list(by_future))
+        client.cancel(list(records.values()))
     return finished, written, failures
+
+
+def _value(x):
+    return x
+
+
+def _record_as_future(client, arg, records, call):
+    """`arg`, a job dict's record replaced by the future of one task per record
+    (`records` {id: future}, filled here): sent once, recomputable if its worker is lost."""
+    if not (isinstance(arg, dict) and "record" in arg):
+        return arg
+    rec = arg["record"]
+    fut = records.get(id(rec))
+    if fut is None:
+        fut = records[id(rec)] = client.submit(_value, rec, key=f"rocking-record-{len(records)}-{call}",
+                                               pure=False)
+    return dict(arg, record=fut)
 
