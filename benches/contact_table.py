@@ -13,8 +13,11 @@ alternately, in this one process, so the ratio is free of the machine's drift.
 
 Printed per case: the CPU time per fmi2DoStep of each (min over --repeat), their
 ratio, and how far the new run is from the old one: the largest difference of
-theta / alpha and of af along the run (af relative to its largest value), the
-peak |theta| / alpha and the overturning time of each (the case study's bars).
+theta / alpha along the run, the peak |theta| / alpha and the overturning time
+of each (the case study's bars). How close the table's af is to the solve's at
+the same rotation is tests/contact_table.rs's to show: along a run, the two
+trajectories part at the level of the integrator's error, and af, steep in
+theta on a stiff interface, magnifies that.
 """
 
 import argparse
@@ -28,9 +31,10 @@ import numpy as np
 from rocking import RockingFMU, stepper
 from rocking import groundmotion as gm
 from rocking.cases import dharahara_cases
+from rocking.tables import markdown
 
 RTOL = 1e-11
-OUTPUTS = ("thetaOverAlpha", "af")
+OUTPUTS = ("thetaOverAlpha",)
 REPO = Path(__file__).resolve().parents[1]
 
 
@@ -51,21 +55,14 @@ def compare(before, after, name, params, record, repeat):
     n = min(len(b.result), len(a.result))
     steps = max(n - 1, 1)
     dtheta = np.max(np.abs(b.result["thetaOverAlpha"][:n] - a.result["thetaOverAlpha"][:n]))
-    af_scale = np.max(np.abs(b.result["af"][:n]))
-    daf = np.max(np.abs(b.result["af"][:n] - a.result["af"][:n])) / af_scale
     tov = lambda r: f"{r.t_overturn:.6f} s" if r.overturned else "-"  # noqa: E731
     return [name, steps, f"{1e6 * best['before'] / steps:.2f}", f"{1e6 * best['after'] / steps:.2f}",
-            f"{best['before'] / best['after']:.2f}", f"{dtheta:.1e}", f"{daf:.1e}",
+            f"{best['before'] / best['after']:.2f}", f"{dtheta:.1e}",
             f"{b.peak_theta_over_alpha:.6f}", f"{a.peak_theta_over_alpha:.6f}", tov(b), tov(a)], best
 
 
 def table(header, rows):
-    widths = [max(len(str(x)) for x in col) for col in zip(header, *rows)]
-    line = lambda r: "| " + " | ".join(str(x).ljust(w) for x, w in zip(r, widths)) + " |"  # noqa: E731
-    print(line(header))
-    print("|" + "|".join("-" * (w + 2) for w in widths) + "|")
-    for r in rows:
-        print(line(r), flush=True)
+    print(markdown(header, rows), flush=True)
 
 
 def main():
@@ -86,7 +83,7 @@ def main():
     print(f"load average at start: {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores; "
           f"{args.before} against {args.after}; CPU time, min of {args.repeat}\n")
     header = ["case", "steps", "before us/step", "after us/step", "ratio", "max |d theta/alpha|",
-              "max |d af| / max af", "peak before", "peak after", "overturns before", "overturns after"]
+              "peak before", "peak after", "overturns before", "overturns after"]
     rows, total = [], {"before": 0.0, "after": 0.0}
     with RockingFMU(args.before) as before, RockingFMU(args.after) as after:
         for name in names:

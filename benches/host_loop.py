@@ -35,12 +35,12 @@ from pathlib import Path
 import fmpy
 import numpy as np
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO / "python"))
+from rocking import RockingFMU, run_grid, stepper
+from rocking import groundmotion as gm
+from rocking.cases import dharahara_cases
+from rocking.tables import markdown
 
-from rocking import RockingFMU, run_grid, stepper  # noqa: E402
-from rocking import groundmotion as gm  # noqa: E402
-from rocking.cases import dharahara_cases  # noqa: E402
+REPO = Path(__file__).resolve().parents[1]
 
 RTOL = 1e-11
 OUTPUT = "thetaOverAlpha"
@@ -96,12 +96,7 @@ def simulate_fmu(fmu, params, record):
 
 
 def table(header, rows):
-    widths = [max(len(str(x)) for x in col) for col in zip(header, *rows)]
-    line = lambda r: "| " + " | ".join(str(x).ljust(w) for x, w in zip(r, widths)) + " |"  # noqa: E731
-    print(line(header))
-    print("|" + "|".join("-" * (w + 2) for w in widths) + "|")
-    for r in rows:
-        print(line(r))
+    print(markdown(header, rows), flush=True)
 
 
 def hosts(fmu, cases, record, repeat, tmp):

@@ -5,17 +5,8 @@
     rocking msa SUITE_OR_TOML ... --stripes 0.1:1.5:0.1 --out DIR
 
 SUITE_OR_TOML is a folder of records (or one record file), with the bodies
-from --preset/--params, or a study file (TOML):
-
-    records = ["../data/ground-motions"]    # folders or files, relative to this file
-    im = "PGV"                              # PGA, PGV, SA(T), PGA/gtana
-    stripes = "0.2:2:0.2"                   # msa: target intensities (or a list)
-    max_runs = 12                           # ida: runs per record
-    [bodies.tower]
-    preset = "dharahara-rigid"
-    [bodies.block]
-    preset = "fig15-alpha0.20-shiftingPivot"
-    theta = 0.0
+from --preset/--params, or a study file (TOML; its format is STUDY_FILE_HELP
+below, which `--help` prints).
 
 Writes DIR/runs/ (Parquet dataset, one row per run), DIR/summary.json, the
 plots DIR/ida-BODY.png (ida) and DIR/fragility.png; rerunning the same
