@@ -32,7 +32,7 @@ const PHI_CAP: f64 = std::f64::consts::FRAC_PI_2;
 const SHARED_MAX: usize = 64;
 
 /// Chebyshev terms per piece.
-const DEGREE: usize = 24;
+const DEGREE: usize = 16;
 /// What each piece must reach against the solver, relative, for `[af, af',
 /// a, a']` (checked midway between the nodes; the derivatives relative to
 /// their largest value on the piece), above the solver's own accuracy:
