@@ -18,6 +18,20 @@ impl Me {
     fn new(logging: bool) -> Me {
         Me(Host::instantiate(fmi2ModelExchange, logging))
     }
+    /// An instance with the default parameters, initialized: event mode.
+    fn initialized() -> Me {
+        let me = Me::new(false);
+        me.0.init();
+        me
+    }
+    /// An initialized instance in continuous-time mode, after the first
+    /// event iteration.
+    fn continuous() -> Me {
+        let me = Me::initialized();
+        me.event_iteration();
+        assert_eq!(me.enter_continuous(), fmi2OK);
+        me
+    }
     fn set_time(&self, t: f64) -> fmi2Status {
         unsafe { fmi2SetTime(self.0.c, t) }
     }
@@ -370,15 +384,13 @@ fn state_machine_and_argument_checks() {
     me.0.init();
     // event mode after initialization
     assert_eq!(me.0.do_step(0.0, 0.1), fmi2Error);
-    let me = Me::new(false);
-    me.0.init();
+    let me = Me::initialized();
     assert_eq!(
         me.set_x(&[0.1, 0.0]),
         fmi2Error,
         "states are set in continuous-time mode only"
     );
-    let me = Me::new(false);
-    me.0.init();
+    let me = Me::initialized();
     assert!(!me.event_iteration());
     assert_eq!(me.enter_continuous(), fmi2OK);
     assert_eq!(me.set_x(&[0.01, 0.0]), fmi2OK);
@@ -398,26 +410,18 @@ fn state_machine_and_argument_checks() {
         unsafe { fmi2SetContinuousStates(me.0.c, x.as_ptr(), 1) },
         fmi2Error
     );
-    let me = Me::new(false);
-    me.0.init();
-    me.event_iteration();
-    me.enter_continuous();
+    let me = Me::continuous();
     assert_eq!(me.set_x(&[f64::NAN, 0.0]), fmi2Error);
-    let me = Me::new(false);
-    me.0.init();
+    let me = Me::initialized();
     let mut z = [0.0; 3];
     assert_eq!(
         unsafe { fmi2GetEventIndicators(me.0.c, z.as_mut_ptr(), 3) },
         fmi2Error
     );
     // continuous-time mode refuses the event-mode calls, and vice versa
-    let me = Me::new(false);
-    me.0.init();
-    me.event_iteration();
-    me.enter_continuous();
+    let me = Me::continuous();
     assert_eq!(me.enter_continuous(), fmi2Error);
-    let me = Me::new(false);
-    me.0.init();
+    let me = Me::initialized();
     let (mut e, mut t) = (0, 0);
     assert_eq!(
         unsafe { fmi2CompletedIntegratorStep(me.0.c, fmi2True, &mut e, &mut t) },
@@ -484,8 +488,7 @@ fn a_serialized_state_restores_only_into_its_own_fmu_type() {
         }
         st
     };
-    let me = Me::new(false);
-    me.0.init();
+    let me = Me::initialized();
     let mut s = me.0.get_state();
     let me_buf = me.0.serialize(s);
     me.0.free_state(&mut s);
