@@ -4,9 +4,12 @@
 //! iteration of the standard) reproducing co-simulation of the same FMU.
 
 mod host;
+#[path = "../../tests/support/pulse.rs"]
+mod pulse;
 
 use fmu_rocking::*;
 use host::*;
+use pulse::pulse;
 
 const NX: usize = 2;
 const NZ: usize = 9;
@@ -264,22 +267,6 @@ fn run_cs(
         }
     }
     (out, None)
-}
-
-/// A one-sine pulse sampled on `dt` and linear in between (what both hosts see).
-fn pulse(a: f64, tp: f64, dt: f64) -> impl Fn(f64) -> f64 {
-    let s = move |t: f64| {
-        if t < tp {
-            a * (2.0 * std::f64::consts::PI * t / tp).sin()
-        } else {
-            0.0
-        }
-    };
-    move |t: f64| {
-        let k = (t / dt + 1e-9).floor();
-        let (t0, t1) = (k * dt, (k + 1.0) * dt);
-        s(t0) + (s(t1) - s(t0)) * (t - t0) / dt
-    }
 }
 
 fn compare(params: &[(&str, f64)], ints: &[(&str, i32)], a: f64, tol: f64) {
