@@ -259,13 +259,8 @@ impl Driver {
         if let Some(fmi2OK) = self.call(k, "fmi2SetReal", SET, |c| unsafe {
             fmu::fmi2SetReal(c, r.as_ptr(), r.len(), x.as_ptr())
         }) {
-            let s = self.slot(k).expect("called");
-            if let Some(st) = s.stored.as_mut() {
-                for (&r, &x) in r.iter().zip(x) {
-                    if let Some(v) = st.real.get_mut(r as usize) {
-                        *v = x;
-                    }
-                }
+            if let Some(st) = self.slot(k).expect("called").stored.as_mut() {
+                accept(&mut st.real, r, x);
             }
         }
     }
@@ -274,13 +269,8 @@ impl Driver {
         if let Some(fmi2OK) = self.call(k, "fmi2SetInteger", SET, |c| unsafe {
             fmu::fmi2SetInteger(c, r.as_ptr(), r.len(), x.as_ptr())
         }) {
-            let s = self.slot(k).expect("called");
-            if let Some(st) = s.stored.as_mut() {
-                for (&r, &x) in r.iter().zip(x) {
-                    if let Some(v) = st.int.get_mut(r as usize) {
-                        *v = x;
-                    }
-                }
+            if let Some(st) = self.slot(k).expect("called").stored.as_mut() {
+                accept(&mut st.int, r, x);
             }
         }
     }
@@ -518,6 +508,16 @@ impl Driver {
         }
         if !(0..=3).contains(&kind) {
             assert!(st == fmi2Error, "{name}({kind}) = {st}: unknown kind");
+        }
+    }
+}
+
+/// The values `x` of the value references `r` the FMU accepted, into the
+/// driver's copy of its store (`to`, by value reference).
+fn accept<T: Copy>(to: &mut [T], r: &[u32], x: &[T]) {
+    for (&r, &x) in r.iter().zip(x) {
+        if let Some(v) = to.get_mut(r as usize) {
+            *v = x;
         }
     }
 }
