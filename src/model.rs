@@ -161,13 +161,15 @@ fn check(
 /// The smallest joint-opening rotation accepted for a flexible interface, rad.
 pub const MIN_THETA_JO: f64 = 1e-100;
 
-fn positive(variable: &'static str, value: f64) -> Result<(), ParamError> {
+/// `value`, if it is finite and > 0.
+fn positive(variable: &'static str, value: f64) -> Result<f64, ParamError> {
     check(
         value.is_finite() && value > 0.0,
         variable,
         value,
         "must be finite and > 0",
-    )
+    )?;
+    Ok(value)
 }
 
 impl Params {
@@ -175,73 +177,45 @@ impl Params {
     pub fn build(&self) -> Result<Model, ParamError> {
         positive("g", self.g)?;
         let shape = match self.shape {
-            ShapeKind::SolidRectangle => {
-                positive("B", self.b)?;
-                positive("L", self.l)?;
-                Shape::SolidRectangle {
-                    b: self.b,
-                    l: self.l,
-                }
-            }
+            ShapeKind::SolidRectangle => Shape::SolidRectangle {
+                b: positive("B", self.b)?,
+                l: positive("L", self.l)?,
+            },
             ShapeKind::HollowRectangle => {
-                positive("B", self.b)?;
-                positive("L", self.l)?;
-                positive("t", self.t)?;
-                let m = self.b.min(self.l);
+                let (b, l) = (positive("B", self.b)?, positive("L", self.l)?);
+                let t = positive("t", self.t)?;
+                let m = b.min(l);
                 check(
-                    2.0 * self.t < m,
+                    2.0 * t < m,
                     "t",
-                    self.t,
+                    t,
                     format!("must satisfy 2*t < min(B, L) = {m}"),
                 )?;
-                Shape::HollowRectangle {
-                    b: self.b,
-                    l: self.l,
-                    t: self.t,
-                }
+                Shape::HollowRectangle { b, l, t }
             }
-            ShapeKind::SolidCircle => {
-                positive("Ro", self.ro)?;
-                Shape::SolidCircle { ro: self.ro }
-            }
+            ShapeKind::SolidCircle => Shape::SolidCircle {
+                ro: positive("Ro", self.ro)?,
+            },
             ShapeKind::HollowCircle => {
-                positive("Ro", self.ro)?;
-                positive("Ri", self.ri)?;
-                check(
-                    self.ri < self.ro,
-                    "Ri",
-                    self.ri,
-                    format!("must satisfy Ri < Ro = {}", self.ro),
-                )?;
-                Shape::HollowCircle {
-                    ro: self.ro,
-                    ri: self.ri,
-                }
+                let (ro, ri) = (positive("Ro", self.ro)?, positive("Ri", self.ri)?);
+                check(ri < ro, "Ri", ri, format!("must satisfy Ri < Ro = {ro}"))?;
+                Shape::HollowCircle { ro, ri }
             }
         };
         let mass_model = match self.mass_model {
-            MassKind::Prism => {
-                positive("H", self.h)?;
-                positive("rho", self.rho)?;
-                MassModel::Prism {
-                    h: self.h,
-                    rho: self.rho,
-                }
-            }
+            MassKind::Prism => MassModel::Prism {
+                h: positive("H", self.h)?,
+                rho: positive("rho", self.rho)?,
+            },
             MassKind::Lumped => {
-                positive("W", self.w)?;
-                positive("hG", self.hg)?;
+                let (w, hg) = (positive("W", self.w)?, positive("hG", self.hg)?);
                 check(
                     self.ic.is_finite() && self.ic >= 0.0,
                     "Ic",
                     self.ic,
                     "must be finite and >= 0",
                 )?;
-                MassModel::Lumped {
-                    w: self.w,
-                    hg: self.hg,
-                    ic: self.ic,
-                }
+                MassModel::Lumped { w, hg, ic: self.ic }
             }
         };
         // Sizes that pass one by one can still overflow together.
@@ -294,10 +268,9 @@ impl Params {
         )?;
         let law = match self.interface {
             LawKind::Rigid => Law::Rigid,
-            LawKind::Elastic => {
-                positive("kn", self.kn)?;
-                Law::Elastic { kn: self.kn }
-            }
+            LawKind::Elastic => Law::Elastic {
+                kn: positive("kn", self.kn)?,
+            },
             LawKind::ElastoPlastic => {
                 positive("kn", self.kn)?;
                 check(

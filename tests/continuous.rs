@@ -12,6 +12,7 @@ use rocking::dynamics::continuous::{Continuous, EVENT_INDICATORS};
 use rocking::dynamics::{GroundInput, Simulator, DEFAULT_RTOL};
 use rocking::{Model, Params};
 use support::exact::Exact;
+use support::pulse::pulse;
 use support::rigid_block;
 
 /// Records of a run.
@@ -206,23 +207,6 @@ fn cosim(sim: &Simulator, ag: &dyn Fn(f64) -> f64, dt: f64, n: usize) -> (Vec<f6
         out.push(st.theta);
     }
     (out, None)
-}
-
-/// A one-sine pulse of amplitude `a` and period `tp`, sampled and linear on
-/// a grid of `dt` (as a co-simulation host feeds it).
-fn pulse(a: f64, tp: f64, dt: f64) -> impl Fn(f64) -> f64 {
-    let s = move |t: f64| {
-        if t < tp {
-            a * (2.0 * std::f64::consts::PI * t / tp).sin()
-        } else {
-            0.0
-        }
-    };
-    move |t: f64| {
-        let k = (t / dt).floor();
-        let (t0, t1) = (k * dt, (k + 1.0) * dt);
-        s(t0) + (s(t1) - s(t0)) * (t - t0) / dt
-    }
 }
 
 /// ME under the pulse, sampled on the co-simulation grid.

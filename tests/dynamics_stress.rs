@@ -10,10 +10,13 @@
 //! never gain energy: `E = I(0) omega²/2` at successive zero crossings never
 //! grows (`shiftingPivot` and rigid; `costa` is not conservative).
 
+mod support;
+
 use rocking::dynamics::{GroundInput, Simulator, State};
 use rocking::model::{Formulation, LawKind, MassKind, Restitution, ShapeKind};
 use rocking::{Law, Model, Params};
 use std::time::Instant;
+use support::lcg::Lcg;
 
 #[derive(Clone, Copy, Debug)]
 struct Case {
@@ -183,26 +186,9 @@ fn run_case(c: &Case) -> Outcome {
     out
 }
 
-/// A small linear congruential generator: the sweep is the same every run.
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        (lo.ln() + self.next() * (hi.ln() - lo.ln())).exp()
-    }
-    fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
-        xs[((self.next() * xs.len() as f64) as usize).min(xs.len() - 1)]
-    }
-}
-
-fn report(name: &str, c: &Case, o: &Outcome) {
+/// Runs the case (its checks are [`run_case`]'s) and reports what it did.
+fn check(name: &str, c: &Case) {
+    let o = run_case(c);
     eprintln!(
         "{name}: {:?} H {:.3} alpha {:.3} {:?} kn {:.0e} fm/(W/A) {:.3} {:?} shaking {:.2} record {} s dt {}: \
          overturned {} impacts {} evals {} (max/call {}) energy checks {} in {:.3} s",
@@ -258,8 +244,7 @@ fn runs_end_finite_and_gain_no_energy_for_kn_from_1e6_to_1e15() {
                 },
                 ..BASE
             };
-            let o = run_case(&c);
-            report("kn", &c, &o);
+            check("kn", &c);
         }
     }
 }
@@ -276,8 +261,7 @@ fn runs_end_finite_and_gain_no_energy_for_fm_from_barely_carrying_the_weight_to_
             },
             ..BASE
         };
-        let o = run_case(&c);
-        report("fm", &c, &o);
+        check("fm", &c);
     }
 }
 
@@ -295,8 +279,7 @@ fn runs_end_finite_and_gain_no_energy_for_slenderness_0_01_to_0_6_and_sizes_0_1_
                     shake_time: 5.0 * size.sqrt().max(1.0),
                     ..BASE
                 };
-                let o = run_case(&c);
-                report("alpha/size", &c, &o);
+                check("alpha/size", &c);
             }
         }
     }
@@ -319,8 +302,7 @@ fn runs_end_finite_and_gain_no_energy_for_communication_steps_from_1e_5_to_1_s()
                 law,
                 ..BASE
             };
-            let o = run_case(&c);
-            report("dt", &c, &o);
+            check("dt", &c);
         }
     }
 }
@@ -347,8 +329,7 @@ fn runs_of_1000_s_records_end_finite_and_gain_no_energy() {
                 },
                 ..BASE
             };
-            let o = run_case(&c);
-            report("1000 s", &c, &o);
+            check("1000 s", &c);
         }
     }
 }
@@ -381,7 +362,6 @@ fn runs_end_finite_and_gain_no_energy_for_random_parameters() {
             record: 40.0,
             dt,
         };
-        let o = run_case(&c);
-        report(&format!("random {i}"), &c, &o);
+        check(&format!("random {i}"), &c);
     }
 }

@@ -279,96 +279,33 @@ pub unsafe fn reset<S: Slave>(c: fmi2Component) -> fmi2Status {
     })
 }
 
-pub unsafe fn get_real<S: Slave>(
-    c: fmi2Component,
-    vr: *const fmi2ValueReference,
-    n: usize,
-    value: *mut fmi2Real,
-) -> fmi2Status {
-    call::<S>(c, "fmi2GetReal", |i| {
-        let vr = unsafe { slice(vr, n, "vr") }?;
-        let value = unsafe { slice_mut(value, n, "value") }?;
-        i.get_real(vr, value)
-    })
+/// `fmi2Get<Type>` or `fmi2Set<Type>` (`$function`): `n` value references
+/// and `n` values (the host's arrays, checked by [`slice`] and `$values`),
+/// handed to `Inner`'s method of the same name.
+macro_rules! values_fn {
+    ($name:ident, $function:literal, $value:ty, $values:ident) => {
+        pub unsafe fn $name<S: Slave>(
+            c: fmi2Component,
+            vr: *const fmi2ValueReference,
+            n: usize,
+            value: $value,
+        ) -> fmi2Status {
+            call::<S>(c, $function, |i| {
+                let vr = unsafe { slice(vr, n, "vr") }?;
+                let value = unsafe { $values(value, n, "value") }?;
+                i.$name(vr, value)
+            })
+        }
+    };
 }
 
-pub unsafe fn get_integer<S: Slave>(
-    c: fmi2Component,
-    vr: *const fmi2ValueReference,
-    n: usize,
-    value: *mut fmi2Integer,
-) -> fmi2Status {
-    call::<S>(c, "fmi2GetInteger", |i| {
-        let vr = unsafe { slice(vr, n, "vr") }?;
-        let value = unsafe { slice_mut(value, n, "value") }?;
-        i.get_integer(vr, value)
-    })
-}
-
-pub unsafe fn get_boolean<S: Slave>(
-    c: fmi2Component,
-    vr: *const fmi2ValueReference,
-    n: usize,
-    value: *mut fmi2Boolean,
-) -> fmi2Status {
-    call::<S>(c, "fmi2GetBoolean", |i| {
-        let vr = unsafe { slice(vr, n, "vr") }?;
-        let value = unsafe { slice_mut(value, n, "value") }?;
-        i.get_boolean(vr, value)
-    })
-}
-
-pub unsafe fn get_string<S: Slave>(
-    c: fmi2Component,
-    vr: *const fmi2ValueReference,
-    n: usize,
-    value: *mut fmi2String,
-) -> fmi2Status {
-    call::<S>(c, "fmi2GetString", |i| {
-        let vr = unsafe { slice(vr, n, "vr") }?;
-        let value = unsafe { slice_mut(value, n, "value") }?;
-        i.get_string(vr, value)
-    })
-}
-
-pub unsafe fn set_real<S: Slave>(
-    c: fmi2Component,
-    vr: *const fmi2ValueReference,
-    n: usize,
-    value: *const fmi2Real,
-) -> fmi2Status {
-    call::<S>(c, "fmi2SetReal", |i| {
-        let vr = unsafe { slice(vr, n, "vr") }?;
-        let value = unsafe { slice(value, n, "value") }?;
-        i.set_real(vr, value)
-    })
-}
-
-pub unsafe fn set_integer<S: Slave>(
-    c: fmi2Component,
-    vr: *const fmi2ValueReference,
-    n: usize,
-    value: *const fmi2Integer,
-) -> fmi2Status {
-    call::<S>(c, "fmi2SetInteger", |i| {
-        let vr = unsafe { slice(vr, n, "vr") }?;
-        let value = unsafe { slice(value, n, "value") }?;
-        i.set_integer(vr, value)
-    })
-}
-
-pub unsafe fn set_boolean<S: Slave>(
-    c: fmi2Component,
-    vr: *const fmi2ValueReference,
-    n: usize,
-    value: *const fmi2Boolean,
-) -> fmi2Status {
-    call::<S>(c, "fmi2SetBoolean", |i| {
-        let vr = unsafe { slice(vr, n, "vr") }?;
-        let value = unsafe { slice(value, n, "value") }?;
-        i.set_boolean(vr, value)
-    })
-}
+values_fn!(get_real, "fmi2GetReal", *mut fmi2Real, slice_mut);
+values_fn!(get_integer, "fmi2GetInteger", *mut fmi2Integer, slice_mut);
+values_fn!(get_boolean, "fmi2GetBoolean", *mut fmi2Boolean, slice_mut);
+values_fn!(get_string, "fmi2GetString", *mut fmi2String, slice_mut);
+values_fn!(set_real, "fmi2SetReal", *const fmi2Real, slice);
+values_fn!(set_integer, "fmi2SetInteger", *const fmi2Integer, slice);
+values_fn!(set_boolean, "fmi2SetBoolean", *const fmi2Boolean, slice);
 
 pub unsafe fn set_string<S: Slave>(
     c: fmi2Component,
@@ -509,57 +446,28 @@ pub unsafe fn cancel_step<S: Slave>(c: fmi2Component) -> fmi2Status {
     call::<S>(c, "fmi2CancelStep", |i| i.cancel_step())
 }
 
-pub unsafe fn get_status<S: Slave>(
-    c: fmi2Component,
-    kind: fmi2StatusKind,
-    value: *mut fmi2Status,
-) -> fmi2Status {
-    call::<S>(c, "fmi2GetStatus", |i| {
-        let value = unsafe { out(value, "value") }?;
-        *value = i.get_status(kind)?;
-        Ok(Status::Ok)
-    })
+/// `fmi2Get<Type>Status` (`$function`): `Inner`'s method of the same name
+/// answers, into the host's `value` (a `bool` as `fmi2True`/`fmi2False`).
+macro_rules! status_fn {
+    ($name:ident, $function:literal, $value:ty) => {
+        pub unsafe fn $name<S: Slave>(
+            c: fmi2Component,
+            kind: fmi2StatusKind,
+            value: *mut $value,
+        ) -> fmi2Status {
+            call::<S>(c, $function, |i| {
+                let value = unsafe { out(value, "value") }?;
+                *value = i.$name(kind)?.into();
+                Ok(Status::Ok)
+            })
+        }
+    };
 }
 
-pub unsafe fn get_real_status<S: Slave>(
-    c: fmi2Component,
-    kind: fmi2StatusKind,
-    value: *mut fmi2Real,
-) -> fmi2Status {
-    call::<S>(c, "fmi2GetRealStatus", |i| {
-        let value = unsafe { out(value, "value") }?;
-        *value = i.get_real_status(kind)?;
-        Ok(Status::Ok)
-    })
-}
-
-pub unsafe fn get_integer_status<S: Slave>(
-    c: fmi2Component,
-    kind: fmi2StatusKind,
-    value: *mut fmi2Integer,
-) -> fmi2Status {
-    call::<S>(c, "fmi2GetIntegerStatus", |i| {
-        let value = unsafe { out(value, "value") }?;
-        *value = i.get_integer_status(kind)?;
-        Ok(Status::Ok)
-    })
-}
-
-pub unsafe fn get_boolean_status<S: Slave>(
-    c: fmi2Component,
-    kind: fmi2StatusKind,
-    value: *mut fmi2Boolean,
-) -> fmi2Status {
-    call::<S>(c, "fmi2GetBooleanStatus", |i| {
-        let value = unsafe { out(value, "value") }?;
-        *value = if i.get_boolean_status(kind)? {
-            fmi2True
-        } else {
-            fmi2False
-        };
-        Ok(Status::Ok)
-    })
-}
+status_fn!(get_status, "fmi2GetStatus", fmi2Status);
+status_fn!(get_real_status, "fmi2GetRealStatus", fmi2Real);
+status_fn!(get_integer_status, "fmi2GetIntegerStatus", fmi2Integer);
+status_fn!(get_boolean_status, "fmi2GetBooleanStatus", fmi2Boolean);
 
 pub unsafe fn get_string_status<S: Slave>(
     c: fmi2Component,

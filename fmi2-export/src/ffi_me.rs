@@ -27,49 +27,31 @@ pub unsafe fn set_continuous_states<S: Slave>(
     })
 }
 
-pub unsafe fn get_continuous_states<S: Slave>(
-    c: fmi2Component,
-    x: *mut fmi2Real,
-    nx: usize,
-) -> fmi2Status {
-    call::<S>(c, "fmi2GetContinuousStates", |i| {
-        let x = unsafe { slice_mut(x, nx, "x") }?;
-        i.get_continuous_states(x)
-    })
+/// A getter (`$function`) that fills the host's array of `n` Reals
+/// (`$what` in the messages) by `Inner`'s method of the same name.
+macro_rules! reals_fn {
+    ($name:ident, $function:literal, $what:literal) => {
+        pub unsafe fn $name<S: Slave>(c: fmi2Component, x: *mut fmi2Real, n: usize) -> fmi2Status {
+            call::<S>(c, $function, |i| {
+                let x = unsafe { slice_mut(x, n, $what) }?;
+                i.$name(x)
+            })
+        }
+    };
 }
 
-pub unsafe fn get_nominals_of_continuous_states<S: Slave>(
-    c: fmi2Component,
-    x: *mut fmi2Real,
-    nx: usize,
-) -> fmi2Status {
-    call::<S>(c, "fmi2GetNominalsOfContinuousStates", |i| {
-        let x = unsafe { slice_mut(x, nx, "x_nominal") }?;
-        i.get_nominals_of_continuous_states(x)
-    })
-}
-
-pub unsafe fn get_derivatives<S: Slave>(
-    c: fmi2Component,
-    dx: *mut fmi2Real,
-    nx: usize,
-) -> fmi2Status {
-    call::<S>(c, "fmi2GetDerivatives", |i| {
-        let dx = unsafe { slice_mut(dx, nx, "derivatives") }?;
-        i.get_derivatives(dx)
-    })
-}
-
-pub unsafe fn get_event_indicators<S: Slave>(
-    c: fmi2Component,
-    z: *mut fmi2Real,
-    ni: usize,
-) -> fmi2Status {
-    call::<S>(c, "fmi2GetEventIndicators", |i| {
-        let z = unsafe { slice_mut(z, ni, "eventIndicators") }?;
-        i.get_event_indicators(z)
-    })
-}
+reals_fn!(get_continuous_states, "fmi2GetContinuousStates", "x");
+reals_fn!(
+    get_nominals_of_continuous_states,
+    "fmi2GetNominalsOfContinuousStates",
+    "x_nominal"
+);
+reals_fn!(get_derivatives, "fmi2GetDerivatives", "derivatives");
+reals_fn!(
+    get_event_indicators,
+    "fmi2GetEventIndicators",
+    "eventIndicators"
+);
 
 pub unsafe fn enter_event_mode<S: Slave>(c: fmi2Component) -> fmi2Status {
     call::<S>(c, "fmi2EnterEventMode", |i| i.enter_event_mode())

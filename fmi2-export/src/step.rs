@@ -136,10 +136,7 @@ impl<S: Slave> Inner<S> {
             fmi2DoStepStatus => discard(
                 "fmi2DoStepStatus is only available after fmi2Pending, which this FMU never returns",
             ),
-            fmi2PendingStatus | fmi2LastSuccessfulTime | fmi2Terminated => {
-                discard(format!("status kind {kind} is not an fmi2Status"))
-            }
-            _ => error(format!("unknown status kind {kind}")),
+            _ => other_kind(kind, "an fmi2Status"),
         }
     }
 
@@ -147,31 +144,20 @@ impl<S: Slave> Inner<S> {
         self.check_state(mask::fmi2GetRealStatus)?;
         match kind {
             fmi2LastSuccessfulTime => Ok(self.last_successful_time),
-            fmi2DoStepStatus | fmi2PendingStatus | fmi2Terminated => {
-                discard(format!("status kind {kind} is not a Real"))
-            }
-            _ => error(format!("unknown status kind {kind}")),
+            _ => other_kind(kind, "a Real"),
         }
     }
 
     pub fn get_integer_status(&mut self, kind: fmi2StatusKind) -> Res<i32> {
         self.check_state(mask::fmi2GetIntegerStatus)?;
-        match kind {
-            fmi2DoStepStatus | fmi2PendingStatus | fmi2LastSuccessfulTime | fmi2Terminated => {
-                discard(format!("status kind {kind} is not an Integer"))
-            }
-            _ => error(format!("unknown status kind {kind}")),
-        }
+        other_kind(kind, "an Integer")
     }
 
     pub fn get_boolean_status(&mut self, kind: fmi2StatusKind) -> Res<bool> {
         self.check_state(mask::fmi2GetBooleanStatus)?;
         match kind {
             fmi2Terminated => Ok(self.terminated),
-            fmi2DoStepStatus | fmi2PendingStatus | fmi2LastSuccessfulTime => {
-                discard(format!("status kind {kind} is not a Boolean"))
-            }
-            _ => error(format!("unknown status kind {kind}")),
+            _ => other_kind(kind, "a Boolean"),
         }
     }
 
@@ -179,10 +165,19 @@ impl<S: Slave> Inner<S> {
         self.check_state(mask::fmi2GetStringStatus)?;
         match kind {
             fmi2PendingStatus => discard("no asynchronous step is pending"),
-            fmi2DoStepStatus | fmi2LastSuccessfulTime | fmi2Terminated => {
-                discard(format!("status kind {kind} is not a String"))
-            }
-            _ => error(format!("unknown status kind {kind}")),
+            _ => other_kind(kind, "a String"),
         }
+    }
+}
+
+/// A status getter's answer for a kind it has no value of: `fmi2Discard`
+/// for a kind of the standard (whose value is of another type, `ty`),
+/// `fmi2Error` for an unknown one.
+fn other_kind<T>(kind: fmi2StatusKind, ty: &str) -> Res<T> {
+    match kind {
+        fmi2DoStepStatus | fmi2PendingStatus | fmi2LastSuccessfulTime | fmi2Terminated => {
+            discard(format!("status kind {kind} is not {ty}"))
+        }
+        _ => error(format!("unknown status kind {kind}")),
     }
 }

@@ -21,26 +21,35 @@ pub type fmi2Byte = c_char;
 pub const fmi2True: fmi2Boolean = 1;
 pub const fmi2False: fmi2Boolean = 0;
 
-/// `fmi2Status`.
-pub type fmi2Status = c_int;
-pub const fmi2OK: fmi2Status = 0;
-pub const fmi2Warning: fmi2Status = 1;
-pub const fmi2Discard: fmi2Status = 2;
-pub const fmi2Error: fmi2Status = 3;
-pub const fmi2Fatal: fmi2Status = 4;
-pub const fmi2Pending: fmi2Status = 5;
+/// A C enumeration of the standard: its type, a `c_int`, and its values.
+macro_rules! c_enum {
+    ($(#[$doc:meta])* $ty:ident { $($name:ident = $v:literal),* $(,)? }) => {
+        $(#[$doc])*
+        pub type $ty = c_int;
+        $(pub const $name: $ty = $v;)*
+    };
+}
 
-/// `fmi2Type`.
-pub type fmi2Type = c_int;
-pub const fmi2ModelExchange: fmi2Type = 0;
-pub const fmi2CoSimulation: fmi2Type = 1;
+c_enum! {
+    /// `fmi2Status`.
+    fmi2Status {
+        fmi2OK = 0, fmi2Warning = 1, fmi2Discard = 2, fmi2Error = 3, fmi2Fatal = 4,
+        fmi2Pending = 5,
+    }
+}
 
-/// `fmi2StatusKind`.
-pub type fmi2StatusKind = c_int;
-pub const fmi2DoStepStatus: fmi2StatusKind = 0;
-pub const fmi2PendingStatus: fmi2StatusKind = 1;
-pub const fmi2LastSuccessfulTime: fmi2StatusKind = 2;
-pub const fmi2Terminated: fmi2StatusKind = 3;
+c_enum! {
+    /// `fmi2Type`.
+    fmi2Type { fmi2ModelExchange = 0, fmi2CoSimulation = 1 }
+}
+
+c_enum! {
+    /// `fmi2StatusKind`.
+    fmi2StatusKind {
+        fmi2DoStepStatus = 0, fmi2PendingStatus = 1, fmi2LastSuccessfulTime = 2,
+        fmi2Terminated = 3,
+    }
+}
 
 pub type fmi2CallbackLogger = unsafe extern "C" fn(
     componentEnvironment: fmi2ComponentEnvironment,

@@ -76,47 +76,34 @@ trait Readable: Sized {
     fn computed<S: Slave>(slave: &mut S, vr: u32, inputs: Inputs<'_>) -> Result<Self, String>;
 }
 
-impl Readable for f64 {
-    const BASE: BaseType = BaseType::Real;
-    const MASK: Mask = mask::fmi2GetReal;
-    fn stored(s: &Scalar) -> Option<f64> {
-        match s {
-            Scalar::Real(x) => Some(*x),
-            _ => None,
+/// [`Readable`] for `$ty`: stored as `Scalar::$base`, of
+/// `BaseType::$base`, read by `fmi2Get$base` (`$mask`), computed by
+/// `Slave::$get`.
+macro_rules! readable {
+    ($ty:ty, $base:ident, $mask:ident, $get:ident) => {
+        impl Readable for $ty {
+            const BASE: BaseType = BaseType::$base;
+            const MASK: Mask = mask::$mask;
+            fn stored(s: &Scalar) -> Option<$ty> {
+                match s {
+                    Scalar::$base(x) => Some(*x),
+                    _ => None,
+                }
+            }
+            fn computed<S: Slave>(
+                slave: &mut S,
+                vr: u32,
+                inputs: Inputs<'_>,
+            ) -> Result<$ty, String> {
+                slave.$get(vr, inputs)
+            }
         }
-    }
-    fn computed<S: Slave>(slave: &mut S, vr: u32, inputs: Inputs<'_>) -> Result<f64, String> {
-        slave.get_real(vr, inputs)
-    }
+    };
 }
 
-impl Readable for i32 {
-    const BASE: BaseType = BaseType::Integer;
-    const MASK: Mask = mask::fmi2GetInteger;
-    fn stored(s: &Scalar) -> Option<i32> {
-        match s {
-            Scalar::Integer(x) => Some(*x),
-            _ => None,
-        }
-    }
-    fn computed<S: Slave>(slave: &mut S, vr: u32, inputs: Inputs<'_>) -> Result<i32, String> {
-        slave.get_integer(vr, inputs)
-    }
-}
-
-impl Readable for bool {
-    const BASE: BaseType = BaseType::Boolean;
-    const MASK: Mask = mask::fmi2GetBoolean;
-    fn stored(s: &Scalar) -> Option<bool> {
-        match s {
-            Scalar::Boolean(x) => Some(*x),
-            _ => None,
-        }
-    }
-    fn computed<S: Slave>(slave: &mut S, vr: u32, inputs: Inputs<'_>) -> Result<bool, String> {
-        slave.get_boolean(vr, inputs)
-    }
-}
+readable!(f64, Real, fmi2GetReal, get_real);
+readable!(i32, Integer, fmi2GetInteger, get_integer);
+readable!(bool, Boolean, fmi2GetBoolean, get_boolean);
 
 impl<S: Slave> Inner<S> {
     /// `fmi2GetReal`, `fmi2GetInteger` and `fmi2GetBoolean`: parameters,

@@ -42,45 +42,41 @@ pub enum Field {
     Enumeration(fn(&mut Params, i32) -> Option<()>),
 }
 
+/// The [`Field`] that sets `Params::$f`: a Real, or an enumeration of
+/// the items `$items`.
+macro_rules! field {
+    ($f:ident) => {
+        Field::Real(|p, x| p.$f = x)
+    };
+    ($f:ident in $items:ident) => {
+        Field::Enumeration(|p, x| item($items, x).map(|v| p.$f = v))
+    };
+}
+
 /// Every field of [`Params`], by the value reference of its variable, in the
 /// order of `Params`.
 pub static FIELDS: &[(u32, Field)] = &[
-    (
-        vr::SHAPE,
-        Field::Enumeration(|p, x| item(SHAPES, x).map(|v| p.shape = v)),
-    ),
-    (vr::B, Field::Real(|p, x| p.b = x)),
-    (vr::L, Field::Real(|p, x| p.l = x)),
-    (vr::T, Field::Real(|p, x| p.t = x)),
-    (vr::RO, Field::Real(|p, x| p.ro = x)),
-    (vr::RI, Field::Real(|p, x| p.ri = x)),
-    (
-        vr::MASS_MODEL,
-        Field::Enumeration(|p, x| item(MASS_MODELS, x).map(|v| p.mass_model = v)),
-    ),
-    (vr::H, Field::Real(|p, x| p.h = x)),
-    (vr::RHO, Field::Real(|p, x| p.rho = x)),
-    (vr::W, Field::Real(|p, x| p.w = x)),
-    (vr::HG, Field::Real(|p, x| p.hg = x)),
-    (vr::IC, Field::Real(|p, x| p.ic = x)),
-    (
-        vr::INTERFACE,
-        Field::Enumeration(|p, x| item(INTERFACES, x).map(|v| p.interface = v)),
-    ),
-    (vr::KN, Field::Real(|p, x| p.kn = x)),
-    (vr::FM, Field::Real(|p, x| p.fm = x)),
-    (
-        vr::FORMULATION,
-        Field::Enumeration(|p, x| item(FORMULATIONS, x).map(|v| p.formulation = v)),
-    ),
-    (
-        vr::RESTITUTION,
-        Field::Enumeration(|p, x| item(RESTITUTIONS, x).map(|v| p.restitution = v)),
-    ),
-    (vr::ETA, Field::Real(|p, x| p.eta = x)),
-    (vr::G, Field::Real(|p, x| p.g = x)),
-    (vr::THETA, Field::Real(|p, x| p.theta0 = x)),
-    (vr::OMEGA, Field::Real(|p, x| p.omega0 = x)),
+    (vr::SHAPE, field!(shape in SHAPES)),
+    (vr::B, field!(b)),
+    (vr::L, field!(l)),
+    (vr::T, field!(t)),
+    (vr::RO, field!(ro)),
+    (vr::RI, field!(ri)),
+    (vr::MASS_MODEL, field!(mass_model in MASS_MODELS)),
+    (vr::H, field!(h)),
+    (vr::RHO, field!(rho)),
+    (vr::W, field!(w)),
+    (vr::HG, field!(hg)),
+    (vr::IC, field!(ic)),
+    (vr::INTERFACE, field!(interface in INTERFACES)),
+    (vr::KN, field!(kn)),
+    (vr::FM, field!(fm)),
+    (vr::FORMULATION, field!(formulation in FORMULATIONS)),
+    (vr::RESTITUTION, field!(restitution in RESTITUTIONS)),
+    (vr::ETA, field!(eta)),
+    (vr::G, field!(g)),
+    (vr::THETA, field!(theta0)),
+    (vr::OMEGA, field!(omega0)),
 ];
 
 /// The name of the variable `vr` of the type of `field`.

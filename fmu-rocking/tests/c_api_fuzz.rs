@@ -135,7 +135,7 @@ proptest! {
             Op::SetReal(0, vec![vr::AG], vec![ag]),
         ];
         for _ in 0..steps {
-            ops.push(Op::DoStep { slot: 0, point: Point::Matching, h: 0.05, no_prior: 0 });
+            ops.push(step(0, 0.05));
         }
         ops.push(Op::GetState(0, None));
         ops.push(Op::Serialize(0, StateRef::Of { slot: 0, k: 1 }, 2));
@@ -145,7 +145,7 @@ proptest! {
             if restore {
                 ops.push(Op::SetState(1, StateRef::Of { slot: 1, k: 255 }));
                 ops.push(Op::GetAll(1));
-                ops.push(Op::DoStep { slot: 1, point: Point::Matching, h: 0.05, no_prior: 0 });
+                ops.push(step(1, 0.05));
             }
         }
         run_bounded(ops);
@@ -250,13 +250,13 @@ proptest! {
             Op::ExitInit(0),
             Op::GetAll(0),
             Op::SetReal(0, vec![vr::AG], vec![ag]),
-            Op::DoStep { slot: 0, point: Point::Matching, h: 0.1, no_prior: 0 },
+            step(0, 0.1),
             Op::GetAll(0),
             Op::GetState(0, None),
             Op::Terminate(0),
             Op::Reset(0),
             Op::Init(0),
-            Op::DoStep { slot: 0, point: Point::Matching, h: 0.1, no_prior: 0 },
+            step(0, 0.1),
             Op::GetAll(0),
             Op::Free(0),
         ]);
@@ -361,12 +361,7 @@ fn regression_stepping_a_weightless_body_returns() {
                 Op::SetReal(0, vec![vr::AG], vec![ag]),
             ];
             for _ in 0..20 {
-                ops.push(Op::DoStep {
-                    slot: 0,
-                    point: Point::Matching,
-                    h: 0.1,
-                    no_prior: 0,
-                });
+                ops.push(step(0, 0.1));
                 ops.push(Op::GetAll(0));
             }
             let mut d = Driver::new();
@@ -421,21 +416,11 @@ fn regression_absurd_ground_acceleration_is_refused_not_hung() {
             Op::Init(0),
             Op::SetReal(0, vec![vr::AG], vec![ag]),
             Op::SetInputDerivatives(0, vec![vr::AG], vec![1], vec![dag]),
-            Op::DoStep {
-                slot: 0,
-                point: Point::Matching,
-                h: 0.05,
-                no_prior: 0,
-            },
+            step(0, 0.05),
             Op::Reset(0),
             Op::Init(0),
             Op::SetReal(0, vec![vr::AG], vec![1e100]),
-            Op::DoStep {
-                slot: 0,
-                point: Point::Matching,
-                h: 0.05,
-                no_prior: 0,
-            },
+            step(0, 0.05),
         ]);
         assert_eq!(
             stats.steps_ok + stats.steps_discard,
@@ -461,12 +446,7 @@ fn extreme_stiffness_stops_at_the_work_limit() {
             Op::SetReal(0, vec![vr::KN], vec![1e18]),
             Op::Init(0),
             Op::SetReal(0, vec![vr::AG], vec![1.0]),
-            Op::DoStep {
-                slot: 0,
-                point: Point::Matching,
-                h: 0.1,
-                no_prior: 0,
-            },
+            step(0, 0.1),
         ] {
             d.apply(&op);
         }

@@ -4,9 +4,12 @@
 //! iteration of the standard) reproducing co-simulation of the same FMU.
 
 mod host;
+#[path = "../../tests/support/pulse.rs"]
+mod pulse;
 
 use fmu_rocking::*;
 use host::*;
+use pulse::pulse;
 
 const NX: usize = 2;
 const NZ: usize = 9;
@@ -17,6 +20,20 @@ struct Me(Host);
 impl Me {
     fn new(logging: bool) -> Me {
         Me(Host::instantiate(fmi2ModelExchange, logging))
+    }
+    /// An instance with the default parameters, initialized: event mode.
+    fn initialized() -> Me {
+        let me = Me::new(false);
+        me.0.init();
+        me
+    }
+    /// An initialized instance in continuous-time mode, after the first
+    /// event iteration.
+    fn continuous() -> Me {
+        let me = Me::initialized();
+        me.event_iteration();
+        assert_eq!(me.enter_continuous(), fmi2OK);
+        me
     }
     fn set_time(&self, t: f64) -> fmi2Status {
         unsafe { fmi2SetTime(self.0.c, t) }
@@ -252,22 +269,6 @@ fn run_cs(
     (out, None)
 }
 
-/// A one-sine pulse sampled on `dt` and linear in between (what both hosts see).
-fn pulse(a: f64, tp: f64, dt: f64) -> impl Fn(f64) -> f64 {
-    let s = move |t: f64| {
-        if t < tp {
-            a * (2.0 * std::f64::consts::PI * t / tp).sin()
-        } else {
-            0.0
-        }
-    };
-    move |t: f64| {
-        let k = (t / dt + 1e-9).floor();
-        let (t0, t1) = (k * dt, (k + 1.0) * dt);
-        s(t0) + (s(t1) - s(t0)) * (t - t0) / dt
-    }
-}
-
 fn compare(params: &[(&str, f64)], ints: &[(&str, i32)], a: f64, tol: f64) {
     let dt = 0.01;
     let ag = pulse(a, 0.5, dt);
@@ -370,15 +371,13 @@ fn state_machine_and_argument_checks() {
     me.0.init();
     // event mode after initialization
     assert_eq!(me.0.do_step(0.0, 0.1), fmi2Error);
-    let me = Me::new(false);
-    me.0.init();
+    let me = Me::initialized();
     assert_eq!(
         me.set_x(&[0.1, 0.0]),
         fmi2Error,
         "states are set in continuous-time mode only"
     );
-    let me = Me::new(false);
-    me.0.init();
+    let me = Me::initialized();
     assert!(!me.event_iteration());
     assert_eq!(me.enter_continuous(), fmi2OK);
     assert_eq!(me.set_x(&[0.01, 0.0]), fmi2OK);
@@ -398,26 +397,18 @@ fn state_machine_and_argument_checks() {
         unsafe { fmi2SetContinuousStates(me.0.c, x.as_ptr(), 1) },
         fmi2Error
     );
-    let me = Me::new(false);
-    me.0.init();
-    me.event_iteration();
-    me.enter_continuous();
+    let me = Me::continuous();
     assert_eq!(me.set_x(&[f64::NAN, 0.0]), fmi2Error);
-    let me = Me::new(false);
-    me.0.init();
+    let me = Me::initialized();
     let mut z = [0.0; 3];
     assert_eq!(
         unsafe { fmi2GetEventIndicators(me.0.c, z.as_mut_ptr(), 3) },
         fmi2Error
     );
     // continuous-time mode refuses the event-mode calls, and vice versa
-    let me = Me::new(false);
-    me.0.init();
-    me.event_iteration();
-    me.enter_continuous();
+    let me = Me::continuous();
     assert_eq!(me.enter_continuous(), fmi2Error);
-    let me = Me::new(false);
-    me.0.init();
+    let me = Me::initialized();
     let (mut e, mut t) = (0, 0);
     assert_eq!(
         unsafe { fmi2CompletedIntegratorStep(me.0.c, fmi2True, &mut e, &mut t) },
@@ -484,8 +475,7 @@ fn a_serialized_state_restores_only_into_its_own_fmu_type() {
         }
         st
     };
-    let me = Me::new(false);
-    me.0.init();
+    let me = Me::initialized();
     let mut s = me.0.get_state();
     let me_buf = me.0.serialize(s);
     me.0.free_state(&mut s);

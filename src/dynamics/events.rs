@@ -33,8 +33,8 @@ impl StepCx<'_, '_> {
     fn level(&self, hit: Hit) -> f64 {
         match hit {
             Hit::Impact => 0.0,
-            Hit::Overturn => self.side * self.sim.model.theta_ov,
-            Hit::Kink(i) => self.side * self.sim.kinks.as_slice()[i],
+            Hit::Overturn => self.side * self.call.sim.model.theta_ov,
+            Hit::Kink(i) => self.side * self.call.sim.kinks.as_slice()[i],
         }
     }
 
@@ -100,7 +100,7 @@ impl StepCx<'_, '_> {
     fn on_kink(&mut self, level: f64, omega: f64) {
         self.st.theta = level;
         self.st.omega = omega;
-        self.a0 = self.eom.accel(
+        self.a0 = self.call.eom.accel(
             self.st.t,
             self.st.theta,
             self.st.omega,
@@ -109,7 +109,7 @@ impl StepCx<'_, '_> {
         );
         self.ev.stats.evals += 1;
         self.st.a = self.hint;
-        self.side = side_of(self.st.theta, self.st.omega, self.eom.ag(self.st.t));
+        self.side = side_of(self.st.theta, self.st.omega, self.call.eom.ag(self.st.t));
     }
 
     /// `|theta|` reached `thetaOv` at `t_ev`: the run is over.
@@ -125,7 +125,7 @@ impl StepCx<'_, '_> {
     /// rule, the counts, then rest (or, for the rigid law without ground
     /// motion, the half-cycles that fit in closed form).
     fn impact(&mut self, omega: f64, t_ev: f64) -> Flow {
-        let (sim, eom) = (self.sim, self.eom);
+        let (sim, eom) = (self.call.sim, self.call.eom);
         self.st.theta = 0.0;
         self.st.omega = sim.restitution(omega);
         count_crossing(self.st, self.ev);
@@ -136,15 +136,15 @@ impl StepCx<'_, '_> {
         } else {
             quiet && sim.settles(self.st.omega)
         };
-        if eom.rigid && quiet && !rest && !self.stop_at_event {
-            rest = sim.free_half_cycles(self.st, self.t_end, self.ev, self.budget);
+        if eom.rigid && quiet && !rest && !self.call.stop_at_event {
+            rest = sim.free_half_cycles(self.st, self.call.t_end, self.ev, self.call.budget);
         }
         if rest {
             self.st.omega = 0.0;
             self.st.at_rest = true;
             self.ev.came_to_rest = true;
             self.st.h = 0.0;
-            return Flow::Stop(if self.stop_at_event {
+            return Flow::Stop(if self.call.stop_at_event {
                 Stop::Event
             } else {
                 Stop::End
@@ -154,7 +154,7 @@ impl StepCx<'_, '_> {
         self.hint = self.st.a;
         self.a0 = eom.accel(self.st.t, 0.0, self.st.omega, self.side, &mut self.hint);
         self.ev.stats.evals += 1;
-        if self.stop_at_event {
+        if self.call.stop_at_event {
             self.st.h = self.h;
             return Flow::Stop(Stop::Event);
         }
@@ -171,7 +171,7 @@ impl StepCx<'_, '_> {
         hit: Hit,
         mut dt: f64,
     ) -> (f64, StepOut, EventStatus) {
-        let tol: &Tol = self.tol;
+        let tol: &Tol = self.call.tol;
         let start = self.start_at(tr.t, tr.y0);
         let target = self.level(hit);
         let h_max = tr.hh;
@@ -227,7 +227,7 @@ impl StepCx<'_, '_> {
     /// ends below it, as in a stiff step, or between two ends cut exactly on
     /// the level).
     pub(super) fn note_opening(&mut self, p: &Hermite, tau_end: f64) {
-        let theta_jo = self.sim.model.interface.theta_jo();
+        let theta_jo = self.call.sim.model.interface.theta_jo();
         // the end first: the turning-point search only while the joint has
         // not opened in this half-cycle, and only where the step's bounds
         // reach thetaJo

@@ -71,6 +71,14 @@ impl Simulator {
         let mut ev = Events::default();
         let eom = Eom::new(self, st.t, input);
         let tol = self.tol();
+        let call = Call {
+            sim: self,
+            eom: &eom,
+            tol: &tol,
+            t_end,
+            stop_at_event,
+            budget,
+        };
         if st.theta == 0.0 && st.omega == 0.0 {
             st.at_rest = true;
         }
@@ -109,21 +117,8 @@ impl Simulator {
                 }
             }
             let stop = match self.method {
-                Method::Dp5 => {
-                    StepCx::new::<Dp5>(self, &eom, &tol, st, t_end, stop_at_event, budget, &mut ev)
-                        .steps::<Dp5>()
-                }
-                Method::Dop853 => StepCx::new::<Dop853>(
-                    self,
-                    &eom,
-                    &tol,
-                    st,
-                    t_end,
-                    stop_at_event,
-                    budget,
-                    &mut ev,
-                )
-                .steps::<Dop853>(),
+                Method::Dp5 => StepCx::new::<Dp5>(call, st, &mut ev).steps::<Dp5>(),
+                Method::Dop853 => StepCx::new::<Dop853>(call, st, &mut ev).steps::<Dop853>(),
             };
             if stop != Stop::End || st.overturned || !st.at_rest || st.t >= t_end {
                 return ev;
@@ -155,19 +150,27 @@ impl Simulator {
     }
 }
 
-/// One step loop: from the state to `t_end`, an event the caller wants,
-/// rest, overturning or the work limit. The fields that are not the
-/// call's settings change from step to step.
-pub(super) struct StepCx<'c, 'm> {
+/// The settings of one call, the same for each of its step loops.
+#[derive(Clone, Copy)]
+pub(super) struct Call<'c, 'm> {
     pub(super) sim: &'c Simulator,
     pub(super) eom: &'c Eom<'m>,
     pub(super) tol: &'c Tol,
-    pub(super) st: &'c mut State,
-    pub(super) ev: &'c mut Events,
+    /// The call's end (call-local time), s.
     pub(super) t_end: f64,
+    /// Stop at an event for the caller to see it.
     pub(super) stop_at_event: bool,
     /// The most work (steps, rejections and zero crossings) of the call.
     pub(super) budget: Option<u64>,
+}
+
+/// One step loop: from the state to `t_end`, an event the caller wants,
+/// rest, overturning or the work limit. The fields but `call` change from
+/// step to step.
+pub(super) struct StepCx<'c, 'm> {
+    pub(super) call: Call<'c, 'm>,
+    pub(super) st: &'c mut State,
+    pub(super) ev: &'c mut Events,
     /// Side of the motion at the step start (see `eom::side_of`).
     pub(super) side: f64,
     /// Warm start of the contact solve at the step start, m.
@@ -213,17 +216,8 @@ pub(super) enum Flow {
 impl<'c, 'm> StepCx<'c, 'm> {
     /// The context at the state's start: `theta''` there and the first step
     /// (the state's suggestion, else Hairer's starting step).
-    #[allow(clippy::too_many_arguments)]
-    fn new<P: Pair>(
-        sim: &'c Simulator,
-        eom: &'c Eom<'m>,
-        tol: &'c Tol,
-        st: &'c mut State,
-        t_end: f64,
-        stop_at_event: bool,
-        budget: Option<u64>,
-        ev: &'c mut Events,
-    ) -> StepCx<'c, 'm> {
+    fn new<P: Pair>(call: Call<'c, 'm>, st: &'c mut State, ev: &'c mut Events) -> StepCx<'c, 'm> {
+        let Call { sim, eom, tol, .. } = call;
         let side = side_of(st.theta, st.omega, eom.ag(st.t));
         let mut hint = st.a;
         let a0 = eom.accel(st.t, st.theta, st.omega, side, &mut hint);
@@ -244,14 +238,9 @@ impl<'c, 'm> StepCx<'c, 'm> {
             st.stiff = false;
         }
         StepCx {
-            sim,
-            eom,
-            tol,
+            call,
             st,
             ev,
-            t_end,
-            stop_at_event,
-            budget,
             side,
             hint,
             a0,
@@ -264,7 +253,7 @@ impl<'c, 'm> StepCx<'c, 'm> {
     /// The loop: attempt, reject or accept, then take the step or the event
     /// found on its dense output.
     fn steps<P: Pair>(mut self) -> Stop {
-        while self.st.t < self.t_end {
+        while self.st.t < self.call.t_end {
             if self.over_budget() {
                 self.st.h = self.h;
                 return Stop::Limit;
@@ -287,9 +276,9 @@ impl<'c, 'm> StepCx<'c, 'm> {
             let kinks = if self.st.stiff {
                 &[][..]
             } else {
-                self.sim.kinks.as_slice()
+                self.call.sim.kinks.as_slice()
             };
-            match first_event(&herm, self.side, self.sim.model.theta_ov, kinks) {
+            match first_event(&herm, self.side, self.call.sim.model.theta_ov, kinks) {
                 None => {
                     self.take(&tr, &herm);
                     self.h = h_next;
@@ -306,7 +295,7 @@ impl<'c, 'm> StepCx<'c, 'm> {
 
     /// Whether the call has used its work budget.
     fn over_budget(&mut self) -> bool {
-        let Some(budget) = self.budget else {
+        let Some(budget) = self.call.budget else {
             return false;
         };
         let work = self.ev.work();
@@ -322,8 +311,8 @@ impl<'c, 'm> StepCx<'c, 'm> {
     /// in the stiff mode, see `stiffness::slow_state`).
     fn attempt<P: Pair>(&mut self) -> Trial {
         let t = self.st.t;
-        let last = t + 1.01 * self.h >= self.t_end;
-        let t_new = if last { self.t_end } else { t + self.h };
+        let last = t + 1.01 * self.h >= self.call.t_end;
+        let t_new = if last { self.call.t_end } else { t + self.h };
         let hh = t_new - t;
         let kind = if self.st.stiff {
             Kind::Rodas(self.stiff_jacobian(hh))
@@ -332,7 +321,7 @@ impl<'c, 'm> StepCx<'c, 'm> {
         };
         let start = self.start();
         let mut hint = self.hint;
-        let out = stiffness::attempt::<P>(&start, &kind, hh, &mut hint, self.tol, self.ev);
+        let out = stiffness::attempt::<P>(&start, &kind, hh, &mut hint, self.call.tol, self.ev);
         Trial {
             t,
             y0: start.y0,
@@ -355,10 +344,10 @@ impl<'c, 'm> StepCx<'c, 'm> {
         if let Some(j) = self.jac {
             return j;
         }
-        let tol = self.tol;
+        let tol = self.call.tol;
         let start = self.start();
         let mut j = stiffness::jacobian(&start, hh, self.hint, tol, self.ev);
-        let negligible = tol.rtol * self.sim.model.theta_ov;
+        let negligible = tol.rtol * self.call.sim.model.theta_ov;
         if let Some((th, om)) = stiffness::slow_state(&j, start.y0, start.a0, negligible) {
             self.st.theta = th;
             self.st.omega = om;
@@ -378,7 +367,7 @@ impl<'c, 'm> StepCx<'c, 'm> {
     /// The step start at `(t, y0)` with the context's `theta''` and side.
     pub(super) fn start_at(&self, t: f64, y0: [f64; 2]) -> Start<'c> {
         Start {
-            eom: self.eom,
+            eom: self.call.eom,
             t,
             y0,
             a0: self.a0,
@@ -392,7 +381,7 @@ impl<'c, 'm> StepCx<'c, 'm> {
         self.ev.stats.rejected += 1;
         let f = controller::shrink(tr.out.err, tr.kind.err_exp::<P>());
         self.h = (tr.hh * f).max(tr.min_step);
-        let kinks = &self.sim.kinks;
+        let kinks = &self.call.sim.kinks;
         if !kinks.as_slice().is_empty() && !self.st.stiff && tr.out.err.is_finite() {
             let herm = Hermite::new(
                 tr.hh,
@@ -402,7 +391,7 @@ impl<'c, 'm> StepCx<'c, 'm> {
             self.h = kinks.retry_past(
                 &herm,
                 self.side,
-                self.sim.model.theta_ov,
+                self.call.sim.model.theta_ov,
                 tr.hh,
                 self.h,
                 tr.min_step,
@@ -426,16 +415,16 @@ impl<'c, 'm> StepCx<'c, 'm> {
             tr.hh * fac
         };
         h_next = h_next.max(tr.min_step);
-        if !self.eom.rigid {
+        if !self.call.eom.rigid {
             h_next = controller::toward_zero(
                 h_next,
                 tr.hh,
                 fac,
                 tr.out.y,
-                self.sim.model.interface.theta_jo(),
+                self.call.sim.model.interface.theta_jo(),
             );
         }
-        if !self.eom.rigid && !tr.last && self.sim.stiff_mode {
+        if !self.call.eom.rigid && !tr.last && self.call.sim.stiff_mode {
             stiffness::switch(
                 &mut self.st.stiff,
                 &mut self.st.switch_count,
@@ -455,8 +444,8 @@ impl<'c, 'm> StepCx<'c, 'm> {
         self.a0 = tr.out.accel;
         self.hint = tr.hint;
         self.st.a = self.hint;
-        if !self.eom.rigid {
-            self.side = side_of(self.st.theta, self.st.omega, self.eom.ag(self.st.t));
+        if !self.call.eom.rigid {
+            self.side = side_of(self.st.theta, self.st.omega, self.call.eom.ag(self.st.t));
         }
     }
 }

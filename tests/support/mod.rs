@@ -2,11 +2,15 @@
 //! test: quadratures (tanh-sinh for integrable endpoint singularities,
 //! Gauss-Legendre), model builders, the non-smooth points of the restoring
 //! moment and the potential energy; the bases and their width ([`base`]),
-//! exact rigid rocking ([`exact`]), a plain RK4 ([`rk4`]).
+//! exact rigid rocking ([`exact`]), a plain RK4 ([`rk4`]), a seeded
+//! generator for the random sweeps ([`lcg`]), a sampled ground pulse
+//! ([`pulse`]).
 #![allow(dead_code)]
 
 pub mod base;
 pub mod exact;
+pub mod lcg;
+pub mod pulse;
 pub mod rk4;
 
 use rocking::model::{LawKind, MassKind, ShapeKind};

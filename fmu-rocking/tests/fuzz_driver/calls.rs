@@ -20,85 +20,34 @@ impl Driver {
             nextEventTime: f64::NAN,
         };
         let p = out.as_mut_ptr();
-        // SAFETY (every arm): a live instance and arrays of at least `n` values.
-        let (what, allowed, st): (&str, &[M], _) = match which % 10 {
-            0 => (
-                "fmi2SetTime",
-                ME_SET_TIME,
-                self.call(k, "fmi2SetTime", ME_SET_TIME, |c| unsafe {
-                    fmu::fmi2SetTime(c, x[0])
-                }),
-            ),
-            1 => (
-                "fmi2SetContinuousStates",
-                ME_CONTINUOUS,
-                self.call(k, "fmi2SetContinuousStates", ME_CONTINUOUS, |c| unsafe {
-                    fmu::fmi2SetContinuousStates(c, x.as_ptr(), n.min(2))
-                }),
-            ),
-            2 => (
-                "fmi2GetContinuousStates",
-                ME_EVALUATE,
-                self.call(k, "fmi2GetContinuousStates", ME_EVALUATE, |c| unsafe {
-                    fmu::fmi2GetContinuousStates(c, p, n)
-                }),
-            ),
-            3 => (
-                "fmi2GetDerivatives",
-                ME_EVALUATE,
-                self.call(k, "fmi2GetDerivatives", ME_EVALUATE, |c| unsafe {
-                    fmu::fmi2GetDerivatives(c, p, n)
-                }),
-            ),
-            4 => (
-                "fmi2GetEventIndicators",
-                ME_EVALUATE,
-                self.call(k, "fmi2GetEventIndicators", ME_EVALUATE, |c| unsafe {
-                    fmu::fmi2GetEventIndicators(c, p, n)
-                }),
-            ),
-            5 => (
-                "fmi2GetNominalsOfContinuousStates",
-                ANY,
-                self.call(k, "fmi2GetNominalsOfContinuousStates", ANY, |c| unsafe {
-                    fmu::fmi2GetNominalsOfContinuousStates(c, p, n)
-                }),
-            ),
-            6 => (
-                "fmi2EnterEventMode",
-                ME_SET_TIME,
-                self.call(k, "fmi2EnterEventMode", ME_SET_TIME, |c| unsafe {
-                    fmu::fmi2EnterEventMode(c)
-                }),
-            ),
-            7 => (
-                "fmi2NewDiscreteStates",
-                ME_EVENT,
-                self.call(k, "fmi2NewDiscreteStates", ME_EVENT, |c| unsafe {
-                    fmu::fmi2NewDiscreteStates(c, &mut info)
-                }),
-            ),
-            8 => (
-                "fmi2EnterContinuousTimeMode",
-                ME_EVENT,
-                self.call(k, "fmi2EnterContinuousTimeMode", ME_EVENT, |c| unsafe {
-                    fmu::fmi2EnterContinuousTimeMode(c)
-                }),
-            ),
-            _ => (
-                "fmi2CompletedIntegratorStep",
-                ME_CONTINUOUS,
-                self.call(
-                    k,
-                    "fmi2CompletedIntegratorStep",
-                    ME_CONTINUOUS,
-                    |c| unsafe {
-                        fmu::fmi2CompletedIntegratorStep(c, fmi2True, &mut enter, &mut terminate)
-                    },
-                ),
-            ),
+        let op = which % 10;
+        let (what, allowed): (&str, &[M]) = match op {
+            0 => ("fmi2SetTime", ME_SET_TIME),
+            1 => ("fmi2SetContinuousStates", ME_CONTINUOUS),
+            2 => ("fmi2GetContinuousStates", ME_EVALUATE),
+            3 => ("fmi2GetDerivatives", ME_EVALUATE),
+            4 => ("fmi2GetEventIndicators", ME_EVALUATE),
+            5 => ("fmi2GetNominalsOfContinuousStates", ANY),
+            6 => ("fmi2EnterEventMode", ME_SET_TIME),
+            7 => ("fmi2NewDiscreteStates", ME_EVENT),
+            8 => ("fmi2EnterContinuousTimeMode", ME_EVENT),
+            _ => ("fmi2CompletedIntegratorStep", ME_CONTINUOUS),
         };
-        let _ = allowed;
+        // SAFETY (every arm): a live instance and arrays of at least `n` values.
+        let st = self.call(k, what, allowed, |c| unsafe {
+            match op {
+                0 => fmu::fmi2SetTime(c, x[0]),
+                1 => fmu::fmi2SetContinuousStates(c, x.as_ptr(), n.min(2)),
+                2 => fmu::fmi2GetContinuousStates(c, p, n),
+                3 => fmu::fmi2GetDerivatives(c, p, n),
+                4 => fmu::fmi2GetEventIndicators(c, p, n),
+                5 => fmu::fmi2GetNominalsOfContinuousStates(c, p, n),
+                6 => fmu::fmi2EnterEventMode(c),
+                7 => fmu::fmi2NewDiscreteStates(c, &mut info),
+                8 => fmu::fmi2EnterContinuousTimeMode(c),
+                _ => fmu::fmi2CompletedIntegratorStep(c, fmi2True, &mut enter, &mut terminate),
+            }
+        });
         let Some(st) = st else { return };
         let me = self.slot(k).is_some_and(|s| s.me);
         if !me {
@@ -109,15 +58,15 @@ impl Driver {
             return;
         }
         self.stats.model_exchange_ok += 1;
-        if (2..=5).contains(&(which % 10)) {
+        if (2..=5).contains(&op) {
             for (i, v) in out[..n].iter().enumerate() {
                 assert!(v.is_finite(), "{what}: value {i} = {v} after fmi2OK");
             }
-            if which % 10 == 5 {
+            if op == 5 {
                 assert!(out[..n].iter().all(|v| *v > 0.0), "{what}: {:?}", &out[..n]);
             }
         }
-        match which % 10 {
+        match op {
             6 => self.set_machine(k, Some(M::EventMode)),
             7 => {
                 for b in [
@@ -310,13 +259,8 @@ impl Driver {
         if let Some(fmi2OK) = self.call(k, "fmi2SetReal", SET, |c| unsafe {
             fmu::fmi2SetReal(c, r.as_ptr(), r.len(), x.as_ptr())
         }) {
-            let s = self.slot(k).expect("called");
-            if let Some(st) = s.stored.as_mut() {
-                for (&r, &x) in r.iter().zip(x) {
-                    if let Some(v) = st.real.get_mut(r as usize) {
-                        *v = x;
-                    }
-                }
+            if let Some(st) = self.slot(k).expect("called").stored.as_mut() {
+                accept(&mut st.real, r, x);
             }
         }
     }
@@ -325,13 +269,8 @@ impl Driver {
         if let Some(fmi2OK) = self.call(k, "fmi2SetInteger", SET, |c| unsafe {
             fmu::fmi2SetInteger(c, r.as_ptr(), r.len(), x.as_ptr())
         }) {
-            let s = self.slot(k).expect("called");
-            if let Some(st) = s.stored.as_mut() {
-                for (&r, &x) in r.iter().zip(x) {
-                    if let Some(v) = st.int.get_mut(r as usize) {
-                        *v = x;
-                    }
-                }
+            if let Some(st) = self.slot(k).expect("called").stored.as_mut() {
+                accept(&mut st.int, r, x);
             }
         }
     }
@@ -569,6 +508,16 @@ impl Driver {
         }
         if !(0..=3).contains(&kind) {
             assert!(st == fmi2Error, "{name}({kind}) = {st}: unknown kind");
+        }
+    }
+}
+
+/// The values `x` of the value references `r` the FMU accepted, into the
+/// driver's copy of its store (`to`, by value reference).
+fn accept<T: Copy>(to: &mut [T], r: &[u32], x: &[T]) {
+    for (&r, &x) in r.iter().zip(x) {
+        if let Some(v) = to.get_mut(r as usize) {
+            *v = x;
         }
     }
 }

@@ -543,6 +543,16 @@ pub fn plain_instance(slot: u8) -> Op {
     )
 }
 
+/// `fmi2DoStep` of `h` s on slot `slot` from the instance's own time.
+pub fn step(slot: u8, h: f64) -> Op {
+    Op::DoStep {
+        slot,
+        point: Point::Matching,
+        h,
+        no_prior: 0,
+    }
+}
+
 /// The operations encoded by `data` (at most [`MAX_OPS`]).
 pub fn decode(data: &[u8]) -> Vec<Op> {
     let mut b = Bytes::new(data);

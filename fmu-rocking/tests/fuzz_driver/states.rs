@@ -20,6 +20,15 @@ impl Driver {
         }
     }
 
+    /// For a call on slot `k` with the state `r`: the state's (pointer,
+    /// owner slot, index) and whether slot `k` owns it; `None` if the slot is
+    /// empty or the state does not exist.
+    fn state_for(&self, k: u8, r: StateRef) -> Option<(fmi2FMUstate, usize, usize, bool)> {
+        self.slots[k as usize % SLOTS].as_ref()?;
+        let (p, owner, i) = self.lookup_state(r)?;
+        Some((p, owner, i, owner == k as usize % SLOTS))
+    }
+
     /// What the driver knows of slot `k` now, with its outputs read if that
     /// cannot fail (the model exists and its parameters are valid).
     pub(crate) fn know(&mut self, k: u8) -> Known {
@@ -81,13 +90,9 @@ impl Driver {
     }
 
     pub(crate) fn set_state(&mut self, k: u8, r: StateRef) {
-        if self.slot(k).is_none() {
-            return;
-        }
-        let Some((p, owner, i)) = self.lookup_state(r) else {
+        let Some((p, owner, i, own)) = self.state_for(k, r) else {
             return;
         };
-        let own = owner == k as usize % SLOTS;
         let state = own.then(|| {
             let s = &self.slots[owner].as_ref().expect("owner").states[i];
             (s.genuine, s.known.clone())
@@ -129,13 +134,9 @@ impl Driver {
     }
 
     pub(crate) fn free_state(&mut self, k: u8, r: StateRef) {
-        if self.slot(k).is_none() {
-            return;
-        }
-        let Some((p, owner, i)) = self.lookup_state(r) else {
+        let Some((p, _, i, own)) = self.state_for(k, r) else {
             return;
         };
-        let own = owner == k as usize % SLOTS;
         let mut q = p;
         let Some(st) = self.call(k, "fmi2FreeFMUstate", ANY, |c| unsafe {
             fmu::fmi2FreeFMUstate(c, &mut q)
@@ -158,13 +159,10 @@ impl Driver {
     }
 
     pub(crate) fn serialize(&mut self, k: u8, r: StateRef, size_mode: u8) {
-        if self.slot(k).is_none() {
-            return;
-        }
-        let Some((p, owner, i)) = self.lookup_state(r) else {
+        let Some((p, owner, i, own)) = self.state_for(k, r) else {
             return;
         };
-        let own = owner == k as usize % SLOTS && !p.is_null();
+        let own = own && !p.is_null();
         let mut size: usize = usize::MAX;
         let Some(st) = self.call(k, "fmi2SerializedFMUstateSize", ANY, |c| unsafe {
             fmu::fmi2SerializedFMUstateSize(c, p, &mut size)
