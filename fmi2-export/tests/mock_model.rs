@@ -73,18 +73,11 @@ static MD: ModelDescription = ModelDescription {
     copyright: "",
     license: "",
     generation_tool: "",
+    // the layer's capabilities, but output derivatives to order 1 only: the
+    // mock answers x' = k u and nothing higher
     co_simulation: CoSimulation {
-        model_identifier: "Mock",
-        needs_execution_tool: false,
-        can_handle_variable_communication_step_size: true,
-        can_interpolate_inputs: true,
         max_output_derivative_order: 1,
-        can_run_asynchronuously: false,
-        can_be_instantiated_only_once_per_process: false,
-        can_not_use_memory_management_functions: true,
-        can_get_and_set_fmu_state: true,
-        can_serialize_fmu_state: true,
-        provides_directional_derivative: false,
+        ..common::co_simulation("Mock")
     },
     model_exchange: None,
     units: &[],

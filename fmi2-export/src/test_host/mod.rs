@@ -247,9 +247,20 @@ impl<S: Slave> Host<S> {
 
     /// One `fmi2GetReal` of several value references.
     pub fn get_reals_vr(&self, vrs: &[u32]) -> (fmi2Status, Vec<f64>) {
-        let mut x = vec![f64::NAN; vrs.len()];
+        self.get_vr(ffi::get_real::<S>, vrs, f64::NAN)
+    }
+
+    /// One call of the getter `get` for several value references; `unset`
+    /// stays where it writes nothing.
+    fn get_vr<T: Copy>(
+        &self,
+        get: unsafe fn(fmi2Component, *const fmi2ValueReference, usize, *mut T) -> fmi2Status,
+        vrs: &[u32],
+        unset: T,
+    ) -> (fmi2Status, Vec<T>) {
+        let mut x = vec![unset; vrs.len()];
         // SAFETY: n value references and room for n values.
-        let s = unsafe { ffi::get_real::<S>(self.c, vrs.as_ptr(), vrs.len(), x.as_mut_ptr()) };
+        let s = unsafe { get(self.c, vrs.as_ptr(), vrs.len(), x.as_mut_ptr()) };
         (s, x)
     }
 
@@ -273,10 +284,7 @@ impl<S: Slave> Host<S> {
 
     /// One `fmi2GetInteger` of several value references.
     pub fn get_integers_vr(&self, vrs: &[u32]) -> (fmi2Status, Vec<i32>) {
-        let mut x = vec![i32::MIN; vrs.len()];
-        // SAFETY: n value references and room for n values.
-        let s = unsafe { ffi::get_integer::<S>(self.c, vrs.as_ptr(), vrs.len(), x.as_mut_ptr()) };
-        (s, x)
+        self.get_vr(ffi::get_integer::<S>, vrs, i32::MIN)
     }
 
     pub fn integer(&self, name: &str) -> i32 {
@@ -290,10 +298,8 @@ impl<S: Slave> Host<S> {
     }
 
     pub fn get_boolean_vr(&self, r: u32) -> (fmi2Status, bool) {
-        let mut x = -1;
-        // SAFETY: one value reference and room for one value.
-        let s = unsafe { ffi::get_boolean::<S>(self.c, &r, 1, &mut x) };
-        (s, x != fmi2False)
+        let (s, x) = self.get_vr(ffi::get_boolean::<S>, &[r], -1);
+        (s, x[0] != fmi2False)
     }
 
     pub fn boolean(&self, name: &str) -> bool {
