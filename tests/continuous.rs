@@ -13,7 +13,7 @@ use rocking::dynamics::{GroundInput, Simulator, DEFAULT_RTOL};
 use rocking::{Model, Params};
 use support::exact::Exact;
 use support::pulse::pulse;
-use support::rigid_block;
+use support::{crushing_block, rigid_block};
 
 /// Records of a run.
 #[derive(Default, Debug)]
@@ -283,14 +283,7 @@ fn elastic_and_crushing_interfaces_match_co_simulation() {
     .unwrap();
     let r = compare(elastic, 1.5, 0.5, 300, 1e-6);
     assert!(!r.crossings.is_empty());
-    let crushing = Params {
-        kn: 1e8,
-        fm: 2e6,
-        ..Params::default()
-    }
-    .build()
-    .unwrap();
-    let r = compare(crushing, 1.5, 0.5, 300, 1e-6);
+    let r = compare(crushing_block(), 1.5, 0.5, 300, 1e-6);
     assert!(!r.crossings.is_empty());
 }
 

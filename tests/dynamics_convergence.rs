@@ -13,20 +13,11 @@
 mod support;
 
 use rocking::dynamics::{GroundInput, Method, Simulator, State};
-use rocking::{Model, Params};
+use rocking::Model;
+use support::crushing_block;
 use support::rk4::{flexible_accel, Rk4};
 
 const T_END: f64 = 4.0;
-
-fn model() -> Model {
-    Params {
-        kn: 1e8,
-        fm: 2e6,
-        ..Params::default()
-    }
-    .build()
-    .unwrap()
-}
 
 /// The pulse: linear pieces `(t0, t1, ag0, ag1)`, then zero.
 fn pulse(m: &Model) -> Vec<(f64, f64, f64, f64)> {
@@ -93,7 +84,7 @@ fn err(m: &Model, a: &State, b: &State) -> f64 {
 
 #[test]
 fn error_falls_with_the_tolerance_at_the_order_of_the_method() {
-    let m = model();
+    let m = crushing_block();
     for (method, order) in [(Method::Dop853, 8.0), (Method::Dp5, 5.0)] {
         let mut rows = Vec::new();
         for k in 5..=10 {
@@ -138,7 +129,7 @@ fn error_falls_with_the_tolerance_at_the_order_of_the_method() {
 
 #[test]
 fn agrees_with_an_independent_fixed_step_rk4() {
-    let m = model();
+    let m = crushing_block();
     let fine = rk4(&m, 2.5e-5);
     let coarse = rk4(&m, 5e-5);
     // Richardson: the fine RK4's own error is about |fine - coarse| / 15

@@ -17,7 +17,7 @@ mod support;
 use rocking::dynamics::{GroundInput, Simulator, State};
 use rocking::model::LawKind;
 use rocking::{Law, Model, Params};
-use support::{moment_breaks, quad_adaptive, rigid_block};
+use support::{crushing_block, moment_breaks, quad_adaptive, rigid_block};
 
 /// The side of the motion: the sign of `theta`, at `theta = 0` of `omega`.
 fn side(st: &State) -> f64 {
@@ -137,13 +137,7 @@ fn rigid_forces_match_finite_differences_of_the_trajectory() {
 
 #[test]
 fn flexible_forces_match_finite_differences_of_the_trajectory() {
-    let m = Params {
-        kn: 1e8,
-        fm: 2e6,
-        ..Params::default()
-    }
-    .build()
-    .unwrap();
+    let m = crushing_block();
     let (dd, fx, fz) = check_forces(m, 0.6 * m.theta_ov, 0.0, 1e-3, 3000);
     eprintln!(
         "flexible: |theta'' - FD| {dd:.1e} rad/s², |Fx - FD|/W {fx:.1e}, |Fz - FD|/W {fz:.1e}"

@@ -151,6 +151,18 @@ pub fn rigid_block(b: f64, h: f64) -> Model {
     .unwrap()
 }
 
+/// The default block on an elasto-plastic interface that crushes early:
+/// `kn` = 1e8 Pa/m, `fm` = 2 MPa.
+pub fn crushing_block() -> Model {
+    Params {
+        kn: 1e8,
+        fm: 2e6,
+        ..Params::default()
+    }
+    .build()
+    .unwrap()
+}
+
 /// Rotations in `(0, phi)` where the restoring moment `MR(phi)` is not
 /// smooth: the regime thresholds, and where the contact edge `a` or the
 /// plastic edge `xp = a - fm / (kn phi)` passes a corner of the width
