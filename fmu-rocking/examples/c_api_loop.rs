@@ -90,30 +90,21 @@ fn exercise(case: &Case, round: usize, steps: usize) -> Summary {
     // deserialized one
     let (a, over_a) = run_from(&fmu, case, half, steps - half);
     let t_over = over_a.then(|| fmu.last_successful_time().1);
-    fmu.check("fmi2SetFMUstate", fmu.set_state(saved));
-    let (b, over_b) = run_from(&fmu, case, half, steps - half);
-    assert_eq!(
-        bits(&a),
-        bits(&b),
-        "{}: replay from the FMU state",
-        case.name
-    );
-    assert_eq!(over_a, over_b);
     let restored = fmu.deserialize(&bytes);
-    fmu.check("fmi2SetFMUstate", fmu.set_state(restored));
-    let (c, over_c) = run_from(&fmu, case, half, steps - half);
-    assert_eq!(
-        bits(&a),
-        bits(&c),
-        "{}: replay from the deserialized state",
-        case.name
-    );
-    assert_eq!(over_a, over_c);
-    if over_c {
-        assert_eq!(
-            fmu.last_successful_time().1.to_bits(),
-            t_over.unwrap().to_bits()
-        );
+    for (state, from) in [
+        (saved, "the FMU state"),
+        (restored, "the deserialized state"),
+    ] {
+        fmu.check("fmi2SetFMUstate", fmu.set_state(state));
+        let (b, over_b) = run_from(&fmu, case, half, steps - half);
+        assert_eq!(bits(&a), bits(&b), "{}: replay from {from}", case.name);
+        assert_eq!(over_a, over_b);
+        if over_b {
+            assert_eq!(
+                fmu.last_successful_time().1.to_bits(),
+                t_over.unwrap().to_bits()
+            );
+        }
     }
 
     // overwrite the saved state with the end state, serialize it again
