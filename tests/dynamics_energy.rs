@@ -162,7 +162,12 @@ fn shifting_pivot_conserves_energy_for_every_shape_and_law() {
             eprintln!(
                 "{shape}, {law}: |E/E0 - 1| over 100 cycles: at crossings {dc:.1e}, mid-swing {dm:.1e}"
             );
-            assert!(dc < 1e-9, "{shape} {law}: drift {dc:.2e}");
+            // The drift at the crossings is the integrator's error at rtol
+            // 1e-12 summed over 200 crossings; it moves with the step
+            // sequence: on the hollow circle 3.8e-10 to 1.4e-9 between rtol
+            // 1e-12 and 1.1e-12, with the contact table and without. Costa's
+            // missing term drifts by 2e-2 in 10 cycles.
+            assert!(dc < 3e-9, "{shape} {law}: drift {dc:.2e}");
             assert!(dm < 1e-9, "{shape} {law}: mid-swing drift {dm:.2e}");
         }
     }
