@@ -181,16 +181,21 @@ def plot_convergence(rows, path):
         ax.loglog(h, 0.1 * h / h[0], "k--", lw=0.8)
         ax.loglog(h, 0.1 * (h / h[0]) ** 2, "k-.", lw=0.8)
         ax.axhline(0.01, color="grey", lw=0.6)
-        ax.set_title(f"error in {title}")
-        ax.set_xlabel("communication step h (s)")
-        ax.set_ylabel("max |co-sim - reference| / reference peak")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
+        _label(ax, f"error in {title}", "communication step h (s)", "max |co-sim - reference| / reference peak", 7)
     fig.suptitle("Co-simulation error against the monolithic reference (dashed: slope 1, dash-dot: slope 2; "
                  f"grey: 1 %; slopes fitted for h <= {FIT_BELOW:g} s)", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+def _label(ax, title, xlabel, ylabel, legend_size):
+    """Title, axis labels, a log grid and the legend of one panel."""
+    ax.set_title(title)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=legend_size)
 
 
 def plot_sweep(rows, path):
@@ -210,11 +215,7 @@ def plot_sweep(rows, path):
             if ov:
                 ax.loglog(mu[ov], d[ov], "kx", ms=9)
         ax.axhline(0.05, color="grey", lw=0.6)
-        ax.set_title(f"two-way vs one-way: {title}")
-        ax.set_xlabel("block mass / floor mass")
-        ax.set_ylabel("|two-way - one-way| / one-way")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
+        _label(ax, f"two-way vs one-way: {title}", "block mass / floor mass", "|two-way - one-way| / one-way", 8)
     fig.suptitle("One storey carrying the block, ground sine at the frame's frequency, 0.9 x the amplitude at which "
                  "the one-way block reaches thetaOv / 2 (x: overturned; grey: 5 %)", fontsize=9)
     fig.tight_layout()
