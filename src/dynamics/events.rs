@@ -231,10 +231,11 @@ impl StepCx<'_, '_> {
         // the end first: the turning-point search only while the joint has
         // not opened in this half-cycle, and only where the step's bounds
         // reach thetaJo
+        if self.st.opened {
+            return;
+        }
         let (lo, hi) = p.bounds();
-        let reaches = lo.abs().max(hi.abs()) > theta_jo;
-        if !self.st.opened
-            && reaches
+        if lo.abs().max(hi.abs()) > theta_jo
             && (p.theta(tau_end).abs() > theta_jo || max_abs(p, tau_end) > theta_jo)
         {
             self.st.opened = true;

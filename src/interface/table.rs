@@ -362,13 +362,6 @@ impl ContactTable {
         (self.pieces.len(), open)
     }
 
-    /// Chebyshev terms of each piece answered by the table: `(af and
-    /// af', a and a')`.
-    pub fn terms(&self) -> Vec<(usize, usize)> {
-        let fitted = self.pieces.iter().filter(|p| !p.af.is_empty());
-        fitted.map(|p| (p.af.len(), p.a.len())).collect()
-    }
-
     /// The piece that answers at `phi = |theta|` and the regime there.
     #[inline(always)]
     fn lookup(&self, it: &Interface, phi: f64) -> Option<(&Piece, Regime)> {
