@@ -167,6 +167,24 @@ pub struct Outputs {
     pub fz: f64,
 }
 
+impl Outputs {
+    /// The friction coefficient the no-sliding assumption needs,
+    /// `|Fx| / Fz` (docs/model.md §5, "Friction demand"); `+inf` when
+    /// `Fz <= 0`, where the support would have to pull the body down.
+    pub fn friction_demand(&self) -> f64 {
+        friction_demand(self.fx, self.fz)
+    }
+}
+
+/// `|fx| / fz`, or `+inf` when `fz <= 0` (docs/model.md §5, "Friction demand").
+pub fn friction_demand(fx: f64, fz: f64) -> f64 {
+    if fz > 0.0 {
+        fx.abs() / fz
+    } else {
+        f64::INFINITY
+    }
+}
+
 /// The Runge-Kutta pair.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Method {

@@ -10,9 +10,9 @@ use std::sync::Mutex;
 use model_description::{BaseType, ModelDescription, Variable};
 
 use crate::fail::{error, guarded, Fail, Res};
-use crate::logging::{Logger, LOG_ALL, LOG_STATUS_WARNING};
+use crate::logging::{Logger, LOG_ALL, LOG_EVENTS, LOG_STATUS_WARNING};
 use crate::machine::{mask, Machine, Mask};
-use crate::slave::{Inputs, Scalar, Setup, Slave, Values};
+use crate::slave::{EventLog, Inputs, Scalar, Setup, Slave, Values};
 use crate::types::*;
 use crate::values::start_value;
 
@@ -280,6 +280,22 @@ impl<S: Slave> Inner<S> {
     pub(crate) fn log_status_warning(&self, message: &str) {
         self.logger
             .log(Status::Warning, LOG_STATUS_WARNING, message);
+    }
+
+    /// Logs what a slave reported during a call: its events, then its
+    /// warnings; `Status::Warning` if it warned, else `Status::Ok`.
+    pub(crate) fn flush(&self, log: &EventLog) -> Status {
+        for m in &log.messages {
+            self.logger.log(Status::Ok, LOG_EVENTS, m);
+        }
+        for m in &log.warnings {
+            self.log_status_warning(m);
+        }
+        if log.warnings.is_empty() {
+            Status::Ok
+        } else {
+            Status::Warning
+        }
     }
 }
 

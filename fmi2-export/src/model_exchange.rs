@@ -59,6 +59,16 @@ impl<S: Slave> Inner<S> {
         what: &str,
         f: impl FnOnce(&mut S, Inputs<'_>, &mut EventLog) -> Result<T, String>,
     ) -> Res<T> {
+        self.me_call_status(what, f).map(|(x, _)| x)
+    }
+
+    /// [`me_call`](Self::me_call), with `Status::Warning` if the model
+    /// warned during the call.
+    fn me_call_status<T>(
+        &mut self,
+        what: &str,
+        f: impl FnOnce(&mut S, Inputs<'_>, &mut EventLog) -> Result<T, String>,
+    ) -> Res<(T, Status)> {
         self.ensure_slave()?;
         let mut log = EventLog::new(self.logger.wants(Status::Ok, LOG_EVENTS));
         let inputs = Inputs {
@@ -71,9 +81,7 @@ impl<S: Slave> Inner<S> {
         let slave = self.slave.as_mut().expect("built above");
         let before = slave.state();
         let r = guarded(what, || f(slave, inputs, &mut log));
-        for m in &log.messages {
-            self.logger.log(Status::Ok, LOG_EVENTS, m);
-        }
+        let status = self.flush(&log);
         if r.is_err() {
             if let Some(s) = self.slave.as_mut() {
                 if catch_unwind(AssertUnwindSafe(|| s.set_state(before))).is_err() {
@@ -82,7 +90,7 @@ impl<S: Slave> Inner<S> {
                 }
             }
         }
-        r
+        r.map(|x| (x, status))
     }
 
     pub fn set_time(&mut self, t: f64) -> Res<Status> {
@@ -184,9 +192,9 @@ impl<S: Slave> Inner<S> {
     /// Returns `(enterEventMode, terminateSimulation)`.
     pub fn completed_integrator_step(&mut self) -> Res<(Status, bool, bool)> {
         self.check_me(mask::fmi2CompletedIntegratorStep)?;
-        let enter = self.me_call("fmi2CompletedIntegratorStep", |s, i, _| {
-            s.completed_integrator_step(i)
+        let (enter, status) = self.me_call_status("fmi2CompletedIntegratorStep", |s, i, log| {
+            s.completed_integrator_step(i, log)
         })?;
-        Ok((Status::Ok, enter, self.terminated))
+        Ok((status, enter, self.terminated))
     }
 }

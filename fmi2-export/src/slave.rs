@@ -116,10 +116,14 @@ pub struct Setup {
     pub stop_time: Option<f64>,
 }
 
-/// Event messages a slave reports during a step (category `logEvents`).
+/// Messages a slave reports during a call: events (category `logEvents`,
+/// formatted only when someone listens) and warnings (status
+/// `fmi2Warning`, category `logStatusWarning`, always logged; the call then
+/// returns `fmi2Warning`).
 pub struct EventLog {
     enabled: bool,
     pub(crate) messages: Vec<String>,
+    pub(crate) warnings: Vec<String>,
 }
 
 impl EventLog {
@@ -127,7 +131,15 @@ impl EventLog {
         EventLog {
             enabled,
             messages: Vec::new(),
+            warnings: Vec::new(),
         }
+    }
+
+    /// Something is not quite right but the computation goes on: the
+    /// message is logged with `fmi2Warning` and the call returns
+    /// `fmi2Warning`.
+    pub fn warn(&mut self, message: impl Into<String>) {
+        self.warnings.push(message.into());
     }
 
     /// Whether anyone listens (to skip formatting otherwise).
@@ -261,7 +273,11 @@ pub trait Slave: Sized + Send + 'static {
 
     /// Model Exchange: after an accepted integrator step; `true` asks the
     /// host to enter event mode (`enterEventMode`).
-    fn completed_integrator_step(&mut self, _inputs: Inputs<'_>) -> Result<bool, String> {
+    fn completed_integrator_step(
+        &mut self,
+        _inputs: Inputs<'_>,
+        _log: &mut EventLog,
+    ) -> Result<bool, String> {
         no_model_exchange()
     }
 

@@ -58,9 +58,7 @@ impl<S: Slave> Inner<S> {
         let (slave, inputs) = self.slave_and_inputs()?;
         let before = slave.state();
         let result = guarded("fmi2DoStep", || slave.do_step(t, h, inputs, &mut log));
-        for m in &log.messages {
-            self.logger.log(Status::Ok, LOG_EVENTS, m);
-        }
+        let status = self.flush(&log);
         match result {
             Ok(StepEnd::Completed) => {
                 self.time = end;
@@ -73,7 +71,7 @@ impl<S: Slave> Inner<S> {
                         }
                     }
                 }
-                Ok(Status::Ok)
+                Ok(status)
             }
             Ok(StepEnd::Terminated { time, reason }) => {
                 self.stop_within_step(t, time, true);

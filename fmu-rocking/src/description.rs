@@ -473,6 +473,19 @@ variables! {
         depends_on: D_DYNAMIC,
         derivative: Some("omega"),
     }
+    FRICTION_DEMAND = 45 => {
+        name: "frictionDemand",
+        description: "Friction coefficient the no-sliding assumption needs, |Fx|/Fz (+inf when Fz <= 0); compare with the base's friction coefficient mu",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("1"), None, None),
+        depends_on: D_DYNAMIC,
+    }
+    MU = 46 => {
+        name: "mu",
+        description: "Friction coefficient of the base for the sliding check: the first time frictionDemand exceeds it, a warning names the time (0: no check; >= 0)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("1"), None, Some(0.0)),
+    }
 }
 
 const fn base(kg: i32, m: i32, s: i32, rad: i32) -> BaseUnit {
@@ -785,7 +798,7 @@ mod tests {
 
     #[test]
     fn guid_is_stable_and_in_the_xml() {
-        let (xml, g) = xml::model_description_xml(&ROCKING_BLOCK);
+        let (xml, g) = xml::model_description_xml(&ROCKING_BLOCK, None);
         assert_eq!(g, xml::guid(&ROCKING_BLOCK));
         assert!(xml.contains(&format!("guid=\"{g}\"")));
         assert!(xml.starts_with("<?xml"));
@@ -796,7 +809,7 @@ mod tests {
 
     #[test]
     fn structure_lists() {
-        let xml = xml::render(&ROCKING_BLOCK, "x");
+        let xml = xml::render(&ROCKING_BLOCK, "x", None);
         // Fx (index 31) depends on ag (index 20) only among the inputs.
         assert!(xml.contains("<Unknown index=\"31\" dependencies=\"20\"/>"));
         // theta (21) is an output with no direct feedthrough.

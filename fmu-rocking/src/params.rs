@@ -92,9 +92,10 @@ pub fn name(vr: u32, field: Field) -> &'static str {
         .name
 }
 
-/// Parameters of the integrator, not of the body: read by the slave itself,
-/// not mapped to `Params`.
-pub const INTEGRATOR: &[u32] = &[vr::MAX_STEPS];
+/// Parameters of the run, not of the body (the integrator's work limit,
+/// the sliding check's friction coefficient): read by the slave itself, not
+/// mapped to `Params`.
+pub const RUN: &[u32] = &[vr::MAX_STEPS, vr::MU];
 
 /// The field the variable `name` sets, if it is a parameter or start value.
 pub fn field(name: &str) -> Option<(u32, Field)> {
@@ -137,7 +138,7 @@ mod tests {
             let settable = (v.causality == Causality::Parameter
                 || (v.causality != Causality::Input
                     && v.initial == Some(fmi2_export::model_description::Initial::Exact)))
-                && !INTEGRATOR.contains(&v.vr);
+                && !RUN.contains(&v.vr);
             let has = field(v.name).is_some();
             assert_eq!(settable, has, "{}", v.name);
             if let (true, Type::Enumeration { declared_type, .. }) = (has, v.ty) {

@@ -32,11 +32,27 @@ pub struct RockingSlave {
     /// Output derivatives at `state` for the ground input `(ag, dag/dt)`
     /// with these bits.
     rates: Option<(u64, u64, OutputRates)>,
+    sliding: SlidingCheck,
+}
+
+/// The sliding check (docs/model.md §5, "Friction demand"): the base's
+/// friction coefficient `mu` (0: no check) and whether the instance has
+/// warned already (once per instance: a master that goes back with
+/// `fmi2SetFMUstate` is not warned again).
+struct SlidingCheck {
+    mu: f64,
+    warned: bool,
 }
 
 /// The physics parameters from the stored values (table: [`crate::params`]).
 pub fn params(v: Values<'_>) -> Result<Params, String> {
     crate::params::params(|r| v.real(r), |r| v.integer(r))
+}
+
+/// Outputs whose `+inf` is a value, not an overflow: `thetaC` without
+/// crushing, `frictionDemand` while `Fz <= 0`.
+fn may_be_infinite(r: u32, x: f64) -> bool {
+    x == f64::INFINITY && matches!(r, vr::THETA_C | vr::FRICTION_DEMAND)
 }
 
 fn regime_name(r: Regime) -> &'static str {
@@ -81,6 +97,25 @@ impl RockingSlave {
         )
     }
 
+    /// Warns, once, when the friction demand at the current state exceeds
+    /// `mu` (checked where the state is: at communication points and at
+    /// Model Exchange's completed integrator steps).
+    fn check_sliding(&mut self, ag: f64, log: &mut EventLog) {
+        let SlidingCheck { mu, warned } = self.sliding;
+        if mu == 0.0 || warned {
+            return;
+        }
+        let demand = self.outputs(ag).friction_demand();
+        if demand > mu {
+            self.sliding.warned = true;
+            log.warn(format!(
+                "frictionDemand = {demand} > mu = {mu} at t = {}: the base would slide, which the model does not \
+                 represent (it assumes no sliding); results from here on overstate rocking",
+                self.state.t
+            ));
+        }
+    }
+
     fn regime(&mut self, ag: f64) -> Regime {
         if self.state.overturned {
             Regime::Overturned
@@ -113,6 +148,12 @@ impl Slave for RockingSlave {
                 "maxSteps = {max_steps}: the work limit must be >= 1"
             ));
         }
+        let mu = values.real(vr::MU);
+        if !(mu >= 0.0) {
+            return Err(format!(
+                "mu = {mu}: the friction coefficient must be >= 0 (0: no sliding check)"
+            ));
+        }
         let mut sim = Simulator::new(model, rtol);
         sim.work_limit = Some(WorkLimit {
             per_call: max_steps as u64,
@@ -126,6 +167,7 @@ impl Slave for RockingSlave {
             left_with: c.left_with,
             cache: None,
             rates: None,
+            sliding: SlidingCheck { mu, warned: false },
         })
     }
 
@@ -152,13 +194,15 @@ impl Slave for RockingSlave {
             vr::MR => self.outputs(ag).mr,
             vr::FX => self.outputs(ag).fx,
             vr::FZ => self.outputs(ag).fz,
+            vr::FRICTION_DEMAND => self.outputs(ag).friction_demand(),
             vr::DER_THETA | vr::DER_OMEGA => self.me_derivative(r, inputs)?,
             _ => return Err(format!("no computed Real with value reference {r}")),
         };
-        // thetaC is +inf without crushing; anything else not finite is an
-        // overflow of a finite but absurd start value or input, refused
-        // rather than returned as if it were a result.
-        if !x.is_finite() && r != vr::THETA_C {
+        // thetaC is +inf without crushing, frictionDemand where Fz <= 0;
+        // anything else not finite is an overflow of a finite but absurd
+        // start value or input, refused rather than returned as if it were
+        // a result.
+        if !x.is_finite() && !may_be_infinite(r, x) {
             return Err(self.overflow(x, ag));
         }
         Ok(x)
@@ -202,9 +246,10 @@ impl Slave for RockingSlave {
             vr::MR => rates.mr[k],
             vr::FX => rates.fx[k],
             vr::FZ => rates.fz[k],
+            vr::FRICTION_DEMAND => rates.friction_demand()[k],
             _ => return Err(format!("no Real output with value reference {r}")),
         };
-        if !x.is_finite() {
+        if !x.is_finite() && !may_be_infinite(r, x) {
             return Err(self.overflow(x, ag));
         }
         Ok(x)
@@ -251,6 +296,7 @@ impl Slave for RockingSlave {
         self.state = s;
         self.cache = None;
         self.rates = None;
+        self.check_sliding(ag + dag * h, log);
         if log.enabled() {
             if ev.uplift {
                 log.event(format!(
@@ -429,8 +475,14 @@ impl Slave for RockingSlave {
         self.me_event_update(inputs, log)
     }
 
-    fn completed_integrator_step(&mut self, _inputs: Inputs<'_>) -> Result<bool, String> {
-        self.me_completed_step()
+    fn completed_integrator_step(
+        &mut self,
+        inputs: Inputs<'_>,
+        log: &mut EventLog,
+    ) -> Result<bool, String> {
+        let event = self.me_completed_step()?;
+        self.check_sliding(inputs.real(vr::AG), log);
+        Ok(event)
     }
 
     fn nominals(&self, x: &mut [f64]) -> Result<(), String> {

@@ -10,7 +10,9 @@
 //!   here from their definition (docs/model.md §5), `Fx = m (ag + hg theta''
 //!   + s hg' omega²)`, `Fz = m (g + s hW theta'' + hW' omega²)`, from the
 //!   FMU's `theta`, `omega`, `angularAcceleration` and the levers of the
-//!   `rocking` crate; for the rigid law the FMU's own `Fx`, `Fz` are that;
+//!   `rocking` crate, and `frictionDemand` as `|Fx| / Fz` of those (samples
+//!   where `Fx` changes sign in the stencil are skipped: `|Fx|` has a kink
+//!   there); for the rigid law the FMU's own `Fx`, `Fz` are that;
 //! - a request the standard refuses (order 0 or 3, a parameter, an input,
 //!   an unknown value reference) is `fmi2Error` with a logger message
 //!   naming the variable and the order; the instance is then in the error
@@ -26,7 +28,7 @@ use rocking::model::LawKind;
 use rocking::{Formulation, Law, Model, Params};
 
 /// The Real outputs, in the order of the tables.
-const OUTPUTS: [&str; 9] = [
+const OUTPUTS: [&str; N] = [
     "theta",
     "omega",
     "thetaOverAlpha",
@@ -36,7 +38,11 @@ const OUTPUTS: [&str; 9] = [
     "MR",
     "Fx",
     "Fz",
+    "frictionDemand",
 ];
+
+/// How many Real outputs [`OUTPUTS`] has.
+const N: usize = 10;
 
 /// `fmi2GetRealOutputDerivatives` of several variables at one order each.
 fn derivatives(h: &Host, names: &[&str], orders: &[i32]) -> (fmi2Status, Vec<f64>) {
@@ -131,7 +137,7 @@ fn instance(p: &Params, ag0: f64, dag: f64) -> Host {
 /// One sample: the outputs (Fx, Fz from their definition), regime,
 /// impacts, the FMU's own Fx, Fz.
 struct Sample {
-    y: [f64; 9],
+    y: [f64; N],
     regime: i32,
     impacts: i32,
     theta: f64,
@@ -143,10 +149,12 @@ fn sample(h: &Host, m: &Model) -> Sample {
     let ag = h.real("ag");
     let at_rest = v[0] == 0.0 && v[1] == 0.0;
     let (fx, fz) = support_forces(m, v[0], v[1], ag, v[3], at_rest);
-    let mut y = [0.0; 9];
+    let mut y = [0.0; N];
     y.copy_from_slice(&v);
     y[7] = fx;
     y[8] = fz;
+    // |Fx| / Fz from the forces written here (docs/model.md §5)
+    y[9] = fx.abs() / fz;
     Sample {
         y,
         regime: h.integer("regime"),
@@ -159,7 +167,7 @@ fn sample(h: &Host, m: &Model) -> Sample {
 /// Worst relative errors `[order 1, order 2]` per output (relative to the
 /// largest magnitude of that derivative along the run, floor 1e-3 of the
 /// output's size per s^order), and the number of samples.
-fn run(c: &Case) -> ([[f64; 2]; 9], usize) {
+fn run(c: &Case) -> ([[f64; 2]; N], usize) {
     let model = c.params.build().unwrap();
     let fmu = instance(&c.params, c.ag0, c.dag);
     let rigid = model.interface.law() == Law::Rigid;
@@ -180,8 +188,8 @@ fn run(c: &Case) -> ([[f64; 2]; 9], usize) {
             t += c.h;
             pts.push(sample(&fmu, &model));
             if j == 1 {
-                let (s1, d1) = derivatives(&fmu, &OUTPUTS, &[1; 9]);
-                let (s2, d2) = derivatives(&fmu, &OUTPUTS, &[2; 9]);
+                let (s1, d1) = derivatives(&fmu, &OUTPUTS, &[1; N]);
+                let (s2, d2) = derivatives(&fmu, &OUTPUTS, &[2; N]);
                 assert_eq!(
                     (s1, s2),
                     (fmi2OK, fmi2OK),
@@ -205,17 +213,18 @@ fn run(c: &Case) -> ([[f64; 2]; 9], usize) {
             p.regime != p0.regime
                 || p.impacts != p0.impacts
                 || p.theta.signum() != p0.theta.signum()
+                || p.y[7].signum() != p0.y[7].signum()
         }) {
             continue;
         }
         samples.push(pts);
         found.push((d1, d2));
     }
-    let mut scale = [[0.0f64; 2]; 9];
+    let mut scale = [[0.0f64; 2]; N];
     let mut fds = Vec::new();
     for (pts, (d1, d2)) in samples.iter().zip(&found) {
-        let mut fd = [[0.0; 2]; 9];
-        for i in 0..9 {
+        let mut fd = [[0.0; 2]; N];
+        for i in 0..N {
             let y: Vec<f64> = pts.iter().map(|p| p.y[i]).collect();
             fd[i][0] = (-y[4] + 8.0 * y[3] - 8.0 * y[1] + y[0]) / (12.0 * c.h);
             fd[i][1] =
@@ -231,9 +240,9 @@ fn run(c: &Case) -> ([[f64; 2]; 9], usize) {
         }
         fds.push(fd);
     }
-    let mut err = [[0.0f64; 2]; 9];
+    let mut err = [[0.0f64; 2]; N];
     for (fd, (d1, d2)) in fds.iter().zip(&found) {
-        for i in 0..9 {
+        for i in 0..N {
             err[i][0] = err[i][0].max((d1[i] - fd[i][0]).abs() / scale[i][0]);
             err[i][1] = err[i][1].max((d2[i] - fd[i][1]).abs() / scale[i][1]);
         }
@@ -363,8 +372,8 @@ fn refused_requests_name_the_variable_and_a_saved_state_restores_the_instance() 
     }
     let names = ["theta", "omega", "af", "Fx"];
     assert_eq!(h.reals(&names), reference.reals(&names));
-    let (s1, d1) = derivatives(&h, &OUTPUTS, &[2; 9]);
-    let (s2, d2) = derivatives(&reference, &OUTPUTS, &[2; 9]);
+    let (s1, d1) = derivatives(&h, &OUTPUTS, &[2; N]);
+    let (s2, d2) = derivatives(&reference, &OUTPUTS, &[2; N]);
     assert_eq!((s1, s2), (fmi2OK, fmi2OK));
     assert_eq!(d1, d2);
     assert_eq!(h.free_state(&mut saved), fmi2OK);

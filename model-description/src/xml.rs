@@ -169,8 +169,9 @@ fn structure(md: &ModelDescription) -> XStructure {
     }
 }
 
-/// The XML with the given `guid` attribute.
-pub fn render(md: &ModelDescription, guid: &str) -> String {
+/// The XML with the given `guid` attribute and, if given, the
+/// `generationDateAndTime` attribute (`xs:dateTime`).
+pub fn render(md: &ModelDescription, guid: &str, generated: Option<&str>) -> String {
     if let Err(problems) = md.check() {
         panic!("inconsistent model description:\n{}", problems.join("\n"));
     }
@@ -185,6 +186,7 @@ pub fn render(md: &ModelDescription, guid: &str) -> String {
         copyright: md.copyright,
         license: md.license,
         generation_tool: md.generation_tool,
+        generation_date_and_time: generated.map(str::to_string),
         naming: "flat",
         event_indicators: md.model_exchange.map_or(0, |me| me.event_indicators),
         model_exchange: md.model_exchange.map(|me| XModelExchange {
@@ -272,10 +274,10 @@ pub fn render(md: &ModelDescription, guid: &str) -> String {
     format!("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n{body}\n")
 }
 
-/// The GUID of a model description: derived from its XML without the GUID,
-/// so it changes exactly when the description does.
+/// The GUID of a model description: derived from its XML without the GUID
+/// and the generation time, so it changes exactly when the description does.
 pub fn guid(md: &ModelDescription) -> String {
-    guid_of(render(md, "").as_bytes())
+    guid_of(render(md, "", None).as_bytes())
 }
 
 /// A GUID `{xxxxxxxx-xxxx-8xxx-yxxx-xxxxxxxxxxxx}` from the first 16 bytes
@@ -297,10 +299,10 @@ pub fn guid_of(content: &[u8]) -> String {
     )
 }
 
-/// The XML and its GUID.
-pub fn model_description_xml(md: &ModelDescription) -> (String, String) {
+/// The XML, generated at `generated` (`xs:dateTime`, if known), and its GUID.
+pub fn model_description_xml(md: &ModelDescription, generated: Option<&str>) -> (String, String) {
     let g = guid(md);
-    (render(md, &g), g)
+    (render(md, &g, generated), g)
 }
 
 #[cfg(test)]

@@ -62,6 +62,21 @@ pub struct OutputRates {
     pub fz: Jet,
 }
 
+impl OutputRates {
+    /// `|Fx| / Fz` with its time derivatives (docs/model.md §5, "Friction
+    /// demand"): the quotient of the force jets, its sign taken from the
+    /// first non-zero order of `Fx / Fz`; `+inf` in every order when
+    /// `Fz <= 0`.
+    pub fn friction_demand(&self) -> Jet {
+        if self.fz[0] <= 0.0 {
+            return [f64::INFINITY; 3];
+        }
+        let q = jet_div(self.fx, self.fz);
+        let sign = q.iter().find(|x| **x != 0.0).map_or(1.0, |x| x.signum());
+        jet_scale(sign, q)
+    }
+}
+
 /// Relative step of the central difference that gives `af'''`.
 const AF3_STEP: f64 = 1e-4;
 

@@ -25,6 +25,11 @@ pub(super) struct Root {
     pub(super) license: &'static str,
     #[serde(rename = "@generationTool")]
     pub(super) generation_tool: &'static str,
+    #[serde(
+        rename = "@generationDateAndTime",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub(super) generation_date_and_time: Option<String>,
     #[serde(rename = "@variableNamingConvention")]
     pub(super) naming: &'static str,
     #[serde(rename = "@numberOfEventIndicators")]
