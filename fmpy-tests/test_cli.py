@@ -221,6 +221,56 @@ def test_record_plain_ascii_matches_its_numbers():
     assert len(values) == int(npts)
 
 
+@pytest.mark.parametrize("interval", [0.003, 0.005, 0.02])
+def test_simulate_honours_the_output_interval(fmu_path, tmp_path, interval):
+    """Rows every `interval` s (and at the end), not every record dt (issue 25: 0.003 and 0.005
+    gave the record's 0.01 s rows); theta at the times both grids share agrees with the run
+    at the record's dt, to the integrator's tolerance."""
+    runs = {}
+    for every in (interval, None):
+        out = tmp_path / f"o{every}"
+        extra = ["--output-interval", str(every)] if every else []
+        ok("simulate", KATNP, "--theta", "0.05", "--stop-time", "0.6", "--rtol", "1e-9", *extra, "--out", out)
+        runs[every] = read_outputs(out)[0]
+    t = runs[interval]["time"].to_numpy()
+    want = np.arange(int(0.6 / interval + 1e-9) + 1) * interval
+    assert len(t) in (len(want), len(want) + 1) and t[-1] == pytest.approx(0.6)
+    np.testing.assert_allclose(t[:len(want)], want, atol=1e-9)
+    base = runs[None].set_index(runs[None]["time"].round(9))
+    shared = runs[interval][runs[interval]["time"].round(9).isin(base.index)]
+    assert len(shared) >= 0.6 / max(interval, 0.01) * 0.3
+    peak = np.abs(base["theta"]).max()
+    np.testing.assert_allclose(shared["theta"], base.loc[shared["time"].round(9), "theta"], atol=1e-6 * peak)
+
+
+def test_simulate_refuses_bad_times(fmu_path, tmp_path):
+    for value in ("0", "-0.01"):
+        line = fails("simulate", "--output-interval", value, "--out", tmp_path)
+        assert "--output-interval" in line and "must be > 0 s" in line
+        line = fails("simulate", KATNP, "--output-interval", value, "--out", tmp_path)
+        assert "--output-interval" in line
+    line = fails("simulate", "--stop-time", "-1", "--out", tmp_path)
+    assert "--stop-time" in line and "must be >= 0 s" in line
+
+
+def test_parameters_of_another_interface_are_ignored_not_recorded(fmu_path, tmp_path):
+    """`--interface rigid --kn -5 --fm 0` (issue 25): summary.json recorded kn and fm as used.
+    The rigid interface uses neither (docs/model.md); the shape hollowCircle does not use B."""
+    proc = ok("simulate", "--interface", "rigid", "--kn", "-5", "--fm", "0", "--stop-time", "0.5",
+              "--out", tmp_path)
+    assert "--kn -5, --fm 0 ignored: not used by interface = rigid" in proc.stderr
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert "kn" not in summary["parameters"] and "fm" not in summary["parameters"]
+    assert set(summary["ignored_parameters"]) == {"kn", "fm"}
+    proc = ok("simulate", "--preset", "dharahara-F170-fm5", "--B", "3", "--stop-time", "0.5", "--out", tmp_path)
+    assert "--B 3 ignored: not used by shape = hollowCircle" in proc.stderr
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert summary["parameters"]["kn"] == 170e6 and summary["parameters"]["fm"] == 5e6
+    # the interface that uses kn still has it checked
+    line = fails("simulate", "--interface", "elastoPlastic", "--kn", "-5", "--out", tmp_path)
+    assert "kn" in line and "-5" in line
+
+
 # --------------------------------------------------------------------------
 # sweep
 
@@ -246,6 +296,63 @@ def test_sweep_two_records_three_scales(fmu_path, tmp_path):
     row = df[(df["record"] == "KATNP_NS_standin.csv") & (df["scale"] == 1.0)].iloc[0]
     assert bool(row["overturned"]) and 20 < row["t_overturn"] < 30
     assert df["t_end"].max() <= 30.0 + 1e-9
+
+
+def test_sweep_defaults_lie_under_the_preset(fmu_path, tmp_path):
+    """[defaults] interface = "rigid" must not turn a preset's tower rigid (issue 25): the
+    row has the preset's interface and the peak `simulate --preset` gives; a case's own
+    key still wins over its preset."""
+    cases = tmp_path / "cases.toml"
+    cases.write_text('[defaults]\ninterface = "rigid"\n'
+                     '[cases.tower]\npreset = "dharahara-F170-fm5"\n'
+                     '[cases.tower-rigid]\npreset = "dharahara-F170-fm5"\ninterface = "rigid"\n'
+                     '[cases.block]\nshape = "solidRectangle"\n')
+    out = tmp_path / "results.csv"
+    ok("sweep", cases, "--records", KATNP, "--stop-time", "20", "--workers", "1", "--out", out)
+    df = pd.read_csv(out).set_index("case")
+    assert df.loc["tower", "interface"] == "elastoPlastic"
+    assert df.loc["tower", "kn"] == 170e6 and df.loc["tower", "fm"] == 5e6
+    assert df.loc["tower-rigid", "interface"] == "rigid"
+    assert df.loc["block", "interface"] == "rigid"
+    sim = tmp_path / "sim"
+    ok("simulate", KATNP, "--preset", "dharahara-F170-fm5", "--stop-time", "20", "--out", sim)
+    peak = json.loads((sim / "summary.json").read_text())["peak_theta_over_alpha"]
+    assert df.loc["tower", "peak_theta_over_alpha"] == pytest.approx(peak, rel=1e-9)
+    assert df.loc["tower-rigid", "peak_theta_over_alpha"] != pytest.approx(peak, rel=0.1)
+
+
+def test_sweep_leaves_vertical_components_out(fmu_path, tmp_path):
+    """The README's sweep folder holds 0111b.smc, whose header says `component= up`: it must not
+    run as the horizontal ag (issue 25); the V2's UP channel neither."""
+    cases = tmp_path / "cases.toml"
+    cases.write_text('[cases.block]\nshape = "solidRectangle"\n')
+    out = tmp_path / "r.csv"
+    proc = ok("sweep", cases, "--records", SMC_A.parent, "--records", V2, "--stop-time", "2",
+              "--workers", "1", "--out", out)
+    assert sorted(pd.read_csv(out)["record"]) == sorted(["0111a.smc", "0111c.smc", f"{V2.name}[90]",
+                                                         f"{V2.name}[0]"])
+    assert "2 vertical component(s) left out" in proc.stderr and "0111b.smc" in proc.stderr
+    line = fails("sweep", cases, "--records", V2, "--component", "UP", "--out", out)
+    assert "vertical" in line and "av" in line and "90 or 0" in line
+
+
+def test_simulate_refuses_a_vertical_component(fmu_path, tmp_path):
+    v2a = DATA / "geonet-kaikoura-2016" / "20161113_110259_WTMC_20.V2A"
+    line = fails("simulate", v2a, "--component", "Up", "--out", tmp_path)
+    assert "[Up]" in line and "vertical input av is not supported yet" in line and "N28W or S62W" in line
+    line = fails("simulate", SMC_A.parent / "0111b.smc", "--out", tmp_path)
+    assert "vertical" in line and "no horizontal component" in line
+    assert not (tmp_path / "summary.json").exists()
+
+
+def test_component_on_a_csv_names_its_columns(fmu_path, tmp_path):
+    line = fails("simulate", KATNP, "--component", "XYZ", "--out", tmp_path)
+    assert "'XYZ'" in line and "'time_s', 'acc_m_s2'" in line
+
+
+def test_sweep_help_states_the_precedence():
+    text = " ".join(ok("sweep", "--help").stdout.split())
+    assert "[defaults] first, its preset" in text and "own keys over both" in text
 
 
 # --------------------------------------------------------------------------

@@ -78,6 +78,48 @@ _CALLBACKS.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
 _CALLBACKS.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
 
 
+def did_you_mean(name, names):
+    """"; did you mean A, B?" with the `names` close to `name` (or differing in case), or ""."""
+    import difflib
+    close = difflib.get_close_matches(name, names, n=3, cutoff=0.5)
+    close += [n for n in names if n.lower() == name.lower() and n not in close]
+    return f"; did you mean {', '.join(close)}?" if close else ""
+
+
+def check_times(stop_time, output_interval):
+    """ValueError naming the argument unless stop_time >= 0 and output_interval > 0 (finite, s)."""
+    if not (math.isfinite(stop_time) and stop_time >= 0):
+        raise ValueError(f"stop_time = {stop_time:g}: must be a time >= 0 s")
+    if not (math.isfinite(output_interval) and output_interval > 0):
+        raise ValueError(f"output_interval = {output_interval:g}: must be a time > 0 s")
+
+
+def communication_grid(stop_time, h, output_interval):
+    """(communication points from 0 to stop_time, every how many steps a row is sampled,
+    the output times when they are not every `every`-th point, else None). h: the record's
+    dt (the FMU sees its linear interpolation exactly when the points include its samples)."""
+    ratio = output_interval / h
+    n_steps = int(math.ceil(stop_time / h - 1e-9))
+    grid = np.arange(n_steps + 1) * h
+    if n_steps and grid[-1] > stop_time:
+        grid[-1] = stop_time
+    if abs(ratio - round(ratio)) <= 1e-9 * ratio and round(ratio) >= 1:
+        return grid, int(round(ratio)), None
+    outputs = np.arange(int(math.floor(stop_time / output_interval + 1e-9)) + 1) * output_interval
+    merged = np.unique(np.concatenate((grid, outputs[outputs <= stop_time])))
+    close = np.diff(merged) <= 1e-9 * min(h, output_interval)  # one point where two coincide
+    return merged[np.concatenate(([True], ~close))], 1, outputs
+
+
+def output_rows(times, outputs):
+    """Mask of the sampled `times` that are output times (to 1e-9 s), the first and the last."""
+    k = np.clip(np.searchsorted(outputs, times), 1, len(outputs) - 1) if len(outputs) > 1 else np.zeros(len(times), int)
+    nearest = np.minimum(np.abs(times - outputs[k]), np.abs(times - outputs[np.maximum(k - 1, 0)]))
+    keep = nearest <= 1e-9
+    keep[0] = keep[-1] = True
+    return keep
+
+
 class FMUError(RuntimeError):
     """An FMI call failed; the message carries what the FMU logged."""
 
@@ -172,7 +214,7 @@ class RockingFMU:
         out = {}
         for name, value in params.items():
             if name not in self.variables:
-                raise KeyError(f"{name!r} is not a variable of the FMU")
+                raise KeyError(f"{name!r} is not a variable of the FMU{self._close_names(name)}")
             if name in self.enumerations and isinstance(value, str):
                 items = self.enumerations[name]
                 if value not in items:
@@ -182,6 +224,11 @@ class RockingFMU:
                 value = value.item()
             out[name] = value
         return out
+
+    def _close_names(self, name):
+        names = [n for n, v in self.variables.items()
+                 if v.causality == "parameter" or (v.causality == "output" and v.initial == "exact")]
+        return did_you_mean(name, names)
 
     # -- the library, loaded once per process --------------------------------
     def _library(self):
@@ -217,9 +264,12 @@ class RockingFMU:
         ag               instead of `record`: (time, acc) arrays in s and m/s², equally spaced
         stop_time        default: the record's last sample (10 s without a record);
                          after the record ends the ground is at rest
-        output_interval  default: the record's dt (0.01 s without one); the communication
-                         step is the record's dt (or the output interval without a
-                         record), the outputs are sampled every round(interval / step) steps
+        output_interval  s, > 0; default: the record's dt (0.01 s without one). Rows at 0,
+                         interval, 2 interval, ... and at the end (and at overturning).
+                         The communication points are the record's samples (the output
+                         interval without a record) and, when the interval is not a
+                         multiple of the record's dt, the output times too: the FMU
+                         still sees the record's linear interpolation exactly
         rtol             the integrator's relative tolerance (default: the FMU's)
         loop             "native": the stepping loop of fmu-stepper (rocking.stepper), "python":
                          the loop in Python (the reference), "auto" (default): native when built
@@ -237,12 +287,9 @@ class RockingFMU:
             stop_time = float(t_in[-1]) if t_in is not None else 10.0
         if output_interval is None:
             output_interval = dt if dt is not None else 0.01
-        h = dt if dt is not None else output_interval
-        every = max(1, int(round(output_interval / h)))
-        n_steps = int(math.ceil(stop_time / h - 1e-9))
-        grid = np.arange(n_steps + 1) * h
-        if n_steps and grid[-1] > stop_time:
-            grid[-1] = stop_time
+        check_times(stop_time, output_interval)
+        grid, every, rows = communication_grid(stop_time, dt if dt is not None else output_interval,
+                                               output_interval)
         if t_in is not None:
             acc = scale * np.interp(grid, t_in, a_in, right=0.0)  # ground at rest after the record
         else:
@@ -317,6 +364,8 @@ class RockingFMU:
         for j, n in enumerate(bools):
             result[n] = rows_b[:, j]
         overturned = overturned or bool(final["overturned"])
+        if rows is not None:  # the output grid is not the communication grid: its rows only
+            result = result[output_rows(result["time"], rows)]
         keep = ["time"] + list(outputs)
         t_end = float(result["time"][-1])
         return Run(

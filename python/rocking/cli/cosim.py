@@ -37,7 +37,7 @@ import textwrap
 import tomllib
 from pathlib import Path
 
-from .common import CLIError, read_record
+from .common import CLIError, horizontal_record
 
 SECTIONS = {"frame", "block", "ground", "coupling"}
 COUPLING_KEYS = {"floor", "step", "stop_time", "scheme", "inputs", "coupling", "reject", "substeps", "rtol"}
@@ -111,7 +111,7 @@ def ground_from(table, case_path):
         path = Path(table["record"])
         if not path.is_absolute():
             path = case_path.parent / path
-        rec, fmt = read_record(path, table.get("component"))
+        rec, fmt = horizontal_record(path, table.get("component"))
         scale = float(table.get("scale", 1.0))
         facts = {"record": str(path), "format": fmt, "component": rec.component, "scale": scale,
                  "dt_s": rec.dt, "pga_m_s2": rec.pga * scale}

@@ -5,6 +5,7 @@ import argparse
 import importlib
 import os
 import sys
+import warnings
 
 from .common import PROG, CLIError, _Parser, split_parameters
 
@@ -35,10 +36,18 @@ def _one_line(exc):
     return " ".join(text.split()) or type(exc).__name__
 
 
+def _warnings_in_one_line(where):
+    """Warnings (an implausible record, a shifted time column) as one line each on stderr."""
+    def show(message, category, filename, lineno, file=None, line=None):
+        print(f"{where}: warning: {' '.join(str(message).split())}", file=sys.stderr)
+    warnings.showwarning = show
+
+
 def main(argv=None):
     argv = list(sys.argv[1:] if argv is None else argv)
     debug = "--debug" in argv
     command = next((a for a in argv if not a.startswith("-")), None)
+    _warnings_in_one_line(f"{PROG} {command}" if command else PROG)
     try:
         modules = commands()
         module = modules.get(command)
