@@ -271,6 +271,69 @@ def test_parameters_of_another_interface_are_ignored_not_recorded(fmu_path, tmp_
     assert "kn" in line and "-5" in line
 
 
+def test_plot_theta_axis_follows_the_response():
+    """A 0.008 alpha response was drawn flat on a fixed ±1.1 axis (issue 25); the ±alpha and
+    ±thetaOv lines, off such a scale, are named in the legend instead."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rocking.cli.plots import theta_panel
+
+    t = np.linspace(0, 10, 501)
+    fig, (small, large) = plt.subplots(2)
+    theta_panel(small, t, 0.008 * np.sin(t), alpha=0.13, theta_ov=0.107)
+    theta_panel(large, t, 0.8 * np.sin(t), alpha=0.13, theta_ov=0.107)
+    assert small.get_ylim() == pytest.approx((-0.0104, 0.0104), rel=1e-3)
+    assert "off this scale" in small.get_legend().get_texts()[-1].get_text()
+    assert large.get_ylim() == pytest.approx((-1.1, 1.1))
+    levels = sorted({round(line.get_ydata()[0], 6) for line in large.get_lines()[1:]})
+    assert levels == pytest.approx([-1, -0.107 / 0.13, 0, 0.107 / 0.13, 1])
+    assert all(legend_outside(ax) for ax in (small, large))
+    plt.close(fig)
+
+
+def legend_outside(ax):
+    """Whether the panel's legend lies wholly above its plotting area (off the curves)."""
+    ax.figure.canvas.draw()
+    box = ax.get_legend().get_window_extent()
+    return box.y0 >= ax.get_window_extent().y1 - 1
+
+
+def test_plot_regime_reaches_overturned():
+    """The FMU's last row holds the regime before overturning; the trace must end on it."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rocking.cli.plots import _regime_panel
+
+    fig, ax = plt.subplots()
+    _regime_panel(ax, [0.0, 1.0, 2.0], [0, 1, 2], {0: "full", 1: "partial", 2: "crushing", 4: "overturned"}, 2.5)
+    ends = [(line.get_xdata()[-1], line.get_ydata()[-1]) for line in ax.get_lines()]
+    assert (2.5, 4) in ends
+    plt.close(fig)
+
+
+def test_simulate_tail_and_outputs(fmu_path, tmp_path):
+    """--tail 3: the run goes 3 s past the record's end (free motion); --outputs picks the
+    columns, Fx and Fz among them."""
+    ok("simulate", KATNP, "--preset", "dharahara-F170-fm5", "--scale", "0.5", "--tail", "3",
+       "--outputs", "theta,Fx,Fz", "--output-interval", "0.05", "--out", tmp_path)
+    csv, summary = read_outputs(tmp_path)
+    end = (len(katnp_acc()) - 1) * 0.01
+    assert list(csv.columns) == ["time", "ag", "theta", "Fx", "Fz"]
+    assert csv["time"].iloc[-1] == pytest.approx(end + 3) and summary["tail_s"] == 3
+    after = csv[csv["time"] > end]
+    assert len(after) >= 59 and (after["ag"] == 0).all()
+    # at rest in full contact the support carries the weight: Fz = W (the preset's 24003.94 kN)
+    assert csv["Fz"].iloc[0] == pytest.approx(24003.94e3, rel=1e-9)
+    line = fails("simulate", KATNP, "--outputs", "theta,Fy", "--out", tmp_path)
+    assert "'Fy'" in line and "Fx" in line
+    line = fails("simulate", "--tail", "3", "--out", tmp_path)
+    assert "--tail" in line and "RECORD" in line
+
+
 # --------------------------------------------------------------------------
 # sweep
 

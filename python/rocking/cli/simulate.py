@@ -10,6 +10,7 @@ from pathlib import Path
 
 from .common import (FMU_HELP, CLIError, add_record_options, check_parameter, drop_unused, horizontal_record, open_fmu,
                      read_params_file, record_facts, seconds, unit_of)
+from .plots import plot_simulation
 
 #: This subcommand also takes any FMU parameter as `--NAME VALUE` (see `common.split_parameters`).
 TAKES_PARAMETERS = True
@@ -145,7 +146,7 @@ def cmd_simulate(args, params_given):
     summary["wall_s"] = run.wall
     summary["files"] = {"timehistory": csv_path.name, "plot": png_path.name}
     json_path.write_text(json.dumps(summary, indent=2, default=_json_default) + "\n")
-    plot_simulation(png_path, table, summary, regimes, rec, args)
+    plot_simulation(png_path, table, summary, regimes, rec, args)  # plots.py
     print(summary_text(summary, out))
     return 0
 
@@ -186,72 +187,6 @@ def summary_text(s, out):
     lines.append(f"wrote       {out / s['files']['timehistory']}, {out / 'summary.json'}, "
                  f"{out / s['files']['plot']}  ({s['rows']} rows, {s['wall_s']:.2f} s)")
     return "\n".join(lines)
-
-
-def plot_simulation(path, table, s, regimes, rec, args):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.ticker import EngFormatter
-
-    g = 9.80665
-    t = table["time"].to_numpy()
-    fig, axes = plt.subplots(4, 1, sharex=True, figsize=(10, 9), height_ratios=(1.1, 1.6, 1.1, 0.8))
-    title = s["preset"] or f"RockingBlock ({s['parameters'].get('shape', 'default shape')})"
-    if rec is not None:
-        comp = f" [{rec.component}]" if rec.component else ""
-        title += f" under {rec.name or Path(args.record).name}{comp} x {args.scale:g}"
-        if s["record"]["synthetic_stand_in"]:
-            title += " (synthetic stand-in)"
-    outcome = (f"overturned at {s['t_overturn_s']:.2f} s" if s["overturned"]
-               else f"stands; peak |theta|/alpha = {s['peak_theta_over_alpha']:.3g}")
-    fig.suptitle(f"{title}\n{outcome}", fontsize=11)
-
-    ax = axes[0]
-    if rec is not None:
-        t_rec = rec.time[rec.time <= t[-1] + rec.dt]
-        ax.plot(t_rec, args.scale * rec.acc[:len(t_rec)] / g, lw=0.6, color="0.3")
-    else:
-        ax.plot(t, table["ag"] / g, lw=0.6, color="0.3")
-    ax.set_ylabel("ground acc. ag (g)")
-
-    ax = axes[1]
-    ax.plot(t, table["thetaOverAlpha"], lw=0.9, color="C0")
-    ax.axhline(0, color="0.6", lw=0.5)
-    for sign in (1, -1):
-        ax.axhline(sign, color="C1", lw=0.7, ls="--", label="theta = ±alpha" if sign > 0 else None)
-    alpha, theta_ov = s["calculated"].get("alpha"), s["calculated"].get("thetaOv")
-    if alpha and theta_ov and math.isfinite(theta_ov):
-        for sign in (1, -1):
-            ax.axhline(sign * theta_ov / alpha, color="C3", lw=0.7, ls=":",
-                       label="overturning thetaOv" if sign > 0 else None)
-    ax.set_ylabel("theta / alpha")
-    ax.legend(loc="upper left", fontsize=8)
-
-    ax = axes[2]
-    ax.plot(t, table["MR"], lw=0.9, color="C2")
-    ax.yaxis.set_major_formatter(EngFormatter(unit="N·m"))
-    ax.set_ylabel("restoring moment MR")
-
-    ax = axes[3]
-    if "regime" in table:
-        ax.step(t, table["regime"], where="post", lw=0.9, color="C4")
-        values = sorted(regimes) or sorted(set(table["regime"]))
-        ax.set_yticks(values, [regimes.get(v, str(v)) for v in values], fontsize=7)
-        ax.set_ylim(min(values) - 0.5, max(values) + 0.5)
-    ax.set_ylabel("regime")
-    ax.set_xlabel("time (s)")
-
-    if s["overturned"]:
-        for ax in axes:
-            ax.axvline(s["t_overturn_s"], color="C3", lw=1.2)
-        axes[1].annotate(f"overturned\n{s['t_overturn_s']:.2f} s", xy=(s["t_overturn_s"], 0),
-                         xytext=(-6, 0), textcoords="offset points", ha="right", color="C3", fontsize=9)
-    for ax in axes:
-        ax.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
 
 
 def register(sub, common):
