@@ -457,6 +457,41 @@ def test_error_bad_values(fmu_path, tmp_path):
     assert "kn = -5" in line
 
 
+def test_fmu_error_leads_with_the_parameter_as_typed(fmu_path, tmp_path):
+    """It began with 190 characters of FMI wording and printed -1e9 as -1000000000 (issue 25)."""
+    line = fails("simulate", "--interface", "elastic", "--kn", "-1e9", "--out", tmp_path)
+    assert line.startswith("rocking simulate: error: kn = -1e9: must be"), line
+    assert "fmi2ExitInitializationMode" in line and len(line) < 130
+
+
+def test_python_api_suggests_close_names(fmu_path):
+    from rocking import RockingFMU
+    with RockingFMU(fmu_path) as fmu, pytest.raises(KeyError) as info:
+        fmu.simulate({"knn": 1e9}, stop_time=0.1)
+    assert "did you mean kn?" in str(info.value)
+
+
+def test_record_options_the_messages_name(tmp_path):
+    """The readers' messages suggest units= and fmt=; the CLI has --units and --fmt to match."""
+    plain = tmp_path / "plain.csv"
+    plain.write_text("time,acc\n0,0\n0.01,0.5\n0.02,-0.25\n")
+    line = fails("record", plain)
+    assert "--units" in line
+    assert "PGA            0.5000 g" in ok("record", plain, "--units", "g").stdout
+    odd = tmp_path / "odd.dat"
+    odd.write_text("a record\nwith no header a reader knows\n")
+    line = fails("record", odd)
+    assert "--fmt" in line and "csv" in line
+    line = fails("record", plain, "--units", "furlongs")
+    assert line.startswith("rocking record: error: --units furlongs: unknown acceleration units")
+
+
+def test_simulate_usage_names_params():
+    usage = ok("simulate", "--help").stdout.split("\n\n", 1)[0]
+    for option in ("--params FILE", "--units", "--fmt", "--tail", "--outputs"):
+        assert option in usage
+
+
 def test_error_unknown_preset(fmu_path, tmp_path):
     line = fails("simulate", "--preset", "dharahara-F171-fm5", "--out", tmp_path)
     assert "dharahara-F171-fm5" in line and "dharahara-F170-fm5" in line

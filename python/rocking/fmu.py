@@ -29,6 +29,7 @@ reference it is tested against bit for bit); docs/performance.md has the costs.
 """
 
 import math
+import re
 import shutil
 import time as _time
 from ctypes import c_double, c_int, c_uint32
@@ -121,7 +122,45 @@ def output_rows(times, outputs):
 
 
 class FMUError(RuntimeError):
-    """An FMI call failed; the message carries what the FMU logged."""
+    """An FMI call failed; the message leads with what the FMU logged, e.g. "kn = -1e+09:
+    must be finite and > 0 (the FMU refused it in fmi2ExitInitializationMode)".
+
+    parameter, value, condition  the variable the FMU names, its value as the FMU printed
+                                 it, and what it must be (None when the message names none)
+    call                         the FMI function that failed
+    log                          everything the FMU logged during the call
+    """
+
+    parameter = value = condition = call = None
+    log = ()
+
+    @classmethod
+    def from_log(cls, exc, messages):
+        """The error of a failed FMI call `exc`, from the FMU's `messages` ("[STATUS] category: text")."""
+        errors = [m for m in messages if m.startswith(("[ERROR]", "[FATAL]"))] or list(messages)
+        if not errors:
+            return cls(f"{exc} (no message logged)")
+        text = errors[-1].split(": ", 1)[-1]  # without "[ERROR] logStatusError"
+        call = re.match(r"(fmi2\w+): ", text)
+        if call:
+            text = text[call.end():]
+        text = re.sub(r"^invalid parameters?: ", "", text)
+        where = call.group(1) if call else str(exc).split(" ", 1)[0]
+        refused = re.fullmatch(r"([A-Za-z_]\w*) = (\S+): (.+)", text)
+        if refused:
+            error = cls(f"{text} (the FMU refused it in {where})")
+            error.parameter, error.value, error.condition = refused.groups()
+        else:
+            error = cls(f"{text} (the FMU, in {where})")
+        error.call, error.log = where, tuple(messages)
+        return error
+
+    def with_value(self, typed):
+        """The same error with the parameter's value as the user wrote it (`typed`)."""
+        error = type(self)(f"{self.parameter} = {typed}: {self.condition} (the FMU refused it in {self.call})")
+        error.parameter, error.value, error.condition = self.parameter, typed, self.condition
+        error.call, error.log = self.call, self.log
+        return error
 
 
 @dataclass
@@ -317,6 +356,7 @@ class RockingFMU:
                                     "(cargo build --release -p fmu-stepper, or cargo xtask fmu)")
         inputs = (acc, slope) if t_in is not None else (None, None)
 
+        start_values = self.start_values(params)  # unknown names: KeyError before the FMU
         slave = self._library()
         _MESSAGES.clear()
         component = None
@@ -324,7 +364,7 @@ class RockingFMU:
             slave.instantiate(callbacks=self._callbacks)
             component = slave.component
             slave.setupExperiment(tolerance=rtol, startTime=0.0, stopTime=stop_time)
-            self._set(slave, self.start_values(params))
+            self._set(slave, start_values)
             slave.enterInitializationMode()
             val[0] = acc[0]
             slave.fmi2SetReal(component, vr_ag, 1, val)
@@ -346,8 +386,7 @@ class RockingFMU:
         except Exception as exc:  # noqa: BLE001 - FMICallException and instantiation errors
             if isinstance(exc, FMUError):
                 raise
-            detail = "; ".join(_MESSAGES) or "no message logged"
-            raise FMUError(f"{exc} (FMU log: {detail})") from exc
+            raise FMUError.from_log(exc, _MESSAGES) from exc
         finally:
             if component is not None:
                 slave.fmi2FreeInstance(component)

@@ -79,7 +79,7 @@ def main(argv=None):
         where = f"{PROG} {command}" if command else PROG
         kind = "" if isinstance(exc, (CLIError, OSError, ValueError, KeyError)) else f"{type(exc).__name__}: "
         if type(exc).__name__ == "FMUError":
-            kind = "the FMU: "
+            kind = ""  # it leads with the parameter and says it was the FMU
         if isinstance(exc, OSError) and exc.filename and str(exc.filename) not in str(exc):
             kind = f"{exc.filename}: "
         print(f"{where}: error: {kind}{_one_line(exc)}", file=sys.stderr)

@@ -8,6 +8,7 @@ import sys
 import textwrap
 from pathlib import Path
 
+from ..fmu import FMUError
 from .common import (FMU_HELP, CLIError, add_record_options, check_parameter, drop_unused, horizontal_record, open_fmu,
                      read_params_file, record_facts, seconds, unit_of)
 from .plots import plot_simulation
@@ -32,7 +33,7 @@ def gather_parameters(fmu, args, params_given):
     """(start values: the preset's, under --params FILE's, under --NAME VALUE; {name: why} of
     the ones the chosen interface, shape, mass model or restitution do not use, left out)."""
     from .. import presets as presets_module
-    params, typed = {}, {}
+    params, typed, raw = {}, {}, {}
     if args.preset:
         try:
             preset_values = presets_module.preset(args.preset)
@@ -43,14 +44,14 @@ def gather_parameters(fmu, args, params_given):
     if args.params:
         for name, value in read_params_file(args.params).items():
             params[name] = check_parameter(fmu, name, value, f"{args.params}: {name}")
-            typed[name] = f"{args.params}: {name} = {value!r}"
+            typed[name], raw[name] = f"{args.params}: {name} = {value!r}", str(value)
     for name, value in params_given:
         params[name] = check_parameter(fmu, name, value, f"--{name}")
-        typed[name] = f"--{name} {value}"
+        typed[name], raw[name] = f"--{name} {value}", value
     ignored, note = drop_unused(fmu, params, typed)
     if note:
         print(f"rocking simulate: note: {note}", file=sys.stderr)
-    return params, ignored
+    return params, ignored, raw
 
 
 def chosen_outputs(fmu, text):
@@ -89,15 +90,18 @@ def cmd_simulate(args, params_given):
 
     out = Path(args.out)
     with open_fmu(args.fmu) as fmu:
-        params, ignored = gather_parameters(fmu, args, params_given)
+        params, ignored, raw = gather_parameters(fmu, args, params_given)
         rec = fmt = None
         if args.record:
             rec, fmt = horizontal_record(args.record, args.component, args.units, args.fmt)
         columns = chosen_outputs(fmu, args.outputs)
         outputs = list(dict.fromkeys([o for o in SIMULATE_OUTPUTS if o in fmu.variables] + columns))
         stop_time = stop_time_of(args, rec)
-        run = fmu.simulate(params, record=rec, scale=args.scale, stop_time=stop_time,
-                           output_interval=args.output_interval, rtol=args.rtol, outputs=outputs)
+        try:
+            run = fmu.simulate(params, record=rec, scale=args.scale, stop_time=stop_time,
+                               output_interval=args.output_interval, rtol=args.rtol, outputs=outputs)
+        except FMUError as exc:
+            raise (exc.with_value(raw[exc.parameter]) if exc.parameter in raw else exc) from None
         regimes = regime_names(fmu)
         units = {name: unit_of(fmu.variables[name]) for name in columns}
         guid = fmu.model_description.guid
