@@ -287,11 +287,14 @@ def _csv_columns(path):
 
 
 def horizontal_record(path, component=None, units=None, fmt=None):
-    """(Record, format name) as `read_record`, refusing a vertical component in one line:
-    the FMU's input ag is the horizontal ground acceleration."""
+    """(Record, format name) as `read_record` (no component: the file's first horizontal one),
+    refusing a vertical component in one line: the FMU's input ag is the horizontal ground
+    acceleration."""
     rec, fmt = read_record(path, component, units, fmt)
     if rec.vertical:
         others = [r.component for r in read_components(path, units, fmt)[0] if not r.vertical]
+        if component is None and others:
+            return read_record(path, others[0], units, fmt)
         choose = (f"choose a horizontal one: --component {' or '.join(others)}" if others
                   else "the file holds no horizontal component")
         raise CLIError(f"{path} [{rec.component}]: a vertical component, and ag is the horizontal ground "

@@ -91,7 +91,6 @@ def _case_parameters(fmu, path, cname, defaults, table, presets_module):
     if note:
         print(f"sweep: note: cases.{cname}: {note}", file=sys.stderr)
     return params
-    return cases
 
 
 def collect_records(sources, component, units=None, fmt=None):
