@@ -1,7 +1,8 @@
 """What the README and docs quote about the examples, against the examples themselves:
 the fragility study snippet against examples/fragility.toml, the README sweep's count
 of runs against the cases file, the record headers and the scales (counted here, not
-by the package), and docs/examples.md's list of run_grid's columns against a grid. Timings are not tested: benches/cli_timings.py prints them."""
+by the package), and docs/examples.md's list of run_grid's columns against a grid.
+Timings are not tested: benches/cli_timings.py prints them."""
 
 import re
 import tomllib

@@ -114,7 +114,7 @@ def communication_grid(stop_time, h, output_interval):
 
 def output_rows(times, outputs):
     """Mask of the sampled `times` that are output times (to 1e-9 s), the first and the last."""
-    k = np.clip(np.searchsorted(outputs, times), 1, len(outputs) - 1) if len(outputs) > 1 else np.zeros(len(times), int)
+    k = np.clip(np.searchsorted(outputs, times), 0, len(outputs) - 1)
     nearest = np.minimum(np.abs(times - outputs[k]), np.abs(times - outputs[np.maximum(k - 1, 0)]))
     keep = nearest <= 1e-9
     keep[0] = keep[-1] = True
@@ -122,7 +122,7 @@ def output_rows(times, outputs):
 
 
 class FMUError(RuntimeError):
-    """An FMI call failed; the message leads with what the FMU logged, e.g. "kn = -1e+09:
+    """An FMI call failed; the message leads with what the FMU logged, e.g. "kn = -1000000000:
     must be finite and > 0 (the FMU refused it in fmi2ExitInitializationMode)".
 
     parameter, value, condition  the variable the FMU names, its value as the FMU printed

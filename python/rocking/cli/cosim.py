@@ -179,8 +179,9 @@ def cmd_cosim(args, _params):
                "t_overturn_s": res.t_overturn if res.overturned else None,
                "t_end_s": float(res.time[-1]), "peak_theta_rad": float(abs(res.theta[k_th])),
                "t_peak_theta_s": float(res.time[k_th]), "alpha_rad": calc["alpha"], "thetaOv_rad": calc["thetaOv"],
-               "peak_theta_over_alpha": float(abs(res.theta[k_th])) / calc["alpha"], "peak_a_floor_m_s2": float(abs(res.a_floor[k_a])),
-               "t_peak_a_floor_s": float(res.time[k_a]), "peak_roof_displacement_m": float(np.max(np.abs(res.u[:, -1]))),
+               "peak_theta_over_alpha": float(abs(res.theta[k_th])) / calc["alpha"],
+               "peak_a_floor_m_s2": float(abs(res.a_floor[k_a])), "t_peak_a_floor_s": float(res.time[k_a]),
+               "peak_roof_displacement_m": float(np.max(np.abs(res.u[:, -1]))),
                "steps": res.steps, "rejected_steps": res.rejected, "wall_s": res.wall,
                "error_against_reference": check,
                "files": {"timehistory": "timehistory.csv", "plot": "plot.png"}}

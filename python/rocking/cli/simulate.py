@@ -215,8 +215,8 @@ def register(sub, common):
     p.add_argument("record", nargs="?", metavar="RECORD",
                    help="ground-motion file (any format `rocking record` reads); none: free rocking")
     p.add_argument("--scale", type=float, default=1.0, help="factor on the record's acceleration (default 1)")
-    p.add_argument("--component", help="the record's horizontal component, by label (e.g. N28W, 090) or index; default the "
-                        "first horizontal one")
+    p.add_argument("--component", help="the record's horizontal component, by label (e.g. N28W, 090) or "
+                        "index; default the first horizontal one")
     add_record_options(p)
     p.add_argument("--preset", metavar="NAME", help="start from a named parameter set (see below)")
     p.add_argument("--params", metavar="FILE",

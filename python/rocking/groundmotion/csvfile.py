@@ -6,8 +6,9 @@ field). The first other line is the header row; the acceleration column is the
 first one whose name has a word starting with "acc" (else the second), and its
 name may carry the units: "acc_m/s2", "acc_m_s2", "acc[g]", "acc (cm/s^2)". The time
 column (the first, in s) must be evenly spaced; the record's time is shifted to
-start at 0 (with a note and a GroundMotionWarning when it did not). The component is vertical when its `# component:` label or a word
-of the acceleration column's name says so ("acc_UD[g]", "HNZ", "up").
+start at 0 (with a note and a GroundMotionWarning when it did not). The
+component is vertical when its `# component:` label or a word of the
+acceleration column's name says so ("acc_UD[g]", "HNZ", "up").
 """
 
 import re
