@@ -54,6 +54,9 @@ def load_record(key):
         rec = gm.read(gm.DATA_DIR / rel, component=comp)
         return f"{key} {rec.component}", rec
     rec = gm.read(key)
+    if rec.vertical:  # ag is the horizontal ground acceleration
+        raise SystemExit(f"{key}: its first component, {rec.component}, is the vertical one: "
+                         "give a file whose first component is horizontal")
     return f"{Path(key).name} {rec.component}", rec
 
 

@@ -221,6 +221,117 @@ def test_record_plain_ascii_matches_its_numbers():
     assert len(values) == int(npts)
 
 
+@pytest.mark.parametrize("interval", [0.003, 0.005])
+def test_simulate_honours_the_output_interval(fmu_path, tmp_path, interval):
+    """Rows every `interval` s (and at the end), not every record dt (issue 25: 0.003 and 0.005
+    gave the record's 0.01 s rows); theta at the times both grids share agrees with the run
+    at the record's dt, to the integrator's tolerance."""
+    runs = {}
+    for every in (interval, None):
+        out = tmp_path / f"o{every}"
+        extra = ["--output-interval", str(every)] if every else []
+        ok("simulate", KATNP, "--theta", "0.05", "--stop-time", "0.6", "--rtol", "1e-9", *extra, "--out", out)
+        runs[every] = read_outputs(out)[0]
+    t = runs[interval]["time"].to_numpy()
+    want = np.arange(int(0.6 / interval + 1e-9) + 1) * interval
+    assert len(t) in (len(want), len(want) + 1) and t[-1] == pytest.approx(0.6)
+    np.testing.assert_allclose(t[:len(want)], want, atol=1e-9)
+    base = runs[None].set_index(runs[None]["time"].round(9))
+    shared = runs[interval][runs[interval]["time"].round(9).isin(base.index)]
+    assert len(shared) >= 0.6 / max(interval, 0.01) * 0.3
+    peak = np.abs(base["theta"]).max()
+    np.testing.assert_allclose(shared["theta"], base.loc[shared["time"].round(9), "theta"], atol=1e-6 * peak)
+
+
+def test_simulate_refuses_bad_times(fmu_path, tmp_path):
+    for value, record in (("0", []), ("-0.01", [KATNP])):  # 0 without a record: ZeroDivisionError
+        line = fails("simulate", *record, "--output-interval", value, "--out", tmp_path)
+        assert "--output-interval" in line and "must be > 0 s" in line
+    line = fails("simulate", "--stop-time", "-1", "--out", tmp_path)
+    assert "--stop-time" in line and "must be >= 0 s" in line
+
+
+def test_parameters_of_another_interface_are_ignored_not_recorded(fmu_path, tmp_path):
+    """`--interface rigid --kn -5 --fm 0` (issue 25): summary.json recorded kn and fm as used.
+    The rigid interface uses neither (docs/model.md); the shape hollowCircle does not use B."""
+    proc = ok("simulate", "--interface", "rigid", "--kn", "-5", "--fm", "0", "--stop-time", "0.5",
+              "--out", tmp_path)
+    assert "--kn -5, --fm 0 ignored: not used by interface = rigid" in proc.stderr
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert "kn" not in summary["parameters"] and "fm" not in summary["parameters"]
+    assert set(summary["ignored_parameters"]) == {"kn", "fm"}
+    proc = ok("simulate", "--preset", "dharahara-F170-fm5", "--B", "3", "--stop-time", "0.5", "--out", tmp_path)
+    assert "--B 3 ignored: not used by shape = hollowCircle" in proc.stderr
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert summary["parameters"]["kn"] == 170e6 and summary["parameters"]["fm"] == 5e6
+    # the interface that uses kn still has it checked
+    line = fails("simulate", "--interface", "elastoPlastic", "--kn", "-5", "--out", tmp_path)
+    assert "kn" in line and "-5" in line
+
+
+def test_plot_theta_axis_follows_the_response():
+    """A 0.008 alpha response was drawn flat on a fixed ±1.1 axis (issue 25); the ±alpha and
+    ±thetaOv lines, off such a scale, are named in the legend instead."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rocking.cli.plots import theta_panel
+
+    t = np.linspace(0, 10, 501)
+    fig, (small, large) = plt.subplots(2)
+    theta_panel(small, t, 0.008 * np.sin(t), alpha=0.13, theta_ov=0.107)
+    theta_panel(large, t, 0.8 * np.sin(t), alpha=0.13, theta_ov=0.107)
+    assert small.get_ylim() == pytest.approx((-0.0104, 0.0104), rel=1e-3)
+    assert "off this scale" in small.get_legend().get_texts()[-1].get_text()
+    assert large.get_ylim() == pytest.approx((-1.1, 1.1))
+    levels = sorted({round(line.get_ydata()[0], 6) for line in large.get_lines()[1:]})
+    assert levels == pytest.approx([-1, -0.107 / 0.13, 0, 0.107 / 0.13, 1])
+    assert all(legend_outside(ax) for ax in (small, large))
+    plt.close(fig)
+
+
+def legend_outside(ax):
+    """Whether the panel's legend lies wholly above its plotting area (off the curves)."""
+    ax.figure.canvas.draw()
+    box = ax.get_legend().get_window_extent()
+    return box.y0 >= ax.get_window_extent().y1 - 1
+
+
+def test_plot_regime_reaches_overturned():
+    """The FMU's last row holds the regime before overturning; the trace must end on it."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rocking.cli.plots import _regime_panel
+
+    fig, ax = plt.subplots()
+    _regime_panel(ax, [0.0, 1.0, 2.0], [0, 1, 2], {0: "full", 1: "partial", 2: "crushing", 4: "overturned"}, 2.5)
+    ends = [(line.get_xdata()[-1], line.get_ydata()[-1]) for line in ax.get_lines()]
+    assert (2.5, 4) in ends
+    plt.close(fig)
+
+
+def test_simulate_tail_and_outputs(fmu_path, tmp_path):
+    """--tail 3: the run goes 3 s past the record's end (free motion); --outputs picks the
+    columns, Fx and Fz among them."""
+    ok("simulate", KATNP, "--preset", "dharahara-F170-fm5", "--scale", "0.5", "--tail", "3",
+       "--outputs", "theta,Fx,Fz", "--output-interval", "0.05", "--out", tmp_path)
+    csv, summary = read_outputs(tmp_path)
+    end = (len(katnp_acc()) - 1) * 0.01
+    assert list(csv.columns) == ["time", "ag", "theta", "Fx", "Fz"]
+    assert csv["time"].iloc[-1] == pytest.approx(end + 3) and summary["tail_s"] == 3
+    after = csv[csv["time"] > end]
+    assert len(after) >= 59 and (after["ag"] == 0).all()
+    # at rest in full contact the support carries the weight: Fz = W (the preset's 24003.94 kN)
+    assert csv["Fz"].iloc[0] == pytest.approx(24003.94e3, rel=1e-9)
+    line = fails("simulate", KATNP, "--outputs", "theta,Fy", "--out", tmp_path)
+    assert "'Fy'" in line and "Fx" in line
+    line = fails("simulate", "--tail", "3", "--out", tmp_path)
+    assert "--tail" in line and "RECORD" in line
+
+
 # --------------------------------------------------------------------------
 # sweep
 
@@ -246,6 +357,70 @@ def test_sweep_two_records_three_scales(fmu_path, tmp_path):
     row = df[(df["record"] == "KATNP_NS_standin.csv") & (df["scale"] == 1.0)].iloc[0]
     assert bool(row["overturned"]) and 20 < row["t_overturn"] < 30
     assert df["t_end"].max() <= 30.0 + 1e-9
+
+
+def test_sweep_defaults_lie_under_the_preset(fmu_path, tmp_path):
+    """[defaults] interface = "rigid" must not turn a preset's tower rigid (issue 25): the
+    row has the preset's interface and the peak `simulate --preset` gives; a case's own
+    key still wins over its preset."""
+    cases = tmp_path / "cases.toml"
+    cases.write_text('[defaults]\ninterface = "rigid"\n'
+                     '[cases.tower]\npreset = "dharahara-F170-fm5"\n'
+                     '[cases.tower-rigid]\npreset = "dharahara-F170-fm5"\ninterface = "rigid"\n'
+                     '[cases.block]\nshape = "solidRectangle"\n')
+    out = tmp_path / "results.csv"
+    ok("sweep", cases, "--records", KATNP, "--stop-time", "20", "--workers", "1", "--out", out)
+    df = pd.read_csv(out).set_index("case")
+    assert df.loc["tower", "interface"] == "elastoPlastic"
+    assert df.loc["tower", "kn"] == 170e6 and df.loc["tower", "fm"] == 5e6
+    assert df.loc["tower-rigid", "interface"] == "rigid"
+    assert df.loc["block", "interface"] == "rigid"
+    sim = tmp_path / "sim"
+    ok("simulate", KATNP, "--preset", "dharahara-F170-fm5", "--stop-time", "20", "--out", sim)
+    peak = json.loads((sim / "summary.json").read_text())["peak_theta_over_alpha"]
+    assert df.loc["tower", "peak_theta_over_alpha"] == pytest.approx(peak, rel=1e-9)
+    assert df.loc["tower-rigid", "peak_theta_over_alpha"] != pytest.approx(peak, rel=0.1)
+
+
+def test_sweep_leaves_vertical_components_out(fmu_path, tmp_path):
+    """The README's sweep folder holds 0111b.smc, whose header says `component= up`: it must not
+    run as the horizontal ag (issue 25); the V2's UP channel neither."""
+    cases = tmp_path / "cases.toml"
+    cases.write_text('[cases.block]\nshape = "solidRectangle"\n')
+    out = tmp_path / "r.csv"
+    proc = ok("sweep", cases, "--records", SMC_A.parent, "--records", V2, "--stop-time", "2",
+              "--workers", "1", "--out", out)
+    assert sorted(pd.read_csv(out)["record"]) == sorted(["0111a.smc", "0111c.smc", f"{V2.name}[90]",
+                                                         f"{V2.name}[0]"])
+    assert "2 vertical component(s) left out" in proc.stderr and "0111b.smc" in proc.stderr
+    line = fails("sweep", cases, "--records", V2, "--component", "UP", "--out", out)
+    assert "vertical" in line and "av" in line and "90 or 0" in line
+
+
+def test_simulate_refuses_a_vertical_component(fmu_path, tmp_path):
+    v2a = DATA / "geonet-kaikoura-2016" / "20161113_110259_WTMC_20.V2A"
+    line = fails("simulate", v2a, "--component", "Up", "--out", tmp_path)
+    assert "[Up]" in line and "vertical input av is not supported yet" in line and "N28W or S62W" in line
+    line = fails("simulate", SMC_A.parent / "0111b.smc", "--out", tmp_path)
+    assert "vertical" in line and "no horizontal component" in line
+    assert not (tmp_path / "summary.json").exists()
+
+
+def test_record_shows_each_components_orientation():
+    v2a = DATA / "geonet-kaikoura-2016" / "20161113_110259_WTMC_20.V2A"
+    lines = ok("record", v2a).stdout.splitlines()
+    shown = [line.split()[1] for line in lines if line.strip().startswith("orientation")]
+    assert shown == ["horizontal", "horizontal", "vertical"]  # N28W, S62W, Up
+
+
+def test_component_on_a_csv_names_its_columns(fmu_path, tmp_path):
+    line = fails("simulate", KATNP, "--component", "XYZ", "--out", tmp_path)
+    assert "'XYZ'" in line and "'time_s', 'acc_m_s2'" in line
+
+
+def test_sweep_help_states_the_precedence():
+    text = " ".join(ok("sweep", "--help").stdout.split())
+    assert "[defaults] first, its preset" in text and "own keys over both" in text
 
 
 # --------------------------------------------------------------------------
@@ -285,6 +460,41 @@ def test_error_bad_values(fmu_path, tmp_path):
     # a value only the FMU can judge: its logger's message names the parameter
     line = fails("simulate", "--kn", "-5", "--out", tmp_path)
     assert "kn = -5" in line
+
+
+def test_fmu_error_leads_with_the_parameter_as_typed(fmu_path, tmp_path):
+    """It began with 190 characters of FMI wording and printed -1e9 as -1000000000 (issue 25)."""
+    line = fails("simulate", "--interface", "elastic", "--kn", "-1e9", "--out", tmp_path)
+    assert line.startswith("rocking simulate: error: kn = -1e9: must be"), line
+    assert "fmi2ExitInitializationMode" in line and len(line) < 130
+
+
+def test_python_api_suggests_close_names(fmu_path):
+    from rocking import RockingFMU
+    with RockingFMU(fmu_path) as fmu, pytest.raises(KeyError) as info:
+        fmu.simulate({"knn": 1e9}, stop_time=0.1)
+    assert "did you mean kn?" in str(info.value)
+
+
+def test_record_options_the_messages_name(tmp_path):
+    """The readers' messages suggest units= and fmt=; the CLI has --units and --fmt to match."""
+    plain = tmp_path / "plain.csv"
+    plain.write_text("time,acc\n0,0\n0.01,0.5\n0.02,-0.25\n")
+    line = fails("record", plain)
+    assert "--units" in line
+    assert "PGA            0.5000 g" in ok("record", plain, "--units", "g").stdout
+    odd = tmp_path / "odd.dat"
+    odd.write_text("a record\nwith no header a reader knows\n")
+    line = fails("record", odd)
+    assert "--fmt" in line and "csv" in line
+    line = fails("record", plain, "--units", "furlongs")
+    assert line.startswith("rocking record: error: --units furlongs: unknown acceleration units")
+
+
+def test_simulate_usage_names_params():
+    usage = ok("simulate", "--help").stdout.split("\n\n", 1)[0]
+    for option in ("--params FILE", "--units", "--fmt", "--tail", "--outputs"):
+        assert option in usage
 
 
 def test_error_unknown_preset(fmu_path, tmp_path):

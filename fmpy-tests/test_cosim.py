@@ -7,6 +7,7 @@ on the roof, 3 s), the steps of the convergence plot's fine end.
 """
 
 import json
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -139,6 +140,9 @@ def test_cli_runs_the_example_case(tmp_path, case, ref):
     assert (tmp_path / "plot.png").stat().st_size > 10_000
     table = np.genfromtxt(tmp_path / "timehistory.csv", delimiter=",", names=True)
     assert summary["peak_theta_rad"] == pytest.approx(np.max(np.abs(table["theta"])), rel=1e-12)
+    # theta over alpha (the plot's panel, issue 25): the default 0.5 m x 2.5 m prism, alpha = atan(B/H)
+    assert summary["alpha_rad"] == pytest.approx(math.atan(0.5 / 2.5), rel=1e-12)
+    assert summary["peak_theta_over_alpha"] == pytest.approx(summary["peak_theta_rad"] / math.atan(0.2), rel=1e-12)
     # the example is the convergence case at h = 2 ms: within 1 % of the reference
     assert summary["peak_theta_rad"] == pytest.approx(ref.peak("theta"), rel=0.01)
     assert summary["peak_a_floor_m_s2"] == pytest.approx(ref.peak("a_floor"), rel=0.01)

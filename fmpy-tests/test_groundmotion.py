@@ -8,6 +8,7 @@ and checked against both the files' statements and the reader.
 """
 
 import re
+import warnings
 from functools import lru_cache
 from pathlib import Path
 
@@ -238,6 +239,36 @@ def write_at2(path, values=AT2_VALUES, npts_line=None, units_line="ACCELERATION 
     return path
 
 
+# The vertical components, as the shipped files' headers name them (read by eye: V2 "CHAN  2: UP",
+# V2A "Component Up    Vertical Accelerometer Axis", SMC "component=   up", the Darfield ".ver").
+SHIPPED_VERTICAL = {(V2, 1), (V2A, 2), (SMC.format("b"), 0), (DARFIELD.format("ver"), 0)}
+
+
+@pytest.mark.parametrize("rel", SHIPPED)
+def test_shipped_components_carry_their_orientation(rel):
+    recs = records(rel)
+    for index, rec in enumerate(recs):
+        want = "vertical" if (rel, index) in SHIPPED_VERTICAL else "horizontal"
+        assert (rec.component, rec.orientation) == (rec.component, want)
+        assert rec.vertical == (want == "vertical")
+
+
+@pytest.mark.parametrize("acc_name, comment, vertical", [
+    ("acc_UD[g]", None, True), ("HNZ acc[g]", None, True), ("acc[g]", "# component: Up", True),
+    ("acc_V (m/s2)", None, True), ("acc[g]", "# component: HNE", False), ("acc[g]", None, False),
+    ("acc_NS[g]", None, False), ("acc (cm/s^2)", None, False)])
+def test_csv_orientation_from_its_header(tmp_path, acc_name, comment, vertical):
+    comments = ("# a test record",) + ((comment,) if comment else ())
+    rec = gm.read(write_csv(tmp_path / "r.csv", acc_name, comments=comments))
+    assert rec.vertical == vertical
+
+
+def test_at2_vertical_label(tmp_path):
+    path = write_at2(tmp_path / "TESTUP.AT2")
+    path.write_text(path.read_text().replace("TEST STATION, 230", "TEST STATION, UP"))
+    assert gm.read(path).vertical
+
+
 def test_at2_round_trip(tmp_path):
     rec = gm.read(write_at2(tmp_path / "TEST230.AT2"))
     printed = np.array([float(f"{v:.7E}") for v in AT2_VALUES])
@@ -372,6 +403,42 @@ def test_non_number_in_csv(tmp_path):
     expect_error(path, 5, "expected 2 numbers separated by commas", "'0.060,abc'")
 
 
+def test_uneven_csv_names_the_line_where_the_spacing_breaks(tmp_path):
+    """Rows at 0, 0.01, then 0.03, 0.04, ... 10 s: the spacing breaks on line 5 (a comment, the
+    header, two rows, then the step of 0.02 s), not where the times are furthest from a step
+    fitted to the ends."""
+    times = np.concatenate(([0.0], np.arange(1, 1000) * 0.01 + 0.01))
+    times[1] = 0.01
+    path = tmp_path / "uneven.csv"
+    path.write_text("# uneven\ntime_s,acc[g]\n" + "".join(f"{t:.2f},0.01\n" for t in times))
+    expect_error(path, 5, "expected evenly spaced times (step 0.01 s", "found 0.03 after 0.01")
+
+
+def test_shifted_csv_time_gets_a_note(tmp_path):
+    path = write_csv(tmp_path / "late.csv", "acc[g]", t0=5.0)
+    with pytest.warns(gm.GroundMotionWarning, match="starts at 5 s"):
+        rec = gm.read(path)
+    assert "starts at 5 s" in rec.notes and rec.time[0] == 0.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert "shifted" not in gm.read(write_csv(tmp_path / "on-time.csv", "acc[g]")).notes
+
+
+@pytest.mark.parametrize("pga_g, warns", [(342.0, True), (5.5, True), (4.5, False)])
+def test_implausible_pga_warns(tmp_path, pga_g, warns):
+    """cm/s² values labelled g (the issue's PGA 342 g) warn; 4.5 g, beyond any horizontal peak
+    recorded but below the bound, reads quietly."""
+    path = write_csv(tmp_path / "r.csv", "acc[g]", values=[0.0, pga_g, -1.0, 0.0])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        rec = gm.read(path)
+    flagged = [w for w in caught if issubclass(w.category, gm.GroundMotionWarning)]
+    assert bool(flagged) == warns
+    assert ("are the units (g) right?" in rec.notes) == warns
+    if warns:
+        assert f"PGA {pga_g:.3g} g" in str(flagged[0].message)
+
+
 def test_missing_npts_dt_line(tmp_path):
     path = modified_copy(tmp_path, DARFIELD.format("000"), lambda lines: lines.pop(1))
     expect_error(path, 2, "expected 'npts dt'", fmt="npts_dt")
@@ -397,7 +464,7 @@ def test_unknown_units_in_csv_header(tmp_path):
 
 
 def test_csv_without_units(tmp_path):
-    expect_error(write_csv(tmp_path / "r.csv", "acc"), 2, "pass units=")
+    expect_error(write_csv(tmp_path / "r.csv", "acc"), 2, "units= in Python, --units on the command line")
 
 
 def test_unknown_units_argument_is_a_value_error():

@@ -29,6 +29,7 @@ reference it is tested against bit for bit); docs/performance.md has the costs.
 """
 
 import math
+import re
 import shutil
 import time as _time
 from ctypes import c_double, c_int, c_uint32
@@ -78,8 +79,88 @@ _CALLBACKS.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
 _CALLBACKS.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
 
 
+def did_you_mean(name, names):
+    """"; did you mean A, B?" with the `names` close to `name` (or differing in case), or ""."""
+    import difflib
+    close = difflib.get_close_matches(name, names, n=3, cutoff=0.5)
+    close += [n for n in names if n.lower() == name.lower() and n not in close]
+    return f"; did you mean {', '.join(close)}?" if close else ""
+
+
+def check_times(stop_time, output_interval):
+    """ValueError naming the argument unless stop_time >= 0 and output_interval > 0 (finite, s)."""
+    if not (math.isfinite(stop_time) and stop_time >= 0):
+        raise ValueError(f"stop_time = {stop_time:g}: must be a time >= 0 s")
+    if not (math.isfinite(output_interval) and output_interval > 0):
+        raise ValueError(f"output_interval = {output_interval:g}: must be a time > 0 s")
+
+
+def communication_grid(stop_time, h, output_interval):
+    """(communication points from 0 to stop_time, every how many steps a row is sampled,
+    the output times when they are not every `every`-th point, else None). h: the record's
+    dt (the FMU sees its linear interpolation exactly when the points include its samples)."""
+    ratio = output_interval / h
+    n_steps = int(math.ceil(stop_time / h - 1e-9))
+    grid = np.arange(n_steps + 1) * h
+    if n_steps and grid[-1] > stop_time:
+        grid[-1] = stop_time
+    if abs(ratio - round(ratio)) <= 1e-9 * ratio and round(ratio) >= 1:
+        return grid, int(round(ratio)), None
+    outputs = np.arange(int(math.floor(stop_time / output_interval + 1e-9)) + 1) * output_interval
+    merged = np.unique(np.concatenate((grid, outputs[outputs <= stop_time])))
+    close = np.diff(merged) <= 1e-9 * min(h, output_interval)  # one point where two coincide
+    return merged[np.concatenate(([True], ~close))], 1, outputs
+
+
+def output_rows(times, outputs):
+    """Mask of the sampled `times` that are output times (to 1e-9 s), the first and the last."""
+    k = np.clip(np.searchsorted(outputs, times), 0, len(outputs) - 1)
+    nearest = np.minimum(np.abs(times - outputs[k]), np.abs(times - outputs[np.maximum(k - 1, 0)]))
+    keep = nearest <= 1e-9
+    keep[0] = keep[-1] = True
+    return keep
+
+
 class FMUError(RuntimeError):
-    """An FMI call failed; the message carries what the FMU logged."""
+    """An FMI call failed; the message leads with what the FMU logged, e.g. "kn = -1000000000:
+    must be finite and > 0 (the FMU refused it in fmi2ExitInitializationMode)".
+
+    parameter, value, condition  the variable the FMU names, its value as the FMU printed
+                                 it, and what it must be (None when the message names none)
+    call                         the FMI function that failed
+    log                          everything the FMU logged during the call
+    """
+
+    parameter = value = condition = call = None
+    log = ()
+
+    @classmethod
+    def from_log(cls, exc, messages):
+        """The error of a failed FMI call `exc`, from the FMU's `messages` ("[STATUS] category: text")."""
+        errors = [m for m in messages if m.startswith(("[ERROR]", "[FATAL]"))] or list(messages)
+        if not errors:
+            return cls(f"{exc} (no message logged)")
+        text = errors[-1].split(": ", 1)[-1]  # without "[ERROR] logStatusError"
+        call = re.match(r"(fmi2\w+): ", text)
+        if call:
+            text = text[call.end():]
+        text = re.sub(r"^invalid parameters?: ", "", text)
+        where = call.group(1) if call else str(exc).split(" ", 1)[0]
+        refused = re.fullmatch(r"([A-Za-z_]\w*) = (\S+): (.+)", text)
+        if refused:
+            error = cls(f"{text} (the FMU refused it in {where})")
+            error.parameter, error.value, error.condition = refused.groups()
+        else:
+            error = cls(f"{text} (the FMU, in {where})")
+        error.call, error.log = where, tuple(messages)
+        return error
+
+    def with_value(self, typed):
+        """The same error with the parameter's value as the user wrote it (`typed`)."""
+        error = type(self)(f"{self.parameter} = {typed}: {self.condition} (the FMU refused it in {self.call})")
+        error.parameter, error.value, error.condition = self.parameter, typed, self.condition
+        error.call, error.log = self.call, self.log
+        return error
 
 
 @dataclass
@@ -172,7 +253,7 @@ class RockingFMU:
         out = {}
         for name, value in params.items():
             if name not in self.variables:
-                raise KeyError(f"{name!r} is not a variable of the FMU")
+                raise KeyError(f"{name!r} is not a variable of the FMU{self._close_names(name)}")
             if name in self.enumerations and isinstance(value, str):
                 items = self.enumerations[name]
                 if value not in items:
@@ -182,6 +263,11 @@ class RockingFMU:
                 value = value.item()
             out[name] = value
         return out
+
+    def _close_names(self, name):
+        names = [n for n, v in self.variables.items()
+                 if v.causality == "parameter" or (v.causality == "output" and v.initial == "exact")]
+        return did_you_mean(name, names)
 
     # -- the library, loaded once per process --------------------------------
     def _library(self):
@@ -217,9 +303,12 @@ class RockingFMU:
         ag               instead of `record`: (time, acc) arrays in s and m/s², equally spaced
         stop_time        default: the record's last sample (10 s without a record);
                          after the record ends the ground is at rest
-        output_interval  default: the record's dt (0.01 s without one); the communication
-                         step is the record's dt (or the output interval without a
-                         record), the outputs are sampled every round(interval / step) steps
+        output_interval  s, > 0; default: the record's dt (0.01 s without one). Rows at 0,
+                         interval, 2 interval, ... and at the end (and at overturning).
+                         The communication points are the record's samples (the output
+                         interval without a record) and, when the interval is not a
+                         multiple of the record's dt, the output times too: the FMU
+                         still sees the record's linear interpolation exactly
         rtol             the integrator's relative tolerance (default: the FMU's)
         loop             "native": the stepping loop of fmu-stepper (rocking.stepper), "python":
                          the loop in Python (the reference), "auto" (default): native when built
@@ -237,12 +326,9 @@ class RockingFMU:
             stop_time = float(t_in[-1]) if t_in is not None else 10.0
         if output_interval is None:
             output_interval = dt if dt is not None else 0.01
-        h = dt if dt is not None else output_interval
-        every = max(1, int(round(output_interval / h)))
-        n_steps = int(math.ceil(stop_time / h - 1e-9))
-        grid = np.arange(n_steps + 1) * h
-        if n_steps and grid[-1] > stop_time:
-            grid[-1] = stop_time
+        check_times(stop_time, output_interval)
+        grid, every, rows = communication_grid(stop_time, dt if dt is not None else output_interval,
+                                               output_interval)
         if t_in is not None:
             acc = scale * np.interp(grid, t_in, a_in, right=0.0)  # ground at rest after the record
         else:
@@ -270,6 +356,7 @@ class RockingFMU:
                                     "(cargo build --release -p fmu-stepper, or cargo xtask fmu)")
         inputs = (acc, slope) if t_in is not None else (None, None)
 
+        start_values = self.start_values(params)  # unknown names: KeyError before the FMU
         slave = self._library()
         _MESSAGES.clear()
         component = None
@@ -277,7 +364,7 @@ class RockingFMU:
             slave.instantiate(callbacks=self._callbacks)
             component = slave.component
             slave.setupExperiment(tolerance=rtol, startTime=0.0, stopTime=stop_time)
-            self._set(slave, self.start_values(params))
+            self._set(slave, start_values)
             slave.enterInitializationMode()
             val[0] = acc[0]
             slave.fmi2SetReal(component, vr_ag, 1, val)
@@ -299,8 +386,7 @@ class RockingFMU:
         except Exception as exc:  # noqa: BLE001 - FMICallException and instantiation errors
             if isinstance(exc, FMUError):
                 raise
-            detail = "; ".join(_MESSAGES) or "no message logged"
-            raise FMUError(f"{exc} (FMU log: {detail})") from exc
+            raise FMUError.from_log(exc, _MESSAGES) from exc
         finally:
             if component is not None:
                 slave.fmi2FreeInstance(component)
@@ -317,6 +403,8 @@ class RockingFMU:
         for j, n in enumerate(bools):
             result[n] = rows_b[:, j]
         overturned = overturned or bool(final["overturned"])
+        if rows is not None:  # the output grid is not the communication grid: its rows only
+            result = result[output_rows(result["time"], rows)]
         keep = ["time"] + list(outputs)
         t_end = float(result["time"][-1])
         return Run(

@@ -2,7 +2,6 @@
 checked against its modelDescription, and reading records."""
 
 import argparse
-import difflib
 import math
 import re
 from pathlib import Path
@@ -22,6 +21,21 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message):
         raise CLIError(f"{message} (`{self.prog} --help`)")
+
+
+def seconds(minimum, strict):
+    """An argparse type: a finite number of seconds above `minimum` (or at least it, if not
+    `strict`); the usage error names the option and the bound."""
+    def convert(text):
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r}: not a number of seconds") from None
+        if not math.isfinite(value) or value < minimum or (strict and value == minimum):
+            raise argparse.ArgumentTypeError(f"{text!r}: must be {'>' if strict else '>='} {minimum:g} s")
+        return value
+    convert.__name__ = "seconds"
+    return convert
 
 
 # ---------------------------------------------------------------------------
@@ -87,10 +101,9 @@ def check_parameter(fmu, name, value, where):
             v = fmu.variables[name]
             raise CLIError(f"{where}: {name} is a{'n' if v.causality[0] in 'aeiou' else ''} "
                            f"{v.causality} of the FMU, not something that can be set")
-        close = difflib.get_close_matches(name, table, n=3, cutoff=0.5)
-        close += [n for n in table if n.lower() == name.lower() and n not in close]
-        hint = f"; did you mean {', '.join(close)}?" if close else ""
-        raise CLIError(f"{where}: unknown parameter {name!r}{hint} (`rocking info` lists them)")
+        from ..fmu import did_you_mean
+        raise CLIError(f"{where}: unknown parameter {name!r}{did_you_mean(name, list(table))} "
+                       "(`rocking info` lists them)")
     v = table[name]
     text = value if isinstance(value, str) else None
     unit = unit_of(v)
@@ -138,6 +151,58 @@ def check_parameter(fmu, name, value, where):
     raise CLIError(f"{where}: cannot set a {v.type} variable")
 
 
+def parameters_of_items(fmu):
+    """{enumeration parameter: {item: the parameters it uses}}, read from the enumeration's
+    description in modelDescription.xml, e.g. "elastic no-tension Winkler bed (kn),
+    elastoPlastic (kn, crushing at fm)": the settable names in the parentheses after an item."""
+    names = set(settable(fmu))
+    out = {}
+    for enum, items in fmu.enumerations.items():
+        text = fmu.variables[enum].description or ""
+        spots = sorted((m.start(), m.end(), item) for item in items
+                       for m in re.finditer(rf"\b{re.escape(item)}\b", text))
+        uses = {}
+        for k, (_, end, item) in enumerate(spots):
+            segment = text[end:spots[k + 1][0] if k + 1 < len(spots) else len(text)]
+            inner = re.search(r"\(([^)]*)\)", segment)
+            words = set(re.findall(r"[A-Za-z]\w*", inner.group(1))) if inner else set()
+            uses.setdefault(item, set()).update(words & names - {enum})
+        out[enum] = uses
+    return out
+
+
+def unused_parameters(fmu, params):
+    """{name: why} of the parameters in `params` that the enumerations chosen (given, else the
+    FMU's defaults) do not use, e.g. {"kn": "not used by interface = rigid"}."""
+    unused = {}
+    for enum, uses in parameters_of_items(fmu).items():
+        chosen = params.get(enum)
+        if chosen is None:
+            start = fmu.variables[enum].start
+            chosen = next((i for i, v in fmu.enumerations[enum].items() if str(v) == str(start)), None)
+        if chosen not in uses:
+            continue
+        others = set().union(*uses.values()) - uses[chosen]
+        unused.update({name: f"not used by {enum} = {chosen}" for name in params if name in others})
+    return unused
+
+
+def drop_unused(fmu, params, typed=None):
+    """Take the parameters the chosen enumerations do not use out of `params` (so that they
+    are neither set nor recorded as used): ({name: {"value", "why"}}, a note naming them as
+    `typed` ({name: how the user wrote it}) does, or None)."""
+    unused = unused_parameters(fmu, params)
+    typed = typed or {}
+    ignored = {name: {"value": params.pop(name), "why": why} for name, why in unused.items()}
+    if not ignored:
+        return ignored, None
+    groups = {}
+    for name, why in unused.items():
+        groups.setdefault(why, []).append(typed.get(name, name))
+    note = "; ".join(f"{', '.join(names)} ignored: {why}" for why, names in groups.items())
+    return ignored, note + " (not set; recorded as ignored, not as used)"
+
+
 def split_parameters(argv, known_options):
     """Take the `--NAME VALUE` (or `--NAME=VALUE`) pairs whose NAME is not an option of the
     command out of argv: (the rest of argv, [(NAME, VALUE), ...])."""
@@ -166,28 +231,75 @@ def split_parameters(argv, known_options):
 # ---------------------------------------------------------------------------
 # Records
 
-def read_record(path, component=None):
-    """(Record, format name) of `path`; component by label, else by index."""
+def add_record_options(parser):
+    """--units and --fmt, for the files whose header does not say (the readers' units=, fmt=)."""
+    from ..groundmotion.detect import READERS
+    parser.add_argument("--units", help="units of the record's numbers, over what the file states "
+                        "(g, m/s2, cm/s2, mm/s2 or a common spelling)")
+    parser.add_argument("--fmt", choices=list(READERS), help="the record's format, when it cannot be "
+                        "told from the file's first lines or extension")
+
+
+def read_components(path, units=None, fmt=None):
+    """(every component of `path` as Records, format name): gm.read_all with --units, --fmt."""
     from .. import groundmotion as gm
+    fmt = fmt or gm.detect_format(path)
+    try:
+        return gm.read_all(path, units=units, fmt=fmt), fmt
+    except ValueError as exc:
+        if units is not None and "units" in str(exc) and not isinstance(exc, gm.GroundMotionFormatError):
+            raise CLIError(f"--units {units}: {exc}") from None
+        raise
+
+
+def read_record(path, component=None, units=None, fmt=None):
+    """(Record, format name) of `path`; component by label, else by index."""
     from ..groundmotion.detect import select
     path = Path(path)
     if not path.exists():
         raise CLIError(f"{path}: no such record file")
     if path.is_dir():
         raise CLIError(f"{path}: is a folder, not a record file")
-    fmt = gm.detect_format(path)
-    records = gm.read_all(path, fmt=fmt)
+    records, fmt = read_components(path, units, fmt)
     if component is None:
         return records[0], fmt
     try:
         return select(records, component, path), fmt
-    except ValueError:
+    except ValueError as exc:
         if re.fullmatch(r"-?\d+", component):
             try:
                 return select(records, int(component), path), fmt
             except ValueError:
                 pass
-        raise
+        if fmt == "csv":
+            raise CLIError(f"{path}: no component {component!r}: a CSV record holds one component, "
+                           f"the acceleration column of its header ({_csv_columns(path)}); "
+                           "leave out --component") from None
+        raise CLIError(str(exc)) from None
+
+
+def _csv_columns(path):
+    """The header row of a CSV record, for a message."""
+    for line in Path(path).read_text(errors="replace").splitlines():
+        if line.strip() and not line.startswith("#"):
+            return "columns " + ", ".join(repr(c.strip()) for c in line.split(","))
+    return "no header row"
+
+
+def horizontal_record(path, component=None, units=None, fmt=None):
+    """(Record, format name) as `read_record` (no component: the file's first horizontal one),
+    refusing a vertical component in one line: the FMU's input ag is the horizontal ground
+    acceleration."""
+    rec, fmt = read_record(path, component, units, fmt)
+    if rec.vertical:
+        others = [r.component for r in read_components(path, units, fmt)[0] if not r.vertical]
+        if component is None and others:
+            return read_record(path, others[0], units, fmt)
+        choose = (f"choose a horizontal one: --component {' or '.join(others)}" if others
+                  else "the file holds no horizontal component")
+        raise CLIError(f"{path} [{rec.component}]: a vertical component, and ag is the horizontal ground "
+                       f"acceleration (vertical input av is not supported yet); {choose}")
+    return rec, fmt
 
 
 def record_facts(rec):

@@ -37,7 +37,7 @@ import textwrap
 import tomllib
 from pathlib import Path
 
-from .common import CLIError, read_record
+from .common import CLIError, horizontal_record
 
 SECTIONS = {"frame", "block", "ground", "coupling"}
 COUPLING_KEYS = {"floor", "step", "stop_time", "scheme", "inputs", "coupling", "reject", "substeps", "rtol"}
@@ -111,7 +111,7 @@ def ground_from(table, case_path):
         path = Path(table["record"])
         if not path.is_absolute():
             path = case_path.parent / path
-        rec, fmt = read_record(path, table.get("component"))
+        rec, fmt = horizontal_record(path, table.get("component"))
         scale = float(table.get("scale", 1.0))
         facts = {"record": str(path), "format": fmt, "component": rec.component, "scale": scale,
                  "dt_s": rec.dt, "pga_m_s2": rec.pga * scale}
@@ -132,6 +132,8 @@ def cmd_cosim(args, _params):
 
     from .. import paths
     from ..cosim.master import CoupledFMUs
+    from ..fmu import RockingFMU
+    from .plots import plot_cosim
 
     case_path = Path(args.case)
     case = load_case(case_path)
@@ -170,17 +172,21 @@ def cmd_cosim(args, _params):
                           **{f"u[{i + 1}]": res.u[:, i] for i in range(n)}})
     table.to_csv(out / "timehistory.csv", index=False)
     k_th, k_a = int(np.argmax(np.abs(res.theta))), int(np.argmax(np.abs(res.a_floor)))
+    with RockingFMU(block_fmu) as rocking_fmu:  # alpha and thetaOv, for theta / alpha
+        calc = rocking_fmu.calculated(block)
     summary = {"case": str(case_path), "ground": ground_facts, "frame": frame, "block": block,
                "options": res.options, "overturned": res.overturned,
                "t_overturn_s": res.t_overturn if res.overturned else None,
                "t_end_s": float(res.time[-1]), "peak_theta_rad": float(abs(res.theta[k_th])),
-               "t_peak_theta_s": float(res.time[k_th]), "peak_a_floor_m_s2": float(abs(res.a_floor[k_a])),
-               "t_peak_a_floor_s": float(res.time[k_a]), "peak_roof_displacement_m": float(np.max(np.abs(res.u[:, -1]))),
+               "t_peak_theta_s": float(res.time[k_th]), "alpha_rad": calc["alpha"], "thetaOv_rad": calc["thetaOv"],
+               "peak_theta_over_alpha": float(abs(res.theta[k_th])) / calc["alpha"],
+               "peak_a_floor_m_s2": float(abs(res.a_floor[k_a])), "t_peak_a_floor_s": float(res.time[k_a]),
+               "peak_roof_displacement_m": float(np.max(np.abs(res.u[:, -1]))),
                "steps": res.steps, "rejected_steps": res.rejected, "wall_s": res.wall,
                "error_against_reference": check,
                "files": {"timehistory": "timehistory.csv", "plot": "plot.png"}}
     (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
-    plot(out / "plot.png", res, summary)
+    plot_cosim(out / "plot.png", res, calc["alpha"], calc["thetaOv"])
     outcome = (f"OVERTURNED at t = {res.t_overturn:.4f} s (the frame's state kept at that time)"
                if res.overturned else f"stands until t = {res.time[-1]:g} s")
     print(f"coupling    {res.options['scheme']}, {res.options['inputs']} inputs, {res.options['coupling']}, "
@@ -194,29 +200,3 @@ def cmd_cosim(args, _params):
           + f"wrote       {out / 'timehistory.csv'}, {out / 'summary.json'}, {out / 'plot.png'}  "
           f"({len(res.time)} rows, {res.steps} steps, {res.rejected} rejected, {res.wall:.2f} s)")
     return 0
-
-
-def plot(path, res, summary):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(3, 1, sharex=True, figsize=(10, 7.5))
-    o = res.options
-    fig.suptitle(f"Block on floor {o['floor']}: {o['scheme']}, {o['inputs']}, {o['coupling']}, h = {o['step']:g} s"
-                 + (f"; overturned at {res.t_overturn:.3f} s" if res.overturned else ""), fontsize=10)
-    axes[0].plot(res.time, res.ag, lw=0.7, color="0.4", label="ground ag")
-    axes[0].plot(res.time, res.a_floor, lw=0.9, color="C0", label=f"floor a[{o['floor']}]")
-    axes[0].set_ylabel("acceleration (m/s2)")
-    axes[0].legend(fontsize=8, loc="upper right")
-    axes[1].plot(res.time, res.theta, lw=0.9, color="C1")
-    axes[1].set_ylabel("theta (rad)")
-    axes[2].plot(res.time, res.Fx / 1e3, lw=0.9, color="C2", label="Fx")
-    axes[2].set_ylabel("support force Fx (kN)")
-    axes[2].set_xlabel("time (s)")
-    for ax in axes:
-        ax.grid(alpha=0.3)
-        if res.overturned:
-            ax.axvline(res.t_overturn, color="C3", lw=1.0)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)

@@ -5,6 +5,7 @@ import argparse
 import importlib
 import os
 import sys
+import warnings
 
 from .common import PROG, CLIError, _Parser, split_parameters
 
@@ -35,10 +36,18 @@ def _one_line(exc):
     return " ".join(text.split()) or type(exc).__name__
 
 
+def _warnings_in_one_line(where):
+    """Warnings (an implausible record, a shifted time column) as one line each on stderr."""
+    def show(message, category, filename, lineno, file=None, line=None):
+        print(f"{where}: warning: {' '.join(str(message).split())}", file=sys.stderr)
+    warnings.showwarning = show
+
+
 def main(argv=None):
     argv = list(sys.argv[1:] if argv is None else argv)
     debug = "--debug" in argv
     command = next((a for a in argv if not a.startswith("-")), None)
+    _warnings_in_one_line(f"{PROG} {command}" if command else PROG)
     try:
         modules = commands()
         module = modules.get(command)
@@ -70,7 +79,7 @@ def main(argv=None):
         where = f"{PROG} {command}" if command else PROG
         kind = "" if isinstance(exc, (CLIError, OSError, ValueError, KeyError)) else f"{type(exc).__name__}: "
         if type(exc).__name__ == "FMUError":
-            kind = "the FMU: "
+            kind = ""  # it leads with the parameter and says it was the FMU
         if isinstance(exc, OSError) and exc.filename and str(exc.filename) not in str(exc):
             kind = f"{exc.filename}: "
         print(f"{where}: error: {kind}{_one_line(exc)}", file=sys.stderr)

@@ -2,26 +2,25 @@
 
 from pathlib import Path
 
-from .common import CLIError, read_record, record_facts
+from .common import CLIError, add_record_options, read_components, read_record, record_facts
 
 
 def cmd_record(args, _params):
-    from .. import groundmotion as gm
     path = Path(args.file)
     if not path.exists():
         raise CLIError(f"{path}: no such record file")
     if args.component is not None:
-        rec, fmt = read_record(path, args.component)
+        rec, fmt = read_record(path, args.component, args.units, args.fmt)
         records = [rec]
     else:
-        fmt = gm.detect_format(path)
-        records = gm.read_all(path, fmt=fmt)
+        records, fmt = read_components(path, args.units, args.fmt)
     print(f"file        {path}")
     print(f"format      {fmt}")
     print(f"components  {len(records)}: {', '.join(r.component for r in records)}")
     for rec in records:
         f = record_facts(rec)
         print(f"\n[{rec.component}] {rec.name}")
+        print(f"  orientation    {rec.orientation} (from the file's header)")
         print(f"  units in file  {rec.units_in_file}")
         print(f"  npts           {f['npts']}")
         print(f"  dt             {f['dt_s']:g} s")
@@ -73,4 +72,5 @@ def register(sub, common):
     p.add_argument("file", metavar="FILE")
     p.add_argument("--component", help="only this component (label or index)")
     p.add_argument("--plot", metavar="PNG", help="plot acceleration and velocity of each component")
+    add_record_options(p)
     p.set_defaults(func=cmd_record)

@@ -4,11 +4,14 @@ import argparse
 import json
 import math
 import re
+import sys
 import textwrap
 from pathlib import Path
 
-from .common import (FMU_HELP, CLIError, check_parameter, open_fmu, read_params_file, read_record,
-                     record_facts, unit_of)
+from ..fmu import FMUError
+from .common import (FMU_HELP, CLIError, add_record_options, check_parameter, drop_unused, horizontal_record, open_fmu,
+                     read_params_file, record_facts, seconds, unit_of)
+from .plots import plot_simulation
 
 #: This subcommand also takes any FMU parameter as `--NAME VALUE` (see `common.split_parameters`).
 TAKES_PARAMETERS = True
@@ -26,36 +29,81 @@ def regime_names(fmu):
     return {int(k): name.strip() for k, name in re.findall(r"(\d+)\s+([^,;]+)", v.description or "")}
 
 
+def gather_parameters(fmu, args, params_given):
+    """(start values: the preset's, under --params FILE's, under --NAME VALUE; {name: why} of
+    the ones the chosen interface, shape, mass model or restitution do not use, left out)."""
+    from .. import presets as presets_module
+    params, typed, raw = {}, {}, {}
+    if args.preset:
+        try:
+            preset_values = presets_module.preset(args.preset)
+        except KeyError as exc:
+            raise CLIError(f"--preset: {exc.args[0]}") from None
+        for name, value in preset_values.items():
+            params[name] = check_parameter(fmu, name, value, f"preset {args.preset}: {name}")
+    if args.params:
+        for name, value in read_params_file(args.params).items():
+            params[name] = check_parameter(fmu, name, value, f"{args.params}: {name}")
+            typed[name], raw[name] = f"{args.params}: {name} = {value!r}", str(value)
+    for name, value in params_given:
+        params[name] = check_parameter(fmu, name, value, f"--{name}")
+        typed[name], raw[name] = f"--{name} {value}", value
+    ignored, note = drop_unused(fmu, params, typed)
+    if note:
+        print(f"rocking simulate: note: {note}", file=sys.stderr)
+    return params, ignored, raw
+
+
+def chosen_outputs(fmu, text):
+    """The time-history columns of --outputs ("theta,Fx,Fz", "all"; default SIMULATE_OUTPUTS)."""
+    from ..fmu import did_you_mean
+    available = [n for n, v in fmu.variables.items() if v.causality == "output"]
+    if text is None:
+        return [o for o in SIMULATE_OUTPUTS if o in fmu.variables]
+    if text.strip() == "all":
+        return available
+    names = [n.strip() for n in text.split(",") if n.strip()]
+    for name in names:
+        if name not in available:
+            raise CLIError(f"--outputs: {name!r} is not an output of the FMU{did_you_mean(name, available)} "
+                           f"(outputs: {', '.join(available)})")
+    if not names:
+        raise CLIError("--outputs: expected output names separated by commas, or all")
+    return list(dict.fromkeys(names))
+
+
+def stop_time_of(args, rec):
+    """--stop-time, or the record's end + --tail (the free motion after the record)."""
+    if args.tail is None:
+        return args.stop_time
+    if rec is None:
+        raise CLIError(f"--tail {args.tail:g}: the free motion after a record needs a RECORD "
+                       "(without one, give --stop-time)")
+    if args.stop_time is not None:
+        raise CLIError(f"--tail {args.tail:g} and --stop-time {args.stop_time:g}: give one of them")
+    return rec.duration + args.tail
+
+
 def cmd_simulate(args, params_given):
     import numpy as np
     import pandas as pd
 
-    from .. import presets as presets_module
-
     out = Path(args.out)
     with open_fmu(args.fmu) as fmu:
-        params = {}
-        if args.preset:
-            try:
-                preset_values = presets_module.preset(args.preset)
-            except KeyError as exc:
-                raise CLIError(f"--preset: {exc.args[0]}") from None
-            for name, value in preset_values.items():
-                params[name] = check_parameter(fmu, name, value, f"preset {args.preset}: {name}")
-        if args.params:
-            for name, value in read_params_file(args.params).items():
-                params[name] = check_parameter(fmu, name, value, f"{args.params}: {name}")
-        for name, value in params_given:
-            params[name] = check_parameter(fmu, name, value, f"--{name}")
-
+        params, ignored, raw = gather_parameters(fmu, args, params_given)
         rec = fmt = None
         if args.record:
-            rec, fmt = read_record(args.record, args.component)
-        outputs = [o for o in SIMULATE_OUTPUTS if o in fmu.variables]
-        run = fmu.simulate(params, record=rec, scale=args.scale, stop_time=args.stop_time,
-                           output_interval=args.output_interval, rtol=args.rtol, outputs=outputs)
+            rec, fmt = horizontal_record(args.record, args.component, args.units, args.fmt)
+        columns = chosen_outputs(fmu, args.outputs)
+        outputs = list(dict.fromkeys([o for o in SIMULATE_OUTPUTS if o in fmu.variables] + columns))
+        stop_time = stop_time_of(args, rec)
+        try:
+            run = fmu.simulate(params, record=rec, scale=args.scale, stop_time=stop_time,
+                               output_interval=args.output_interval, rtol=args.rtol, outputs=outputs)
+        except FMUError as exc:
+            raise (exc.with_value(raw[exc.parameter]) if exc.parameter in raw else exc) from None
         regimes = regime_names(fmu)
-        units = {name: unit_of(fmu.variables[name]) for name in outputs}
+        units = {name: unit_of(fmu.variables[name]) for name in columns}
         guid = fmu.model_description.guid
 
     res = run.result
@@ -67,7 +115,7 @@ def cmd_simulate(args, params_given):
         table[name] = column.astype(int) if column.dtype == bool else column
     out.mkdir(parents=True, exist_ok=True)
     csv_path, json_path, png_path = out / "timehistory.csv", out / "summary.json", out / "plot.png"
-    table.to_csv(csv_path, index=False)
+    table.to_csv(csv_path, index=False, columns=["time", "ag", *columns])
 
     theta = res["theta"]
     k_peak = int(np.argmax(np.abs(theta)))
@@ -80,8 +128,10 @@ def cmd_simulate(args, params_given):
             "synthetic_stand_in": "stand-in" in rec.notes.lower()},
         "preset": args.preset,
         "parameters": params,
+        "ignored_parameters": ignored,
         "calculated": run.calculated,
-        "stop_time_s": float(t[-1]) if run.overturned else (args.stop_time or float(t[-1])),
+        "stop_time_s": float(t[-1]) if run.overturned else (stop_time or float(t[-1])),
+        "tail_s": args.tail,
         "rows": int(len(t)),
         "peak_theta_rad": float(abs(theta[k_peak])),
         "t_peak_theta_s": float(t[k_peak]),
@@ -95,11 +145,12 @@ def cmd_simulate(args, params_given):
     if "regime" in outputs:
         reached = sorted({int(r) for r in res["regime"]})
         summary["regimes_reached"] = [regimes.get(r, str(r)) for r in reached]
+    summary["columns"] = ["time", "ag", *columns]
     summary["units"] = {"time": "s", "ag": "m/s2", **units}
     summary["wall_s"] = run.wall
     summary["files"] = {"timehistory": csv_path.name, "plot": png_path.name}
     json_path.write_text(json.dumps(summary, indent=2, default=_json_default) + "\n")
-    plot_simulation(png_path, table, summary, regimes, rec, args)
+    plot_simulation(png_path, table, summary, regimes, rec, args)  # plots.py
     print(summary_text(summary, out))
     return 0
 
@@ -142,72 +193,6 @@ def summary_text(s, out):
     return "\n".join(lines)
 
 
-def plot_simulation(path, table, s, regimes, rec, args):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.ticker import EngFormatter
-
-    g = 9.80665
-    t = table["time"].to_numpy()
-    fig, axes = plt.subplots(4, 1, sharex=True, figsize=(10, 9), height_ratios=(1.1, 1.6, 1.1, 0.8))
-    title = s["preset"] or f"RockingBlock ({s['parameters'].get('shape', 'default shape')})"
-    if rec is not None:
-        comp = f" [{rec.component}]" if rec.component else ""
-        title += f" under {rec.name or Path(args.record).name}{comp} x {args.scale:g}"
-        if s["record"]["synthetic_stand_in"]:
-            title += " (synthetic stand-in)"
-    outcome = (f"overturned at {s['t_overturn_s']:.2f} s" if s["overturned"]
-               else f"stands; peak |theta|/alpha = {s['peak_theta_over_alpha']:.3g}")
-    fig.suptitle(f"{title}\n{outcome}", fontsize=11)
-
-    ax = axes[0]
-    if rec is not None:
-        t_rec = rec.time[rec.time <= t[-1] + rec.dt]
-        ax.plot(t_rec, args.scale * rec.acc[:len(t_rec)] / g, lw=0.6, color="0.3")
-    else:
-        ax.plot(t, table["ag"] / g, lw=0.6, color="0.3")
-    ax.set_ylabel("ground acc. ag (g)")
-
-    ax = axes[1]
-    ax.plot(t, table["thetaOverAlpha"], lw=0.9, color="C0")
-    ax.axhline(0, color="0.6", lw=0.5)
-    for sign in (1, -1):
-        ax.axhline(sign, color="C1", lw=0.7, ls="--", label="theta = ±alpha" if sign > 0 else None)
-    alpha, theta_ov = s["calculated"].get("alpha"), s["calculated"].get("thetaOv")
-    if alpha and theta_ov and math.isfinite(theta_ov):
-        for sign in (1, -1):
-            ax.axhline(sign * theta_ov / alpha, color="C3", lw=0.7, ls=":",
-                       label="overturning thetaOv" if sign > 0 else None)
-    ax.set_ylabel("theta / alpha")
-    ax.legend(loc="upper left", fontsize=8)
-
-    ax = axes[2]
-    ax.plot(t, table["MR"], lw=0.9, color="C2")
-    ax.yaxis.set_major_formatter(EngFormatter(unit="N·m"))
-    ax.set_ylabel("restoring moment MR")
-
-    ax = axes[3]
-    if "regime" in table:
-        ax.step(t, table["regime"], where="post", lw=0.9, color="C4")
-        values = sorted(regimes) or sorted(set(table["regime"]))
-        ax.set_yticks(values, [regimes.get(v, str(v)) for v in values], fontsize=7)
-        ax.set_ylim(min(values) - 0.5, max(values) + 0.5)
-    ax.set_ylabel("regime")
-    ax.set_xlabel("time (s)")
-
-    if s["overturned"]:
-        for ax in axes:
-            ax.axvline(s["t_overturn_s"], color="C3", lw=1.2)
-        axes[1].annotate(f"overturned\n{s['t_overturn_s']:.2f} s", xy=(s["t_overturn_s"], 0),
-                         xytext=(-6, 0), textcoords="offset points", ha="right", color="C3", fontsize=9)
-    for ax in axes:
-        ax.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-
-
 def register(sub, common):
     """Add the subcommand to `sub` (argparse subparsers); `common` is the parent parser of --debug."""
     from ..presets import NAMING
@@ -215,8 +200,10 @@ def register(sub, common):
     p = sub.add_parser(
         "simulate", parents=[common], allow_abbrev=False,
         help="one run: time history CSV, summary, plot",
-        usage="rocking simulate [RECORD] [--scale S] [--component C] [--preset NAME] [--PARAM VALUE ...]\n"
-              "                        [--fmu PATH] [--stop-time S] [--output-interval S] [--rtol R] --out DIR",
+        usage="rocking simulate [RECORD] [--scale S] [--component C] [--units U] [--fmt F]\n"
+              "                        [--preset NAME] [--params FILE] [--PARAM VALUE ...]\n"
+              "                        [--fmu PATH] [--stop-time S | --tail S] [--output-interval S]\n"
+              "                        [--outputs A,B,...] [--rtol R] --out DIR",
         description=textwrap.fill(
             "Run one case through the FMU and write DIR/timehistory.csv (time, ag and the outputs), "
             "DIR/summary.json (peak theta, overturning and its time, impacts, regimes, PGA) and "
@@ -228,14 +215,25 @@ def register(sub, common):
     p.add_argument("record", nargs="?", metavar="RECORD",
                    help="ground-motion file (any format `rocking record` reads); none: free rocking")
     p.add_argument("--scale", type=float, default=1.0, help="factor on the record's acceleration (default 1)")
-    p.add_argument("--component", help="the record's component, by label (e.g. N28W, 090, UP) or index; default the first")
+    p.add_argument("--component", help="the record's horizontal component, by label (e.g. N28W, 090) or "
+                        "index; default the first horizontal one")
+    add_record_options(p)
     p.add_argument("--preset", metavar="NAME", help="start from a named parameter set (see below)")
     p.add_argument("--params", metavar="FILE",
                    help="parameters from a JSON object of name -> value (e.g. rocking-corner --body FILE); "
                         "over the preset's, under --NAME VALUE")
     p.add_argument("--fmu", metavar="PATH", help=FMU_HELP)
-    p.add_argument("--stop-time", type=float, metavar="S", help="default: the record's end (10 s without one)")
-    p.add_argument("--output-interval", type=float, metavar="S", help="default: the record's dt (0.01 s without one)")
+    p.add_argument("--stop-time", type=seconds(0, strict=False), metavar="S",
+                   help="default: the record's end (10 s without one)")
+    p.add_argument("--output-interval", type=seconds(0, strict=True), metavar="S",
+                   help="rows every S seconds (and at the end); default: the record's dt (0.01 s without "
+                        "one). The FMU still steps at the record's samples, and at the output times between them")
+    p.add_argument("--tail", type=seconds(0, strict=False), metavar="S",
+                   help="simulate S seconds of free motion after the record's end (the ground at rest); "
+                        "instead of --stop-time")
+    p.add_argument("--outputs", metavar="A,B,...",
+                   help="the time-history columns after time and ag, e.g. theta,MR,Fx,Fz, or all (default: "
+                        + ",".join(SIMULATE_OUTPUTS) + ")")
     p.add_argument("--rtol", type=float, help="the integrator's relative tolerance (default: the FMU's)")
     p.add_argument("--out", required=True, metavar="DIR", help="output folder")
     p.set_defaults(func=cmd_simulate)

@@ -9,7 +9,14 @@ import time
 import tomllib
 from pathlib import Path
 
-from .common import FMU_HELP, CLIError, check_parameter, open_fmu, read_record
+from .common import (FMU_HELP, CLIError, add_record_options, check_parameter, drop_unused, horizontal_record,
+                     open_fmu, read_components, seconds)
+
+#: How a case's parameters are put together (the help and docs/examples.md say it).
+PRECEDENCE = ("CASES.toml: an optional [defaults] table, then one [cases.NAME] table per case. A case's "
+              "parameters: [defaults] first, its preset (`preset = \"...\"`, or [defaults]' preset) over "
+              "them, the case's own keys over both: a preset is a whole body, which a default does not "
+              "change; only the case's own keys do.")
 
 #: Files that `--records DIR` passes over (documentation, scripts, results).
 NOT_RECORDS = {".md", ".py", ".toml", ".json", ".png", ".pdf", ".svg", ".parquet", ".zip", ".gz"}
@@ -52,31 +59,46 @@ def load_cases(path, fmu):
     if not isinstance(cases_in, dict) or not cases_in:
         raise CLIError(f"{path}: no cases: add tables [cases.NAME] with parameters or a preset")
     defaults = data.get("defaults", {})
+    if not isinstance(defaults, dict):
+        raise CLIError(f"{path}: defaults: expected a table of parameters")
     cases = {}
     for cname, table in cases_in.items():
         if not isinstance(table, dict):
             raise CLIError(f"{path}: cases.{cname}: expected a table of parameters")
-        params = {}
-        preset_name = table.get("preset", defaults.get("preset"))
-        if preset_name is not None:
-            try:
-                params.update(presets_module.preset(str(preset_name)))
-            except KeyError as exc:
-                raise CLIError(f"{path}: cases.{cname}.preset: {exc.args[0]}") from None
-        merged = {**{k: v for k, v in defaults.items() if k != "preset"},
-                  **{k: v for k, v in table.items() if k != "preset"}}
-        for name, value in {**params, **merged}.items():
-            where = f"{path}: cases.{cname}.{name}" if name in merged else f"{path}: cases.{cname} (preset {preset_name}): {name}"
-            params[name] = check_parameter(fmu, name, value, where)
-        cases[cname] = params
+        cases[cname] = _case_parameters(fmu, path, cname, defaults, table, presets_module)
     return cases
 
 
-def collect_records(sources, component):
-    """{name: Record} of every component (or the one named) of each record file among
-    `sources` (files, or folders searched recursively)."""
-    from .. import groundmotion as gm
-    records = {}
+def _case_parameters(fmu, path, cname, defaults, table, presets_module):
+    """Start values of one case, in the order of PRECEDENCE: [defaults] first, the
+    preset over them, the case's own keys over both (a preset is a whole body: a
+    default must not turn the tower of `dharahara-F170-fm5` rigid)."""
+    preset_name = table.get("preset", defaults.get("preset"))
+    preset_values = {}
+    if preset_name is not None:
+        try:
+            preset_values = presets_module.preset(str(preset_name))
+        except KeyError as exc:
+            raise CLIError(f"{path}: cases.{cname}.preset: {exc.args[0]}") from None
+    layers = ((f"{path}: defaults.{{}}", {k: v for k, v in defaults.items() if k != "preset"}),
+              (f"{path}: cases.{cname} (preset {preset_name}): {{}}", preset_values),
+              (f"{path}: cases.{cname}.{{}}", {k: v for k, v in table.items() if k != "preset"}))
+    params = {}
+    for where, values in layers:
+        for name, value in values.items():
+            params[name] = check_parameter(fmu, name, value, where.format(name))
+    _, note = drop_unused(fmu, params)
+    if note:
+        print(f"sweep: note: cases.{cname}: {note}", file=sys.stderr)
+    return params
+
+
+def collect_records(sources, component, units=None, fmt=None):
+    """({name: Record} of every horizontal component (or the one named) of each record file
+    among `sources` (files, or folders searched recursively), [names of the vertical
+    components left out]). ag is the horizontal ground acceleration: a vertical
+    component as ag would be another analysis."""
+    records, vertical = {}, []
     for source in sources:
         source = Path(source)
         if not source.exists():
@@ -90,15 +112,17 @@ def collect_records(sources, component):
         for file in files:
             label = str(file.relative_to(base))
             if component is not None:
-                rec, _ = read_record(file, component)
-                found = [rec]
+                found = [horizontal_record(file, component, units, fmt)[0]]
             else:
-                found = gm.read_all(file)
-            for rec in found:
-                records[f"{label}[{rec.component}]" if len(found) > 1 or component is not None else label] = rec
+                found = read_components(file, units, fmt)[0]
+            named = {f"{label}[{rec.component}]" if len(found) > 1 or component is not None else label: rec
+                     for rec in found}
+            records.update({name: rec for name, rec in named.items() if not rec.vertical})
+            vertical += [name for name, rec in named.items() if rec.vertical]
     if not records:
-        raise CLIError(f"{', '.join(map(str, sources))}: no record files found")
-    return records
+        raise CLIError(f"{', '.join(map(str, sources))}: no horizontal record components found"
+                       + (f" ({len(vertical)} vertical left out)" if vertical else ""))
+    return records, vertical
 
 
 def cmd_sweep(args, _params):
@@ -112,7 +136,10 @@ def cmd_sweep(args, _params):
         raise CLIError(f"--out {out}: expected a .parquet or .csv file name")
     with open_fmu(args.fmu) as fmu:
         cases = load_cases(args.cases, fmu)
-        records = collect_records(args.records, args.component)
+        records, vertical = collect_records(args.records, args.component, args.units, args.fmt)
+        if vertical:
+            print(f"sweep: {len(vertical)} vertical component(s) left out (ag is horizontal): "
+                  f"{', '.join(vertical)}", file=sys.stderr)
         total = len(cases) * len(records) * len(scales)
         workers = args.workers or min(os.cpu_count() or 1, total)
         print(f"sweep: {len(cases)} case(s) x {len(records)} record(s) x {len(scales)} scale(s) = {total} runs, "
@@ -151,22 +178,24 @@ def register(sub, common):
     p = sub.add_parser(
         "sweep", parents=[common], allow_abbrev=False, help="cases x records x scales in parallel -> parquet",
         description=textwrap.fill(
-            "Every case of CASES.toml under every record component of --records, at every scale, "
+            "Every case of CASES.toml under every horizontal record component of --records, at every scale, "
             "in parallel processes; one row per run (case, parameters, record, scale, overturned, "
             "t_overturn, peak_theta_over_alpha, impacts, ..., error).", 100),
-        epilog="CASES.toml: an optional [defaults] table (parameters for every case), then one table per case, "
+        epilog=textwrap.fill(PRECEDENCE, 100) + "\n"
                "e.g.\n  [cases.soft]\n  preset = \"dharahara-F170-fm5\"\n  [cases.block]\n  shape = \"solidRectangle\"\n"
                "  B = 0.5\n  H = 2.5\n  interface = \"rigid\"\n"
                + textwrap.fill(f"presets: {NAMING}.", 100),
         formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("cases", metavar="CASES.toml")
     p.add_argument("--records", action="append", required=True, metavar="DIR",
-                   help="a folder (searched recursively; every component of every file) or a record file; repeatable")
-    p.add_argument("--component", help="only this component of each file (label or index)")
+                   help="a folder (searched recursively; every horizontal component of every file) or a record "
+                        "file; repeatable. Vertical components are left out (the FMU's ag is horizontal)")
+    p.add_argument("--component", help="only this horizontal component of each file (label or index)")
+    add_record_options(p)
     p.add_argument("--scales", default="1", help="start:stop:step (stop included), a,b,c or one number (default 1)")
     p.add_argument("--out", required=True, metavar="FILE", help="results, .parquet or .csv")
     p.add_argument("--workers", type=int, help="processes (default: the CPU count)")
-    p.add_argument("--stop-time", type=float, metavar="S", help="default: each record's end")
+    p.add_argument("--stop-time", type=seconds(0, strict=False), metavar="S", help="default: each record's end")
     p.add_argument("--rtol", type=float, help="the integrator's relative tolerance (default: the FMU's)")
     p.add_argument("--fmu", metavar="PATH", help=FMU_HELP)
     p.set_defaults(func=cmd_sweep)

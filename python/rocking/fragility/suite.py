@@ -4,25 +4,21 @@
 
 A file with several components (CSMIP V2, GeoNet V2A) gives one ground motion
 per horizontal component; files of one component each (PEER AT2, GeoNet's
-.000/.090, USGS SMC) give one each. Vertical components (labels UP, UD, V,
-VER, VERT, VERTICAL, Z, HNZ, ...) are left out: the body rocks in a vertical
-plane under a horizontal ground acceleration. Names are the file's path
+.000/.090, USGS SMC) give one each. Vertical components (`Record.orientation`,
+read from the file's header: labels UP, UD, V, VER, VERT, VERTICAL, Z, HNZ, ...)
+are left out: the body rocks in a vertical plane under a horizontal ground
+acceleration. Names are the file's path
 relative to the folder, with the component in brackets.
 """
 
-import re
 from pathlib import Path
 
 from .. import groundmotion as gm
+from ..groundmotion.orientation import is_vertical_label
 
 #: Files passed over in a folder (documentation, scripts, results).
 NOT_RECORDS = {".md", ".py", ".toml", ".json", ".png", ".pdf", ".svg", ".parquet", ".zip", ".gz"}
-_VERTICAL = re.compile(r"^(UP|UD|DOWN|V|VER|VERT|VERTICAL|Z|[A-Z]{2}Z|HN?Z)$")
-
-
-def is_vertical(label):
-    """Whether a component label names the vertical component."""
-    return bool(_VERTICAL.match(re.sub(r"[\s_-]+", "", str(label)).upper()))
+is_vertical = is_vertical_label  # the name this module gave it first
 
 
 def record_files(folder):
@@ -44,7 +40,7 @@ def load_suite(sources):
             components = gm.read_all(path)
             label = path.relative_to(base).as_posix()
             for rec in components:
-                if is_vertical(rec.component):
+                if rec.vertical:
                     continue
                 suite[f"{label}[{rec.component}]" if rec.component else label] = rec
     if not suite:

@@ -8,7 +8,8 @@
 Formats (one module each): CSMIP/CESMD V2 (`csmip`), GeoNet V2A (`geonet`),
 USGS SMC (`smc`), plain "npts dt" ASCII (`nptsdt`), PEER NGA AT2 (`peer`),
 `time,acc` CSV (`csvfile`). Accelerations are converted to m/s² with
-g = 9.80665 m/s². Malformed files raise `GroundMotionFormatError` (a
+g = 9.80665 m/s². Each Record says whether it is the vertical component
+(`rec.orientation`, `rec.vertical`, from the file's header). Malformed files raise `GroundMotionFormatError` (a
 ValueError) naming the file, the line and what was expected there.
 """
 
@@ -19,12 +20,14 @@ from .geonet import read_geonet_v2a
 from .katnp import DATA_DIR, STANDIN_PATH, katnp, katnp_standin
 from .nptsdt import read_npts_dt
 from .peer import read_peer_at2
-from .record import GroundMotionFormatError, Record
+from .orientation import HORIZONTAL, VERTICAL
+from .record import PLAUSIBLE_PGA_G, GroundMotionFormatError, GroundMotionWarning, Record
 from .smc import read_smc
 from .units import G, canonical_unit, to_m_s2
 
 __all__ = [
-    "G", "DATA_DIR", "GroundMotionFormatError", "READERS", "Record", "STANDIN_PATH",
+    "G", "DATA_DIR", "HORIZONTAL", "VERTICAL", "PLAUSIBLE_PGA_G", "GroundMotionFormatError",
+    "GroundMotionWarning", "READERS", "Record", "STANDIN_PATH",
     "canonical_unit", "detect_format", "katnp", "katnp_standin", "read", "read_all",
     "read_csmip_v2", "read_csv", "read_geonet_v2a", "read_npts_dt", "read_peer_at2",
     "read_smc", "to_m_s2",

@@ -2,11 +2,13 @@
 shared by all readers (fixed-width and blank-separated numbers, units)."""
 
 import re
+import warnings
 from pathlib import Path
 
 import numpy as np
 
-from .record import GroundMotionFormatError, Record
+from .orientation import orientation
+from .record import GroundMotionFormatError, GroundMotionWarning, Record
 from .units import TO_M_S2, canonical_unit
 
 # A Fortran-style real: 12, -3.5, .041, 1.5057E+0, 0.17D+39 (no inf, nan or underscores).
@@ -152,9 +154,18 @@ def choose_unit(tf, explicit, stated, line=None):
     return tf.unit(stated, line)
 
 
-def make_record(tf, raw, dt, unit, **meta):
-    """Record from the numbers `raw` as written in file `tf`, which are in canonical `unit`."""
-    return Record.from_samples(raw * TO_M_S2[unit], dt, units_in_file=unit, source=tf.path, **meta)
+def make_record(tf, raw, dt, unit, header_text="", **meta):
+    """Record from the numbers `raw` as written in file `tf`, which are in canonical `unit`;
+    its orientation from the component label and `header_text` (the header's words about
+    the component)."""
+    meta.setdefault("orientation", orientation(meta.get("component", ""), header_text))
+    record = Record.from_samples(raw * TO_M_S2[unit], dt, units_in_file=unit, source=tf.path, **meta)
+    why = record.implausible()
+    if why:
+        record.notes = f"{record.notes}\n{why}" if record.notes else why
+        label = f" [{record.component}]" if record.component else ""
+        warnings.warn(f"{tf.path}{label}: {why}", GroundMotionWarning, stacklevel=4)
+    return record
 
 
 def check_peak(tf, raw, stated, line, what="peak acceleration"):

@@ -84,7 +84,7 @@ def _read_channel(tf, units):
     name = ", ".join(s for s in (_line(header, 6), f"station {station}" if station else "", _line(header, 2)) if s)
     notes = (f"CSMIP/CESMD V2 corrected accelerogram, channel {chan.group(1) if chan else '?'} "
              f"(header lines {start}-{unit_line}); peak checked against the header")
-    return make_record(tf, raw, dt, unit, name=name, component=label, notes=notes)
+    return make_record(tf, raw, dt, unit, name=name, component=label, notes=notes)  # "UP": vertical
 
 
 def _line(header, index):

@@ -47,8 +47,8 @@ def detect_format(path):
     if len(words) >= 2 and words[0].isdigit() and parse_number(words[1]) is not None:
         return "npts_dt"
     raise GroundMotionFormatError(
-        "cannot tell the format from the first lines or the extension; pass fmt= one of "
-        + ", ".join(READERS), path)
+        "cannot tell the format from the first lines or the extension; give it (fmt= in Python, "
+        "--fmt on the command line) as one of " + ", ".join(READERS), path)
 
 
 def read_all(path, units=None, fmt=None):

@@ -71,4 +71,6 @@ def _read_component(tf, units):
     site = found["site"][1].group(1) if found["site"] else ""
     name = ", ".join(" ".join(s.split()) for s in (f"{site} {text[2]}", text[7]) if s.strip())
     notes = f"GeoNet V2A corrected accelerogram (header lines {start}-{start + 25}); peak checked against the header"
-    return make_record(tf, raw, dt, unit, name=name, component=found["component"][1].group(1), notes=notes)
+    component_line = text[found["component"][0]]  # "Component Up    Vertical Accelerometer Axis"
+    return make_record(tf, raw, dt, unit, header_text=component_line, name=name,
+                       component=found["component"][1].group(1), notes=notes)

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .orientation import HORIZONTAL, VERTICAL
 from .units import G
 
 
@@ -24,6 +25,16 @@ class GroundMotionFormatError(ValueError):
         super().__init__(": ".join(where + [message]))
 
 
+class GroundMotionWarning(UserWarning):
+    """A file reads, but something in it deserves a look: an implausible peak, a shifted time."""
+
+
+#: Peak ground acceleration beyond which a record is taken for a units mistake, in g. The
+#: largest peaks ever recorded are about 4 g (2008 Iwate-Miyagi, station IWTH25, 3.9 g
+#: vertical); a file of cm/s² values read as g gives hundreds of g.
+PLAUSIBLE_PGA_G = 5.0
+
+
 @dataclass(eq=False)
 class Record:
     """One component of a ground-acceleration record, sampled at a constant step.
@@ -36,6 +47,7 @@ class Record:
     units_in_file  canonical name of the units the file's numbers are in ("g", "cm/s2", ...)
     source         path of the file read
     notes          free text: provenance, caveats (e.g. that a record is synthetic)
+    orientation    "horizontal" or "vertical", from the file's header (see `orientation`)
     """
 
     time: np.ndarray
@@ -46,6 +58,7 @@ class Record:
     units_in_file: str = "m/s2"
     source: str = ""
     notes: str = ""
+    orientation: str = HORIZONTAL
 
     def __post_init__(self):
         self.time = np.asarray(self.time, dtype=float)
@@ -55,6 +68,13 @@ class Record:
             raise ValueError(f"time {self.time.shape} and acc {self.acc.shape} must be 1-D of one length")
         if not self.dt > 0:
             raise ValueError(f"dt must be positive, got {self.dt}")
+        if self.orientation not in (HORIZONTAL, VERTICAL):
+            raise ValueError(f"orientation must be {HORIZONTAL!r} or {VERTICAL!r}, got {self.orientation!r}")
+
+    @property
+    def vertical(self):
+        """Whether the file says this component is the vertical one."""
+        return self.orientation == VERTICAL
 
     @classmethod
     def from_samples(cls, acc, dt, **meta):
@@ -92,6 +112,13 @@ class Record:
     def pgv(self):
         """Peak ground velocity, max |velocity|, in m/s (trapezoidal integration of acc)."""
         return float(np.max(np.abs(self.velocity)))
+
+    def implausible(self):
+        """Why this record is implausible as a ground motion (a sentence), or None."""
+        if self.pga_g > PLAUSIBLE_PGA_G:
+            return (f"PGA {self.pga_g:.3g} g, beyond the {PLAUSIBLE_PGA_G:g} g of any recorded ground motion "
+                    f"(the largest are about 4 g): are the units ({self.units_in_file}) right?")
+        return None
 
     def scaled(self, factor):
         """Copy with the acceleration multiplied by `factor` (PGA scales by |factor|)."""
