@@ -16,7 +16,7 @@ import socket
 import threading
 import time
 
-from .hunt import HuntOptions, hunt_and_fill
+from .hunt import HuntOptions, hunt_and_fill, unresolved
 
 _FMUS = {}  # the RockingFMU of this process, by FMU digest
 _LOCK = threading.Lock()  # one run at a time per process (RockingFMU is not thread-safe)
@@ -50,7 +50,7 @@ def run_once(fmu, params, record, scale, opts):
 def _row(job, scale, im, phase, fmu, opts):
     t0 = time.perf_counter()
     row = dict(job["meta"], scale=float(scale), im=float(im), phase=phase, overturned=None,
-               t_overturn=math.nan, peak_theta_over_alpha=math.nan, error="",
+               t_overturn=math.nan, peak_theta_over_alpha=math.nan, error="", unresolved="",
                worker=f"{socket.gethostname()}:{os.getpid()}")
     try:
         with _LOCK:
@@ -62,10 +62,10 @@ def _row(job, scale, im, phase, fmu, opts):
     return row
 
 
-def run_stripes(digest, job, stripes, opts):
+def run_stripes(digest, job, stripes, opts, phase="stripe"):
     """Rows of `job` (params, record, meta with im_record) at the intensities `stripes`."""
     fmu = process_fmu(digest, opts.get("fmu_path"))
-    return [_row(job, im / job["meta"]["im_record"], im, "stripe", fmu, opts) for im in stripes]
+    return [_row(job, im / job["meta"]["im_record"], im, phase, fmu, opts) for im in stripes]
 
 
 def run_hunt(digest, job, start, hunt, opts):
@@ -80,12 +80,16 @@ def run_hunt(digest, job, start, hunt, opts):
             raise _RunFailed(row["error"])
         return row["overturned"], row["peak_theta_over_alpha"]
 
+    options = HuntOptions(**hunt)
     try:
-        trace = hunt_and_fill(collapses, start, HuntOptions(**hunt))
+        trace = hunt_and_fill(collapses, start, options)
         for row, (_, _, _, phase) in zip(rows, trace):
             row["phase"] = phase
+        why = unresolved(trace, options)
     except _RunFailed:
-        pass  # the failed row ends the hunt; it is kept and reported
+        why = "the hunt stopped on a failed run"  # the failed row is kept and reported
+    for row in rows:
+        row["unresolved"] = why
     return rows
 
 
