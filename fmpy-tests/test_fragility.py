@@ -289,18 +289,32 @@ def test_resume_skips_finished_tasks(client, fmu_path, local_fmu, tmp_path):
 
 
 def test_ida_on_the_cluster_against_a_brute_force_grid(client, fmu_path, local_fmu, tmp_path):
-    study = _study("ida", hunt=hunt.HuntOptions(max_runs=12, tol=0.03))
+    """The hunt's first collapse and the dense-grid mode's against a brute-force loop of
+    the FMU in this process (the dense grid's capacity exactly: same runs, same bracket)."""
+    study = _study("ida", hunt=hunt.HuntOptions(tol=0.03))
     study.suite = {k: v for k, v in study.suite.items() if k in ("pulse0.4", "pulse1")}
-    tasks = study.tasks(local_fmu, cluster.register_fmu(client, fmu_path))
+    dense = _study("ida", hunt=hunt.HuntOptions(tol=0.03), grid=30, chunk=15)
+    dense.suite = study.suite
+    digest = cluster.register_fmu(client, fmu_path)
+    tasks = study.tasks(local_fmu, digest) + dense.tasks(local_fmu, digest)
     store = ResultStore(tmp_path / "runs")
     assert cluster.execute(client, tasks, store)[2] == {}
-    result = study.analyse(store.read(), n_boot=0)["block"]
+    df = store.read()
+    result = study.analyse(df[~df["task"].str.endswith("|grid")], n_boot=0)["block"]
+    on_grid = dense.analyse(df[df["task"].str.endswith("|grid")], n_boot=0)["block"]
     for rname, entry in result["records"].items():
         rec = study.suite[rname]
         grid = np.geomspace(0.5, 20.0, 120)  # PGA of the pulse is 1 m/s²: scale = PGA in m/s²
         first = next(s for s in grid if runner.run_once(local_fmu, BLOCK, rec, s, study.opts())[0])
         cap_scale = entry["capacity"] * G
+        assert entry["unresolved"] == "" and not entry["censored"]
         assert abs(math.log(cap_scale / first)) < math.log(grid[1] / grid[0]) + 0.03, rname
+        rows = df[(df["record"] == rname) & df["task"].str.endswith("|grid")].sort_values("im")
+        assert len(rows) == 30 and (rows["phase"] == "grid").all()
+        ims = rows["im"].to_numpy()
+        outcomes = [runner.run_once(local_fmu, BLOCK, rec, s, study.opts())[0] for s in rows["scale"]]
+        k = outcomes.index(True)
+        assert on_grid["records"][rname]["capacity"] == pytest.approx(math.sqrt(ims[k - 1] * ims[k]), rel=1e-12)
 
 
 # ---------------------------------------------------------------------------
@@ -347,7 +361,7 @@ def test_rocking_ida_errors_are_one_line(fmu_path, tmp_path, capsys):
     suite = REPO / "data" / "ground-motions" / "katnp-standin"
     for extra, expected in ((["--params", str(bad)], "body bad: "),
                             (["--preset", "dharahara-rigid", "--im", "PGD"], "--im: intensity measure 'PGD'"),
-                            (["--preset", "dharahara-rigid", "--stripes", "0:1:0.5"], "must be positive"),
+                            (["--preset", "dharahara-rigid", "--stripes", "0:1:0.5"], "--stripes 0.0: expected a finite number > 0"),
                             (["--preset", "nope"], "unknown preset 'nope'")):
         method = "msa" if "--stripes" in extra else "ida"
         status = main([method, str(suite), *extra, "--fmu", fmu_path, "--out", str(tmp_path / "o")])
