@@ -43,10 +43,11 @@ def study(n_stripes, chunk):
 def serial(st, fmu, tasks):
     t0, c0 = time.perf_counter(), time.process_time()
     n = 0
-    for _key, _fn, (_digest, job, stripes, opts), _ in tasks:
-        for im in stripes:
-            runner.run_once(fmu, job["params"], job["record"], im / job["meta"]["im_record"], opts)
-            n += 1
+    for _key, _fn, (_digest, parts, opts, _phase), _ in tasks:
+        for job, stripes in parts:
+            for im in stripes:
+                runner.run_once(fmu, job["params"], job["record"], im / job["meta"]["im_record"], opts)
+                n += 1
     return n, time.perf_counter() - t0, time.process_time() - c0
 
 

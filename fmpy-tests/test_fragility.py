@@ -221,7 +221,7 @@ def local_fmu(fmu_path):
 
 def _check_exactly_once(store, tasks):
     df = store.read()
-    expected = {(t[0], im) for t in tasks for im in t[2][2]}  # msa: (task, stripe)
+    expected = {(t[0], im) for t in tasks for _, ims in t[2][1] for im in ims}  # msa: (task, stripe)
     got = list(zip(df["task"], df["im"]))
     assert len(got) == len(set(got)) and set(got) == expected
     assert (df["error"] == "").all()

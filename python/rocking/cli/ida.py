@@ -85,7 +85,7 @@ def register(sub, common):
                                 "intensity to 50 times it) instead of the hunt")
             p.add_argument("--beta-estimator", choices=("mle", "moments"),
                            help="beta of the IDA fit: mle (1/n, default) or moments (n-1, Baker)")
-        p.add_argument("--chunk", type=int, help="runs per task of stripes or grid (default 10)")
+        p.add_argument("--chunk", type=int, help="runs per task of stripes or grid (default: about a second of runs per task)")
         p.add_argument("--tail", type=float, help="seconds simulated after each record's end (default 5)")
         p.add_argument("--rtol", type=float, help="the integrator's relative tolerance (default: the FMU's)")
         p.add_argument("--damage-states", metavar="NAME=T,...",
@@ -268,7 +268,7 @@ def study_options(args, data, source):
 
     opts = dict(im=im, tail=pick("tail", 5.0, _number, minimum=0.0),
                 rtol=pick("rtol", None, _number, minimum=0.0, open_min=True, maximum=1.0),
-                chunk=pick("chunk", 10, _number, kind=int, minimum=1),
+                chunk=pick("chunk", 0, _number, kind=int, minimum=1),
                 beta_modelling=pick("beta_modelling", 0.0, _number, minimum=0.0),
                 damage_states=pick("damage_states", {}, _damage_states),
                 years=pick("years", 50.0, _number, minimum=0.0, open_min=True),

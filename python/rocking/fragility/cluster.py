@@ -155,8 +155,11 @@ def _value(x):
 
 
 def _record_as_future(client, arg, records, call):
-    """`arg`, a job dict's record replaced by the future of one task per record
-    (`records` {id: future}, filled here): sent once, recomputable if its worker is lost."""
+    """`arg`, a job dict's record (also in lists and tuples of them) replaced by the future of
+    one task per record (`records` {id: future}, filled here): sent once, recomputable if its
+    worker is lost."""
+    if isinstance(arg, (list, tuple)):
+        return type(arg)(_record_as_future(client, a, records, call) for a in arg)
     if not (isinstance(arg, dict) and "record" in arg):
         return arg
     rec = arg["record"]

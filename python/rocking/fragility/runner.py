@@ -68,6 +68,11 @@ def run_stripes(digest, job, stripes, opts, phase="stripe"):
     return [_row(job, im / job["meta"]["im_record"], im, phase, fmu, opts) for im in stripes]
 
 
+def run_batch(digest, parts, opts, phase="stripe"):
+    """Rows of several jobs' runs in one task: parts [(job, intensities)]."""
+    return [row for job, ims in parts for row in run_stripes(digest, job, ims, opts, phase)]
+
+
 def run_hunt(digest, job, start, hunt, opts):
     """Rows of one record's hunt-and-fill from intensity `start` (HuntOptions fields in `hunt`)."""
     fmu = process_fmu(digest, opts.get("fmu_path"))

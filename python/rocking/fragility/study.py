@@ -24,6 +24,11 @@ from .fit import ida_fragility, msa_fragility
 from .hunt import HuntOptions, capacity
 
 
+#: Integration steps per task of runs at fixed intensities when `chunk` is 0: about a
+#: second of runs (a step of the rocking FMU costs 3-6 us of CPU here).
+STEPS_PER_TASK = 250_000
+
+
 def _hash(obj):
     return hashlib.sha1(json.dumps(obj, sort_keys=True, default=str).encode()).hexdigest()[:10]
 
@@ -54,8 +59,8 @@ class Study:
     """bodies {name: params}; suite {name: Record}; im an IntensityMeasure; method 'ida' or
     'msa'; stripes the target intensities (msa); hunt the HuntOptions (ida); grid > 0: IDA on
     a dense grid of that many intensities per record (geometric, the hunt's start to its
-    stop) instead of the hunt; tail s simulated after each record's end; chunk stripe runs
-    per task; estimator of beta ('mle' or 'moments', IDA); beta_modelling the FEMA P-58
+    stop) instead of the hunt; tail s simulated after each record's end; chunk runs per task
+    of stripes or grid (0: about a second of runs each, STEPS_PER_TASK); estimator of beta ('mle' or 'moments', IDA); beta_modelling the FEMA P-58
     modelling dispersion; damage_states {name: threshold on peak |theta| / alpha}, each
     fitted beside overturning; by_station: the bootstrap resamples stations (station_of)."""
 
@@ -67,7 +72,7 @@ class Study:
     hunt: HuntOptions = field(default_factory=HuntOptions)
     tail: float = 5.0
     rtol: float = None
-    chunk: int = 10
+    chunk: int = 0
     grid: int = 0
     estimator: str = "mle"
     beta_modelling: float = 0.0
@@ -109,7 +114,7 @@ class Study:
         """[(key, function, args, expected runs)] of the study."""
         opts = dict(self.opts(), fmu_path=None if fmu_path is None else str(fmu_path))
         salt = _hash(self.opts())
-        out = []
+        out, fixed = [], []
         for tag, job, g in self.jobs(self.body_facts(fmu)):
             meta = job["meta"]
             if self.method == "ida":
@@ -117,24 +122,45 @@ class Study:
                 # first run where the rigid body would just uplift: PGA = g tan(alpha)
                 start = meta["im_record"] * g * math.tan(meta["alpha"]) / job["record"].pga
                 if self.grid:
-                    grid = list(np.geomspace(start, start * self.hunt.stop, self.grid))
-                    out += self._chunks("grid", tag, job, grid, digest, opts, salt)
+                    fixed.append((tag, job, [float(x) for x in np.geomspace(start, start * self.hunt.stop, self.grid)]))
                     continue
                 key = f"ida|{tag}|{_hash(hunt)}|{salt}"
                 meta["task"] = key
                 out.append((key, runner.run_hunt, (digest, job, start, hunt, opts), self.hunt.max_runs))
             else:
-                out += self._chunks("stripe", tag, job, self.stripes, digest, opts, salt)
+                fixed.append((tag, job, [float(x) for x in self.stripes]))
+        return out + self._batches(fixed, digest, opts, salt)
+
+    def _batches(self, fixed, digest, opts, salt):
+        """Tasks of the runs at fixed intensities [(tag, job, intensities)]: `chunk` runs each,
+        or (chunk 0) as many as make STEPS_PER_TASK integration steps (about a second of
+        work, so that Dask's cost per task stays a few per cent of the runs'), across
+        records and bodies. Deterministic: a rerun finds the same keys."""
+        phase = "grid" if self.method == "ida" else "stripe"
+        units = [(tag, job, im, self._steps(job)) for tag, job, ims in fixed for im in ims]
+        batches, current, cost = [], [], 0
+        for unit in units:
+            current.append(unit)
+            cost += unit[3]
+            if (len(current) >= self.chunk) if self.chunk else (cost >= STEPS_PER_TASK):
+                batches.append(current)
+                current, cost = [], 0
+        if current:
+            batches.append(current)
+        out = []
+        for batch in batches:
+            parts, tags = {}, {}
+            for tag, job, im, _ in batch:
+                parts.setdefault(tag, (job, []))[1].append(im)
+            key = f"{self.method}|{_hash([(t, ims) for t, (_, ims) in parts.items()])}|{salt}|{phase}"
+            args = [(dict(job, meta=dict(job["meta"], task=key)), ims) for job, ims in parts.values()]
+            out.append((key, runner.run_batch, (digest, args, opts, phase), len(batch)))
         return out
 
-    def _chunks(self, phase, tag, job, intensities, digest, opts, salt):
-        out = []
-        for i in range(0, len(intensities), self.chunk):
-            part = [float(x) for x in intensities[i:i + self.chunk]]
-            key = f"{self.method}|{tag}|{_hash(part)}|{salt}" + ("|grid" if phase == "grid" else "")
-            job_i = dict(job, meta=dict(job["meta"], task=key))
-            out.append((key, runner.run_stripes, (digest, job_i, part, opts, phase), len(part)))
-        return out
+    def _steps(self, job):
+        """Integration steps of one run of `job`: the record and the tail at the record's dt."""
+        rec = job["record"]
+        return int((rec.duration + self.tail) / rec.dt)
 
     # ------------------------------------------------------------------ results
     def states(self):
