@@ -33,10 +33,16 @@ from rocking.fragility.study import Study
 from rocking.fragility.suite import load_suite
 
 
-def study(n_stripes, chunk):
-    bodies = {"slender-block": dict(presets.preset("fig15-alpha0.20-shiftingPivot"), theta=0.0),
-              "dharahara-rigid": presets.preset("dharahara-rigid")}
-    return Study(bodies=bodies, suite=load_suite([paths.data_dir()]), im=parse("PGV"), method="msa",
+def study(n_stripes, chunk, n_records=0, bodies=2):
+    """The study; n_records > 0: that many records, the suite's components repeated under
+    new names (their runs cost what the originals' do)."""
+    bodies = dict(list({"slender-block": dict(presets.preset("fig15-alpha0.20-shiftingPivot"), theta=0.0),
+                        "dharahara-rigid": presets.preset("dharahara-rigid")}.items())[:bodies])
+    suite = load_suite([paths.data_dir()])
+    if n_records:
+        items = list(suite.items())
+        suite = {f"{items[i % len(items)][0]}#{i}": items[i % len(items)][1] for i in range(n_records)}
+    return Study(bodies=bodies, suite=suite, im=parse("PGV"), method="msa",
                  stripes=tuple(np.linspace(0.2, 1.2, n_stripes)), chunk=chunk)
 
 
@@ -73,28 +79,35 @@ def on_cluster(workers, fmu_path, tasks):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--workers", default="1,2")
-    ap.add_argument("--stripes", type=int, default=4)
-    ap.add_argument("--chunk", type=int, default=2, help="stripe runs per task (default 2)")
+    ap.add_argument("--stripes", type=int, default=8)
+    ap.add_argument("--chunk", type=int, default=0, help="runs per task (default 0: the study's batching)")
+    ap.add_argument("--records", type=int, default=0, help="records (default: the 9 shipped; more: repeated)")
+    ap.add_argument("--bodies", type=int, default=2, help="bodies, 1 or 2 (default 2)")
+    ap.add_argument("--sample", type=int, default=1,
+                    help="the in-process loop runs every SAMPLE-th task only (its CPU per run is the base)")
     args = ap.parse_args()
     fmu_path = paths.default_fmu()
-    st = study(args.stripes, args.chunk)
+    st = study(args.stripes, args.chunk, args.records, args.bodies)
     with RockingFMU(fmu_path) as fmu:
         tasks = st.tasks(fmu, cluster.fmu_digest(fmu_path))
-        rows = [("in-process, no Dask", 1, *serial(st, fmu, tasks), 1.0, 0.0)]
+        rows = [("in-process, no Dask", 1, *serial(st, fmu, tasks[::args.sample]), 1.0, 0.0)]
     for n in (int(w) for w in args.workers.split(",")):
         rows.append((f"LocalCluster, {n} worker(s)", n, *on_cluster(n, fmu_path, tasks)))
-    base = next(r[2] / r[3] for r in rows if r[1] == 1 and r[0].startswith("Local"))
     print(f"host: {os.uname().nodename}, {os.cpu_count()} cores, load average before: "
           f"{' '.join(f'{x:.1f}' for x in LOAD)}, after: {' '.join(f'{x:.1f}' for x in os.getloadavg())}")
-    print(f"{len(tasks)} tasks of {args.chunk} run(s)")
+    runs_all = sum(t[3] for t in tasks)
+    print(f"{runs_all} runs in {len(tasks)} tasks ({runs_all / len(tasks):.1f} runs a task)")
     cpu_base = rows[0][4] / rows[0][2]
-    print("| configuration | runs | wall (s) | runs/s | runs/s per core | efficiency | workers busy "
-          "| CPU s per run | CPU / in-process | client CPU per task (ms) |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| configuration | runs | wall (s) | runs/s | workers busy | CPU s per run | overhead (% of the runs' CPU) "
+          "| CPU efficiency | client CPU per task (ms) |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for name, n, runs, wall, cpu, busy, client_ms in rows:
-        rate = runs / wall
-        print(f"| {name} | {runs} | {wall:.2f} | {rate:.2f} | {rate / n:.2f} | {rate / n / base:.2f} "
-              f"| {busy:.3f} | {cpu / runs:.4f} | {cpu / runs / cpu_base:.3f} | {client_ms:.1f} |")
+        per_run = cpu / runs
+        print(f"| {name} | {runs} | {wall:.2f} | {runs / wall:.2f} | {busy:.3f} | {per_run:.4f} "
+              f"| {100 * (per_run / cpu_base - 1):.1f} | {cpu_base / per_run:.3f} | {client_ms:.1f} |")
+    print("overhead: CPU of all processes (workers, client, scheduler) per run over the in-process loop's; "
+          "CPU efficiency: the in-process CPU per run over it (what the wall-clock efficiency is on an "
+          "idle machine whose cores the workers do not share)")
     return 0
 
 

@@ -13,6 +13,15 @@ def _pyplot():
     return plt
 
 
+def _plain_log(axis, lo, hi):
+    """Plain numbers on a log axis (0.5, 1, 2 rather than 5x10^-1); minor ticks labelled too
+    when the range is under a decade and a half."""
+    from matplotlib.ticker import FuncFormatter, NullFormatter
+    fmt = FuncFormatter(lambda v, _: f"{v:g}")
+    axis.set_major_formatter(fmt)
+    axis.set_minor_formatter(fmt if hi / lo < 30 else NullFormatter())
+
+
 def short_name(record):
     """A record's name for a legend: its file and component, without the folders."""
     return record.rsplit("/", 1)[-1]
@@ -45,6 +54,7 @@ def plot_ida(path, rows, analysis, im, title):
     ax.axvline(1.0, color="0.5", lw=0.6, ls=":")
     ax.set_xlim(0, 1.8)
     ax.set_yscale("log")
+    _plain_log(ax.yaxis, *ax.get_ylim())
     ax.set_xlabel("peak |theta| / alpha")
     ax.set_ylabel(im.label)
     ax.set_title(title, fontsize=10)
@@ -102,6 +112,8 @@ def plot_fragility(path, fits, im, title, method, states=None):
             ax.text(0.5, 0.5, "no fit", transform=ax.transAxes, ha="center")
         ax.set_xscale("log")
         ax.set_xlim(lo, hi)
+        _plain_log(ax.xaxis, lo, hi)
+        ax.tick_params(axis="x", which="minor", labelsize=7)
         ax.set_ylim(-0.02, 1.02)
         ax.set_xlabel(im.label)
         ax.set_ylabel("P(exceedance)" if extra else "P(overturning)")
