@@ -31,8 +31,8 @@ know: PEER AT2, CSMIP V2, GeoNet V2A, USGS SMC, npts-dt ASCII, CSV), or a study 
   records = ["../data/ground-motions"]    # folders or files, relative to the study file
   im = "PGV"             # PGA (g), PGV (m/s), SA(T) (g, 5 %), AvgSA(T1-T2), PGA/gtana, PGV/(gtana/p)
   stripes = "0.2:2:0.2"                   # msa: target intensities (or a list)
-  max_runs = 40                           # ida: runs per record at most
-  resolution = 0.2                        # ida: widest gap left below the first collapse
+  max_runs = 60                           # ida: runs per record at most
+  resolution = 0.1                        # ida: widest gap left below the first collapse
   damage_states = { uplift = 0.05, DS1 = 0.2, DS2 = 0.5 }   # on peak |theta| / alpha
   beta_modelling = 0.25                   # FEMA P-58 modelling dispersion (SRSS with beta)
   hazard = "hazard.csv"                   # intensity, annual frequency of exceedance
@@ -76,10 +76,10 @@ def register(sub, common):
         if method == "msa":
             p.add_argument("--stripes", help="target intensities: start:stop:step or a,b,c")
         else:
-            p.add_argument("--max-runs", type=int, help="runs per record at most (default 40)")
+            p.add_argument("--max-runs", type=int, help="runs per record at most (default 60)")
             p.add_argument("--tol", type=float, help="relative width of the collapse bracket (default 0.05)")
             p.add_argument("--resolution", type=float,
-                           help="widest relative gap left between runs below the first collapse (default 0.2)")
+                           help="widest relative gap left between runs below the first collapse (default 0.1)")
             p.add_argument("--grid", type=int, metavar="N",
                            help="dense-grid IDA: every record at N intensities (geometric, from the uplift "
                                 "intensity to 50 times it) instead of the hunt")
@@ -291,9 +291,9 @@ def study_options(args, data, source):
             raise CLIError("msa: give the target intensities, --stripes start:stop:step or `stripes = [...]`")
         opts["stripes"] = _intensities(stripes, name)
     else:
-        opts["max_runs"] = pick("max_runs", 40, _number, kind=int, minimum=2)
+        opts["max_runs"] = pick("max_runs", 60, _number, kind=int, minimum=2)
         opts["tol"] = pick("tol", 0.05, _number, minimum=0.0, open_min=True)
-        opts["resolution"] = pick("resolution", 0.2, _number, minimum=0.0, open_min=True)
+        opts["resolution"] = pick("resolution", 0.1, _number, minimum=0.0, open_min=True)
         opts["grid"] = pick("grid", 0, _number, kind=int, minimum=2)
         est, name = _pick(args, data, "beta_estimator", source)
         if est not in (None, "mle", "moments"):
@@ -381,19 +381,22 @@ def _safe(name):
 
 
 def _fit_line(f, unit, study):
-    """One fit in words: median, beta, the bootstrap's intervals and how many resamples failed."""
-    est = "moments (n-1)" if f.estimator == "moments" else "MLE"
-    text = f"median {f.median:.4g} {unit}, beta {f.beta:.3f} ({est}"
+    """(fit, interval) in words: median, beta and estimator; the bootstrap's intervals and how
+    many resamples could not be fitted ('' without a bootstrap)."""
+    est = "moments, n-1" if f.estimator == "moments" else "MLE"
+    text = f"median {f.median:.4g} {unit}, beta {f.beta:.3f} ({est})"
     if f.beta_modelling:
-        text += f"; with beta_modelling {f.beta_modelling:g}: beta_total {f.beta_total:.3f}"
-    text += ")"
+        text += f", beta_total {f.beta_total:.3f} with beta_modelling {f.beta_modelling:g}"
+    boot = ""
     if math.isfinite(f.median_ci[0]):
-        over = f"{len(f.boot[0]) + f.boot_undetermined} resamples of " + ("stations" if study.by_station else "records")
-        text += (f", {f.level:.0%} bootstrap ({over}): median [{f.median_ci[0]:.4g}, {f.median_ci[1]:.4g}], "
-                 f"beta [{f.beta_ci[0]:.3f}, {f.beta_ci[1]:.3f}]")
-    if f.boot_undetermined:
-        text += f"; {f.boot_undetermined} resample(s) undetermined, left out"
-    return text
+        from ..fragility.study import station_of
+        groups = (f"{len({station_of(n) for n in study.suite})} stations" if study.by_station
+                  else f"{len(study.suite)} records")
+        boot = (f"{f.level:.0%} bootstrap over {groups}: median [{f.median_ci[0]:.4g}, {f.median_ci[1]:.4g}], "
+                f"beta [{f.beta_ci[0]:.3f}, {f.beta_ci[1]:.3f}]")
+        if f.boot_undetermined:
+            boot += f" ({f.boot_undetermined} of {len(f.boot[0]) + f.boot_undetermined} resamples undetermined)"
+    return text, boot
 
 
 def _fit_json(entry, risk_of=None):
@@ -430,8 +433,11 @@ def write_outputs(out, study, df, result, args, opts):
         if f is None:
             lines.append(f"  {body}: no fit: {entry['error']}")
         else:
-            cens = f", {f.censored} record(s) did not overturn up to their last run" if f.censored else ""
-            lines.append(f"  {body}: {_fit_line(f, im.unit, study)}, n = {f.n}{cens}")
+            cens = f", {f.censored} censored (no collapse up to their last run)" if f.censored else ""
+            text, boot = _fit_line(f, im.unit, study)
+            lines.append(f"  {body}: {text}, n = {f.n}{cens}")
+            if boot:
+                lines.append(f"    {boot}")
             lines.append(f"    goodness of fit: {f.gof.get('text', 'not tested')}")
             r = risk_of(f)
             if r is not None:
@@ -441,7 +447,7 @@ def write_outputs(out, study, df, result, args, opts):
                                 "extended as a power law)" if r["outside"] > 0.01 else ""))
         for name, thr in study.states()[:-1]:
             st = entry["states"][name]
-            text = (_fit_line(st["fragility"], im.unit, study) if st["fragility"] is not None
+            text = (_fit_line(st["fragility"], im.unit, study)[0] if st["fragility"] is not None
                     else f"no fit: {st['error']}")
             lines.append(f"    {name} (peak |theta| / alpha >= {thr:g}): {text}")
         unresolved = {r: v["unresolved"] for r, v in entry["records"].items() if v.get("unresolved")}

@@ -33,13 +33,13 @@ class HuntOptions:
     stop the highest intensity tried, in units of `start`; halvings at most when the first run
     collapses; resolution the widest relative gap left between runs below the first collapse."""
 
-    max_runs: int = 40
+    max_runs: int = 60
     step: float = 1.0
     grow: float = 0.5
     tol: float = 0.05
     stop: float = 50.0
     halvings: int = 4
-    resolution: float = 0.2
+    resolution: float = 0.1
 
 
 def bracket(trace):

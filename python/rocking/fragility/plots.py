@@ -34,6 +34,7 @@ def plot_ida(path, rows, analysis, im, title):
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(9.5, 5))
     ok = rows[rows["error"] == ""]
+    tops = []  # each record's first collapse, or its highest run if censored: the axis ends above them
     for i, (rname, r) in enumerate(ok.groupby("record")):
         color = f"C{i % 10}"
         cap = analysis["records"].get(rname, {})
@@ -51,9 +52,12 @@ def plot_ida(path, rows, analysis, im, title):
             ax.plot([1.6], [cap["capacity"]], "x", color=color)
         fails = r[r["overturned"].astype(bool)]
         ax.plot(np.full(len(fails), 1.7), fails["im"], "|", color=color, ms=6)
+        tops.append(cap["capacity"] if math.isfinite(cap.get("capacity", math.nan)) else r["im"].max())
     ax.axvline(1.0, color="0.5", lw=0.6, ls=":")
     ax.set_xlim(0, 1.8)
     ax.set_yscale("log")
+    if tops and len(ok):
+        ax.set_ylim(ok["im"].min() / 1.2, max(tops) * 1.4)
     _plain_log(ax.yaxis, *ax.get_ylim())
     ax.set_xlabel("peak |theta| / alpha")
     ax.set_ylabel(im.label)
