@@ -306,3 +306,33 @@ def test_bad_study_keys_are_one_line_naming_them(tmp_path, capsys, text, named):
                    "--out", str(tmp_path / "o")])
     lines = capsys.readouterr().err.strip().splitlines()
     assert status == 2 and len(lines) == 1 and f"{study}: {named}" in lines[0], lines
+
+
+def test_stripes_fit_is_the_maximum_likelihood_of_an_independent_optimiser():
+    """Newton on the probit against Nelder-Mead on (ln median, ln beta) of the binomial
+    likelihood: ours is at least as likely, and the same point to 1e-5."""
+    from scipy.optimize import minimize
+    from scipy.special import log_ndtr
+    rng = np.random.default_rng(1)
+    checked = 0
+    for _ in range(60):
+        k = rng.integers(3, 12)
+        im = np.sort(rng.uniform(0.1, 5, k))
+        n = rng.integers(3, 30, k)
+        z = rng.binomial(n, fit.Fragility(math.exp(rng.normal(0, 0.5)), rng.uniform(0.2, 1.2), 0).probability(im))
+        try:
+            m, b = fit.fit_stripes(im, n, z)
+        except fit.Undetermined:
+            continue
+        x = np.log(im)
+
+        def nll(q):
+            s = (x - q[0]) / math.exp(q[1])
+            return -(z @ log_ndtr(s) + (n - z) @ log_ndtr(-s))
+
+        r = minimize(nll, [math.log(m) + 0.1, math.log(b) - 0.1], method="Nelder-Mead",
+                     options=dict(xatol=1e-11, fatol=1e-13, maxiter=20000))
+        assert nll([math.log(m), math.log(b)]) <= r.fun + 1e-9
+        assert abs(r.x[0] - math.log(m)) < 1e-5 and abs(math.exp(r.x[1]) - b) < 1e-5
+        checked += 1
+    assert checked > 40

@@ -85,7 +85,7 @@ def register(sub, common):
                                 "intensity to 50 times it) instead of the hunt")
             p.add_argument("--beta-estimator", choices=("mle", "moments"),
                            help="beta of the IDA fit: mle (1/n, default) or moments (n-1, Baker)")
-        p.add_argument("--chunk", type=int, help="runs per task of stripes or grid (default: about a second of runs per task)")
+        p.add_argument("--chunk", type=int, help="runs per task of stripes or grid (default: about half a second of runs a task)")
         p.add_argument("--tail", type=float, help="seconds simulated after each record's end (default 5)")
         p.add_argument("--rtol", type=float, help="the integrator's relative tolerance (default: the FMU's)")
         p.add_argument("--damage-states", metavar="NAME=T,...",
@@ -395,7 +395,9 @@ def _fit_line(f, unit, study):
         boot = (f"{f.level:.0%} bootstrap over {groups}: median [{f.median_ci[0]:.4g}, {f.median_ci[1]:.4g}], "
                 f"beta [{f.beta_ci[0]:.3f}, {f.beta_ci[1]:.3f}]")
         if f.boot_undetermined:
-            boot += f" ({f.boot_undetermined} of {len(f.boot[0]) + f.boot_undetermined} resamples undetermined)"
+            total = len(f.boot[0]) + f.boot_undetermined
+            boot += f" ({f.boot_undetermined} of {total} resamples undetermined, left out"
+            boot += "; the interval is unreliable)" if f.boot_undetermined > 0.1 * total else ")"
     return text, boot
 
 

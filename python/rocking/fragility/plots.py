@@ -14,12 +14,16 @@ def _pyplot():
 
 
 def _plain_log(axis, lo, hi):
-    """Plain numbers on a log axis (0.5, 1, 2 rather than 5x10^-1); minor ticks labelled too
-    when the range is under a decade and a half."""
-    from matplotlib.ticker import FuncFormatter, NullFormatter
+    """Plain numbers on a log axis (0.5, 1, 2 rather than 5x10^-1); every minor tick labelled
+    over a range under 30, those at 2 and 5 of each decade over a wider one."""
+    from matplotlib.ticker import FuncFormatter
     fmt = FuncFormatter(lambda v, _: f"{v:g}")
     axis.set_major_formatter(fmt)
-    axis.set_minor_formatter(fmt if hi / lo < 30 else NullFormatter())
+    if hi / lo < 30:
+        axis.set_minor_formatter(fmt)
+    else:  # 2 and 5 of each decade only
+        lead = lambda v: round(v / 10 ** math.floor(math.log10(v) + 1e-9), 6)  # noqa: E731
+        axis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}" if v > 0 and lead(v) in (2, 5) else ""))
 
 
 def short_name(record):

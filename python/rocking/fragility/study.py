@@ -24,10 +24,11 @@ from .fit import ida_fragility, msa_fragility
 from .hunt import HuntOptions, capacity
 
 
-#: Integration steps per task of runs at fixed intensities when `chunk` is 0: about a
-#: second of runs (a run of the shipped suite, 9800 steps on average, costs about 13.5 ms
-#: of CPU: 1.4 us a step; runs that overturn stop early and cost less).
-STEPS_PER_TASK = 600_000
+#: Integration steps per task of runs at fixed intensities when `chunk` is 0: about half a
+#: second of runs (a run of the shipped suite, 9800 steps on average, costs about 13.5 ms of
+#: CPU: 1.4 us a step; runs that overturn stop early and cost less). Half a second rather
+#: than more: a small study still makes several tasks per worker, so none waits at the end.
+STEPS_PER_TASK = 300_000
 
 
 def _hash(obj):
@@ -61,7 +62,7 @@ class Study:
     'msa'; stripes the target intensities (msa); hunt the HuntOptions (ida); grid > 0: IDA on
     a dense grid of that many intensities per record (geometric, the hunt's start to its
     stop) instead of the hunt; tail s simulated after each record's end; chunk runs per task
-    of stripes or grid (0: about a second of runs each, STEPS_PER_TASK); estimator of beta ('mle' or 'moments', IDA); beta_modelling the FEMA P-58
+    of stripes or grid (0: about half a second of runs each, STEPS_PER_TASK); estimator of beta ('mle' or 'moments', IDA); beta_modelling the FEMA P-58
     modelling dispersion; damage_states {name: threshold on peak |theta| / alpha}, each
     fitted beside overturning; by_station: the bootstrap resamples stations (station_of)."""
 
@@ -134,7 +135,7 @@ class Study:
 
     def _batches(self, fixed, digest, opts, salt):
         """Tasks of the runs at fixed intensities [(tag, job, intensities)]: `chunk` runs each,
-        or (chunk 0) as many as make STEPS_PER_TASK integration steps (about a second of
+        or (chunk 0) as many as make STEPS_PER_TASK integration steps (half a second of
         work, so that Dask's cost per task stays a few per cent of the runs'), across
         records and bodies. Deterministic: a rerun finds the same keys."""
         phase = "grid" if self.method == "ida" else "stripe"
