@@ -78,15 +78,16 @@ def test_an_undetermined_body_is_one_line_and_everything_is_written(tmp_path):
     plot are written (the command used to die in the bootstrap)."""
     from rocking.cli.ida import write_outputs
     rows = []
-    for body, cap in (("sep", None), ("ok", None)):
+    for body in ("sep", "ok"):
         for k in range(9):
             for im in (0.6, 1.0, 1.6):
                 over = im >= 1.0 if body == "sep" else im >= 0.6 * 1.25 ** k
                 rows.append(dict(method="msa", body=body, record=f"r{k}", im=im, overturned=over, error="",
                                  alpha=0.2, peak_theta_over_alpha=2.0 if over else 0.3, unresolved=""))
     df = pd.DataFrame(rows)
-    study = Study(bodies={"sep": {}, "ok": {}}, suite={f"r{k}": gm.Record.from_samples([0.0, 1.0, 0.0], 0.01) for k in range(9)},
-                  im=intensity.parse("PGV"), method="msa", stripes=(0.6, 1.0, 1.6))
+    suite = {f"r{k}": gm.Record.from_samples([0.0, 1.0, 0.0], 0.01) for k in range(9)}
+    study = Study(bodies={"sep": {}, "ok": {}}, suite=suite, im=intensity.parse("PGV"), method="msa",
+                  stripes=(0.6, 1.0, 1.6))
     result = study.analyse(df, n_boot=50)
     text = write_outputs(tmp_path, study, df, result, argparse.Namespace(boot=50), dict(years=50.0))
     lines = [ln for ln in text.splitlines() if ln.startswith("  sep:")]

@@ -1,7 +1,7 @@
 """`rocking ida` and `rocking msa`: fragility studies over a suite of records on Dask.
 
     rocking ida SUITE_OR_TOML [--preset NAME ...] [--params FILE ...] [--im PGV] --out DIR
-                [--scheduler ADDRESS | --workers N] [--max-runs 12] [--tail 5] ...
+                [--scheduler ADDRESS | --workers N] [--max-runs 60] [--grid N] [--hazard CSV] ...
     rocking msa SUITE_OR_TOML ... --stripes 0.1:1.5:0.1 --out DIR
 
 SUITE_OR_TOML is a folder of records (or one record file), with the bodies
@@ -57,7 +57,7 @@ STUDY_KEYS = set(OPTIONS) | {"bodies"}
 def register(sub, common):
     """Add the `ida` and `msa` subcommands to the subparsers `sub` of the `rocking` parser."""
     for method in ("ida", "msa"):
-        what = ("incremental dynamic analysis: each record scaled by hunt-and-fill until the body overturns"
+        what = ("incremental dynamic analysis: each record's first collapse, by a hunt, a scan below it and a bracket"
                 if method == "ida" else "multiple stripes: every record at each target intensity")
         p = sub.add_parser(
             method, parents=[common], allow_abbrev=False, help=f"fragility by {what.split(':')[0]} (Dask)",
@@ -72,7 +72,8 @@ def register(sub, common):
         p.add_argument("--preset", action="append", metavar="NAME", help="a body by preset name (repeatable)")
         p.add_argument("--params", action="append", metavar="FILE",
                        help="a body from a JSON object of parameters (repeatable; named by the file)")
-        p.add_argument("--im", help="intensity measure: PGA, PGV, SA(T) or PGA/gtana (default PGA/gtana)")
+        p.add_argument("--im", help="intensity measure: PGA, PGV, SA(T), AvgSA(T1-T2), PGA/gtana or "
+                                    "PGV/(gtana/p) (default PGA/gtana)")
         if method == "msa":
             p.add_argument("--stripes", help="target intensities: start:stop:step or a,b,c")
         else:
@@ -85,7 +86,8 @@ def register(sub, common):
                                 "intensity to 50 times it) instead of the hunt")
             p.add_argument("--beta-estimator", choices=("mle", "moments"),
                            help="beta of the IDA fit: mle (1/n, default) or moments (n-1, Baker)")
-        p.add_argument("--chunk", type=int, help="runs per task of stripes or grid (default: about half a second of runs a task)")
+        p.add_argument("--chunk", type=int,
+                       help="runs per task of stripes or grid (default: about half a second of runs a task)")
         p.add_argument("--tail", type=float, help="seconds simulated after each record's end (default 5)")
         p.add_argument("--rtol", type=float, help="the integrator's relative tolerance (default: the FMU's)")
         p.add_argument("--damage-states", metavar="NAME=T,...",
@@ -449,8 +451,11 @@ def write_outputs(out, study, df, result, args, opts):
                                 "extended as a power law)" if r["outside"] > 0.01 else ""))
         for name, thr in study.states()[:-1]:
             st = entry["states"][name]
-            text = (_fit_line(st["fragility"], im.unit, study)[0] if st["fragility"] is not None
-                    else f"no fit: {st['error']}")
+            g = st["fragility"]
+            text = _fit_line(g, im.unit, study)[0] if g is not None else f"no fit: {st['error']}"
+            if g is not None and g.boot_undetermined > 0.1 * (len(g.boot[0]) + g.boot_undetermined):
+                text += (f"; bootstrap unreliable ({g.boot_undetermined} of "
+                         f"{len(g.boot[0]) + g.boot_undetermined} resamples undetermined)")
             lines.append(f"    {name} (peak |theta| / alpha >= {thr:g}): {text}")
         unresolved = {r: v["unresolved"] for r, v in entry["records"].items() if v.get("unresolved")}
         if unresolved:

@@ -85,7 +85,7 @@ def plot_fragility(path, fits, im, title, method, states=None):
     n = len(fits)
     cols = min(n, 3)
     rows = math.ceil(n / cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(4.8 * cols, 4.2 * rows), squeeze=False)
+    fig, axes = plt.subplots(rows, cols, figsize=(4.8 * cols, 5.6 * rows), squeeze=False)
     for ax, (label, (frag, emp)) in zip(axes.flat, fits.items()):
         xs = []
         if method == "ida":
@@ -127,7 +127,7 @@ def plot_fragility(path, fits, im, title, method, states=None):
         ax.set_ylabel("P(exceedance)" if extra else "P(overturning)")
         ax.set_title(label, fontsize=10)
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=6, loc="upper left")
+        ax.legend(fontsize=6.5, loc="upper center", bbox_to_anchor=(0.5, -0.16), frameon=False)  # off the curves
     for ax in list(axes.flat)[n:]:
         ax.set_visible(False)
     fig.suptitle(title, fontsize=10)

@@ -62,8 +62,9 @@ class Study:
     'msa'; stripes the target intensities (msa); hunt the HuntOptions (ida); grid > 0: IDA on
     a dense grid of that many intensities per record (geometric, the hunt's start to its
     stop) instead of the hunt; tail s simulated after each record's end; chunk runs per task
-    of stripes or grid (0: about half a second of runs each, STEPS_PER_TASK); estimator of beta ('mle' or 'moments', IDA); beta_modelling the FEMA P-58
-    modelling dispersion; damage_states {name: threshold on peak |theta| / alpha}, each
+    of stripes or grid (0: about half a second of runs each, STEPS_PER_TASK); estimator of
+    beta ('mle' or 'moments', IDA); beta_modelling the FEMA P-58 modelling dispersion;
+    damage_states {name: threshold on peak |theta| / alpha}, each
     fitted beside overturning; by_station: the bootstrap resamples stations (station_of)."""
 
     bodies: dict
