@@ -62,6 +62,10 @@ def on_cluster(workers, fmu_path, tasks):
         client.wait_for_workers(workers)
         cluster.register_fmu(client, fmu_path)
         client.run(lambda: None)
+        w0, c0, t0 = client.run(time.process_time), time.process_time(), time.perf_counter()
+        time.sleep(IDLE_S)  # the cluster's own CPU while it waits: heartbeats, ticks
+        w1, c1 = client.run(time.process_time), time.process_time()
+        idle = (sum(w1[w] - w0[w] for w in w1) + c1 - c0) / (time.perf_counter() - t0)
         with tempfile.TemporaryDirectory() as tmp:
             store = ResultStore(Path(tmp) / "runs")
             w0, c0, t0 = client.run(time.process_time), time.process_time(), time.perf_counter()
@@ -73,7 +77,10 @@ def on_cluster(workers, fmu_path, tasks):
             client_ms = (c1 - c0) / len(tasks) * 1e3
     if failures:
         raise RuntimeError(f"{len(failures)} tasks failed: {next(iter(failures.values()))}")
-    return runs, wall, cpu, busy, client_ms
+    return runs, wall, cpu, busy, client_ms, idle
+
+
+IDLE_S = 5.0
 
 
 def main():
@@ -90,7 +97,7 @@ def main():
     st = study(args.stripes, args.chunk, args.records, args.bodies)
     with RockingFMU(fmu_path) as fmu:
         tasks = st.tasks(fmu, cluster.fmu_digest(fmu_path))
-        rows = [("in-process, no Dask", 1, *serial(st, fmu, tasks[::args.sample]), 1.0, 0.0)]
+        rows = [("in-process, no Dask", 1, *serial(st, fmu, tasks[::args.sample]), 1.0, 0.0, 0.0)]
     for n in (int(w) for w in args.workers.split(",")):
         rows.append((f"LocalCluster, {n} worker(s)", n, *on_cluster(n, fmu_path, tasks)))
     print(f"host: {os.uname().nodename}, {os.cpu_count()} cores, load average before: "
@@ -99,15 +106,19 @@ def main():
     print(f"{runs_all} runs in {len(tasks)} tasks ({runs_all / len(tasks):.1f} runs a task)")
     cpu_base = rows[0][4] / rows[0][2]
     print("| configuration | runs | wall (s) | runs/s | workers busy | CPU s per run | overhead (% of the runs' CPU) "
-          "| CPU efficiency | client CPU per task (ms) |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    for name, n, runs, wall, cpu, busy, client_ms in rows:
+          "| CPU efficiency | client CPU per task (ms) | idle cluster (% of a core) | overhead net of idle (%) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for name, n, runs, wall, cpu, busy, client_ms, idle in rows:
         per_run = cpu / runs
+        net = (cpu - idle * wall) / runs
         print(f"| {name} | {runs} | {wall:.2f} | {runs / wall:.2f} | {busy:.3f} | {per_run:.4f} "
-              f"| {100 * (per_run / cpu_base - 1):.1f} | {cpu_base / per_run:.3f} | {client_ms:.1f} |")
+              f"| {100 * (per_run / cpu_base - 1):.1f} | {cpu_base / per_run:.3f} | {client_ms:.1f} "
+              f"| {100 * idle:.1f} | {100 * (net / cpu_base - 1):.1f} |")
     print("overhead: CPU of all processes (workers, client, scheduler) per run over the in-process loop's; "
           "CPU efficiency: the in-process CPU per run over it (what the wall-clock efficiency is on an "
-          "idle machine whose cores the workers do not share)")
+          "idle machine whose cores the workers do not share); idle cluster: its CPU while it waits "
+          f"({IDLE_S:g} s before the runs), which grows with the wall time a loaded machine stretches; "
+          "net of idle: the overhead without it")
     return 0
 
 

@@ -361,7 +361,8 @@ def test_rocking_ida_errors_are_one_line(fmu_path, tmp_path, capsys):
     suite = REPO / "data" / "ground-motions" / "katnp-standin"
     for extra, expected in ((["--params", str(bad)], "body bad: "),
                             (["--preset", "dharahara-rigid", "--im", "PGD"], "--im: intensity measure 'PGD'"),
-                            (["--preset", "dharahara-rigid", "--stripes", "0:1:0.5"], "--stripes 0.0: expected a finite number > 0"),
+                            (["--preset", "dharahara-rigid", "--stripes", "0:1:0.5"],
+                             "--stripes 0.0: expected a finite number > 0"),
                             (["--preset", "nope"], "unknown preset 'nope'")):
         method = "msa" if "--stripes" in extra else "ida"
         status = main([method, str(suite), *extra, "--fmu", fmu_path, "--out", str(tmp_path / "o")])

@@ -1,4 +1,4 @@
-"""Fragility of rocking bodies: incremental dynamic analysis (hunt-and-fill) and multiple-stripe
+"""Fragility of rocking bodies: incremental dynamic analysis (each record's first collapse) and multiple-stripe
 analysis over a suite of records, on dask.distributed, with lognormal fragility fits.
 
 - `intensity`: PGA, PGV, SA(T) (5 %, exact for the piecewise-linear record), AvgSA(T1-T2),

@@ -61,7 +61,7 @@ def capacity(trace):
 
 
 def hunt_and_fill(collapses, start, options=HuntOptions()):
-    """Run `collapses(im) -> (collapsed, peak)` at the intensities hunt-and-fill chooses;
+    """Run `collapses(im) -> (collapsed, peak)` at the intensities the search (hunt, scan, bracket) chooses;
     return the trace [(im, collapsed, peak, phase)] in the order run."""
     if not start > 0:
         raise ValueError(f"hunt start must be positive, got {start}")

@@ -5,7 +5,7 @@ faster stepping loop behind that method serves the studies unchanged. The
 rows carry only what a fragility needs (no time histories): overturned,
 t_overturn, peak |theta| / alpha, and the run's wall time and error.
 
-A chunk of stripe runs (`run_stripes`) and one record's hunt-and-fill
+A batch of runs at fixed intensities (`run_batch`) and one record's search
 (`run_hunt`, sequential by nature) are the tasks; both never raise for a
 failed run (the error is in the row).
 """
@@ -74,7 +74,7 @@ def run_batch(digest, parts, opts, phase="stripe"):
 
 
 def run_hunt(digest, job, start, hunt, opts):
-    """Rows of one record's hunt-and-fill from intensity `start` (HuntOptions fields in `hunt`)."""
+    """Rows of one record's search for its first collapse from intensity `start` (HuntOptions fields in `hunt`)."""
     fmu = process_fmu(digest, opts.get("fmu_path"))
     rows = []
 

@@ -1,5 +1,6 @@
-"""A study: bodies x records, by incremental dynamic analysis (hunt-and-fill per record) or
-by multiple stripes (records x target intensities); its tasks, and its results read back.
+"""A study: bodies x records, by incremental dynamic analysis (a search for each record's
+first collapse) or by multiple stripes (records x target intensities); its tasks, and its
+results read back.
 
     study = Study(bodies={"block": params}, suite=load_suite([folder]), im=parse("PGV"),
                   method="ida")
