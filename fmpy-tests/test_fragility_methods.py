@@ -32,6 +32,8 @@ G = 9.80665
     ([0.5, 1.0], [9, 9], [0, 1]),          # 0/9 then 1/9: separated
     ([0.5, 1.0, 2.0], [9, 9, 9], [0, 3, 9]),  # one partial stripe between 0 and 1
     ([0.5, 1.0], [9, 9], [2, 0]),          # decreasing
+    ([0.6, 1.0], [9, 9], [8, 8]),          # flat: gave 'median 0, beta 1.3e16'
+    ([0.6, 1.0, 1.6], [9, 9, 9], [6, 3, 6]),  # falling, then rising: the fit is flat
 ])
 def test_stripes_that_fix_no_fit_are_undetermined(im, n, z):
     with pytest.raises(fit.Undetermined):

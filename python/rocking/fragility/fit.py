@@ -157,7 +157,7 @@ def fit_stripes(im, n, collapsed):
     frac = z / n
     mid = np.interp(0.5, np.maximum.accumulate(frac), x) if frac.max() >= 0.5 else x.max()
     a, b = _probit_newton(x, n, z, -mid / 0.4, 1 / 0.4)
-    if not b > 0:
+    if not b > 1e-3:  # beta > 1000: a flat curve, the maximum at beta -> infinity
         raise Undetermined("the fraction overturned does not increase with the intensity")
     return _finite_fit(math.exp(-a / b), 1 / b, "stripes")
 
