@@ -338,7 +338,10 @@ def test_rocking_ida_command_runs_and_resumes(client, fmu_path, tmp_path, capsys
     _write_at2(suite / "pulse_H2.AT2", _pulse(0.8), "H2")
     body = tmp_path / "block.json"
     body.write_text(json.dumps(BLOCK))
+    hazard = tmp_path / "hazard.csv"
+    hazard.write_text("0.01,1e-2\n10,1e-8\n")  # lambda = 1e-6 PGA^-2 (PGA in g)
     argv = ["ida", str(suite), "--params", str(body), "--im", "PGA", "--tail", "0.5", "--boot", "100",
+            "--damage-states", "DS1=0.3", "--hazard", str(hazard), "--mce", "0.5",
             "--scheduler", client.scheduler.address, "--fmu", fmu_path, "--out", str(tmp_path / "out")]
     assert main(argv) == 0
     err = capsys.readouterr().err
@@ -346,6 +349,11 @@ def test_rocking_ida_command_runs_and_resumes(client, fmu_path, tmp_path, capsys
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     entry = summary["bodies"]["block"]
     assert entry["median"] > 0 and entry["n"] == 2 and set(entry["records"]) == {"pulse_H1.AT2[H1]", "pulse_H2.AT2[H2]"}
+    assert entry["unresolved_records"] == 0 and entry["damage_states"]["DS1"]["threshold"] == 0.3
+    assert entry["risk"]["cmr"] == pytest.approx(entry["median"] / 0.5)
+    # the closed form of a lognormal fragility under lambda = k0 x^-k: k0 median^-k exp(k² beta² / 2)
+    assert entry["risk"]["maf"] == pytest.approx(1e-6 * entry["median"] ** -2 * math.exp(2 * entry["beta"] ** 2),
+                                                 rel=1e-6)
     for name in ("fragility.png", "ida-block.png"):
         assert (tmp_path / "out" / name).stat().st_size > 10_000
     assert main(argv) == 0
