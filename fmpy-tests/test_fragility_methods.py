@@ -339,3 +339,17 @@ def test_stripes_fit_is_the_maximum_likelihood_of_an_independent_optimiser():
         assert abs(r.x[0] - math.log(m)) < 1e-5 and abs(math.exp(r.x[1]) - b) < 1e-5
         checked += 1
     assert checked > 40
+
+
+def test_margin_ratio_without_a_hazard_curve(tmp_path):
+    from rocking.cli.ida import write_outputs
+    rows = [dict(method="ida", body="b", record=f"r{k}", im=im, overturned=im >= c, error="", alpha=0.2,
+                 peak_theta_over_alpha=0.1, unresolved="")
+            for k, c in enumerate((0.5, 0.8, 1.3)) for im in np.geomspace(0.1, 3, 40)]
+    suite = {f"r{k}": gm.Record.from_samples([0.0, 1.0, 0.0], 0.01) for k in range(3)}
+    study = Study(bodies={"b": {}}, suite=suite, im=intensity.parse("PGV"))
+    df = pd.DataFrame(rows)
+    text = write_outputs(tmp_path, study, df, study.analyse(df, n_boot=0), argparse.Namespace(boot=0),
+                         dict(mce=0.4, years=50.0))
+    median = json.loads((tmp_path / "summary.json").read_text())["bodies"]["b"]["median"]
+    assert f"collapse margin ratio {median / 0.4:.3g}" in text

@@ -429,7 +429,9 @@ def write_outputs(out, study, df, result, args, opts):
     hazard = opts.get("hazard")
 
     def risk_of(f):
-        return None if hazard is None else risk.risk(f, hazard, opts.get("mce"), opts.get("years", 50.0))
+        if hazard is None:  # the margin ratio needs no hazard curve
+            return None if opts.get("mce") is None else dict(cmr=risk.margin_ratio(f.median, opts["mce"]))
+        return risk.risk(f, hazard, opts.get("mce"), opts.get("years", 50.0))
 
     for body, entry in result.items():
         f = entry["fragility"]
@@ -444,7 +446,9 @@ def write_outputs(out, study, df, result, args, opts):
                 lines.append(f"    {boot}")
             lines.append(f"    goodness of fit: {f.gof.get('text', 'not tested')}")
             r = risk_of(f)
-            if r is not None:
+            if r is not None and "maf" not in r:
+                lines.append(f"    collapse margin ratio {r['cmr']:.3g} (median over the MCE intensity {opts['mce']:g})")
+            elif r is not None:
                 lines.append(f"    risk: MAF of collapse {r['maf']:.3g} /yr, P(collapse in {r['years']:g} yr) "
                              f"{100 * r['p_years']:.3g} %" + (f", CMR {r['cmr']:.3g}" if r["cmr"] is not None else "")
                              + (f" ({100 * r['outside']:.2g} % of the fragility beyond the hazard curve, "
