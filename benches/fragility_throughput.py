@@ -33,20 +33,27 @@ from rocking.fragility.study import Study
 from rocking.fragility.suite import load_suite
 
 
-def study(n_stripes, chunk):
-    bodies = {"slender-block": dict(presets.preset("fig15-alpha0.20-shiftingPivot"), theta=0.0),
-              "dharahara-rigid": presets.preset("dharahara-rigid")}
-    return Study(bodies=bodies, suite=load_suite([paths.data_dir()]), im=parse("PGV"), method="msa",
+def study(n_stripes, chunk, n_records=0, bodies=2):
+    """The study; n_records > 0: that many records, the suite's components repeated under
+    new names (their runs cost what the originals' do)."""
+    bodies = dict(list({"slender-block": dict(presets.preset("fig15-alpha0.20-shiftingPivot"), theta=0.0),
+                        "dharahara-rigid": presets.preset("dharahara-rigid")}.items())[:bodies])
+    suite = load_suite([paths.data_dir()])
+    if n_records:
+        items = list(suite.items())
+        suite = {f"{items[i % len(items)][0]}#{i}": items[i % len(items)][1] for i in range(n_records)}
+    return Study(bodies=bodies, suite=suite, im=parse("PGV"), method="msa",
                  stripes=tuple(np.linspace(0.2, 1.2, n_stripes)), chunk=chunk)
 
 
 def serial(st, fmu, tasks):
     t0, c0 = time.perf_counter(), time.process_time()
     n = 0
-    for _key, _fn, (_digest, job, stripes, opts), _ in tasks:
-        for im in stripes:
-            runner.run_once(fmu, job["params"], job["record"], im / job["meta"]["im_record"], opts)
-            n += 1
+    for _key, _fn, (_digest, parts, opts, _phase), _ in tasks:
+        for job, stripes in parts:
+            for im in stripes:
+                runner.run_once(fmu, job["params"], job["record"], im / job["meta"]["im_record"], opts)
+                n += 1
     return n, time.perf_counter() - t0, time.process_time() - c0
 
 
@@ -55,6 +62,10 @@ def on_cluster(workers, fmu_path, tasks):
         client.wait_for_workers(workers)
         cluster.register_fmu(client, fmu_path)
         client.run(lambda: None)
+        w0, c0, t0 = client.run(time.process_time), time.process_time(), time.perf_counter()
+        time.sleep(IDLE_S)  # the cluster's own CPU while it waits: heartbeats, ticks
+        w1, c1 = client.run(time.process_time), time.process_time()
+        idle = (sum(w1[w] - w0[w] for w in w1) + c1 - c0) / (time.perf_counter() - t0)
         with tempfile.TemporaryDirectory() as tmp:
             store = ResultStore(Path(tmp) / "runs")
             w0, c0, t0 = client.run(time.process_time), time.process_time(), time.perf_counter()
@@ -62,38 +73,57 @@ def on_cluster(workers, fmu_path, tasks):
             wall = time.perf_counter() - t0
             w1, c1 = client.run(time.process_time), time.process_time()
             cpu = sum(w1[w] - w0[w] for w in w1) + c1 - c0
-            busy = store.read()["wall_s"].sum() / (wall * workers)
+            df = store.read()
+            busy = df["wall_s"].sum() / (wall * workers)
+            in_runs = df["cpu_s"].sum()
             client_ms = (c1 - c0) / len(tasks) * 1e3
     if failures:
         raise RuntimeError(f"{len(failures)} tasks failed: {next(iter(failures.values()))}")
-    return runs, wall, cpu, busy, client_ms
+    return runs, wall, cpu, busy, client_ms, idle, in_runs
+
+
+IDLE_S = 5.0
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--workers", default="1,2")
-    ap.add_argument("--stripes", type=int, default=4)
-    ap.add_argument("--chunk", type=int, default=2, help="stripe runs per task (default 2)")
+    ap.add_argument("--stripes", type=int, default=8)
+    ap.add_argument("--chunk", type=int, default=0, help="runs per task (default 0: the study's batching)")
+    ap.add_argument("--records", type=int, default=0, help="records (default: the 9 shipped; more: repeated)")
+    ap.add_argument("--bodies", type=int, default=2, help="bodies, 1 or 2 (default 2)")
+    ap.add_argument("--sample", type=int, default=1,
+                    help="the in-process loop runs every SAMPLE-th task only (its CPU per run is the base)")
     args = ap.parse_args()
     fmu_path = paths.default_fmu()
-    st = study(args.stripes, args.chunk)
+    st = study(args.stripes, args.chunk, args.records, args.bodies)
     with RockingFMU(fmu_path) as fmu:
         tasks = st.tasks(fmu, cluster.fmu_digest(fmu_path))
-        rows = [("in-process, no Dask", 1, *serial(st, fmu, tasks), 1.0, 0.0)]
+        n, wall, cpu = serial(st, fmu, tasks[::args.sample])
+        rows = [("in-process, no Dask", 1, n, wall, cpu, 1.0, 0.0, 0.0, cpu)]
     for n in (int(w) for w in args.workers.split(",")):
         rows.append((f"LocalCluster, {n} worker(s)", n, *on_cluster(n, fmu_path, tasks)))
-    base = next(r[2] / r[3] for r in rows if r[1] == 1 and r[0].startswith("Local"))
     print(f"host: {os.uname().nodename}, {os.cpu_count()} cores, load average before: "
           f"{' '.join(f'{x:.1f}' for x in LOAD)}, after: {' '.join(f'{x:.1f}' for x in os.getloadavg())}")
-    print(f"{len(tasks)} tasks of {args.chunk} run(s)")
+    runs_all = sum(t[3] for t in tasks)
+    print(f"{runs_all} runs in {len(tasks)} tasks ({runs_all / len(tasks):.1f} runs a task)")
     cpu_base = rows[0][4] / rows[0][2]
-    print("| configuration | runs | wall (s) | runs/s | runs/s per core | efficiency | workers busy "
-          "| CPU s per run | CPU / in-process | client CPU per task (ms) |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
-    for name, n, runs, wall, cpu, busy, client_ms in rows:
-        rate = runs / wall
-        print(f"| {name} | {runs} | {wall:.2f} | {rate:.2f} | {rate / n:.2f} | {rate / n / base:.2f} "
-              f"| {busy:.3f} | {cpu / runs:.4f} | {cpu / runs / cpu_base:.3f} | {client_ms:.1f} |")
+    print("| configuration | runs | wall (s) | runs/s | workers busy | CPU s per run | CPU in runs per run "
+          "| overhead (% of the runs' CPU) | CPU efficiency | client CPU per task (ms) | idle cluster (% of a core) "
+          "| overhead net of idle (%) | against the in-process loop (%) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for name, n, runs, wall, cpu, busy, client_ms, idle, in_runs in rows:
+        over = cpu / in_runs - 1
+        net = (cpu - idle * wall) / in_runs - 1
+        print(f"| {name} | {runs} | {wall:.2f} | {runs / wall:.2f} | {busy:.3f} | {cpu / runs:.4f} "
+              f"| {in_runs / runs:.4f} | {100 * over:.1f} | {1 / (1 + over):.3f} | {client_ms:.1f} "
+              f"| {100 * idle:.1f} | {100 * net:.1f} | {100 * (cpu / runs / cpu_base - 1):.1f} |")
+    print("overhead: CPU of all processes (workers, client, scheduler) over the CPU spent inside the runs "
+          "(each row's cpu_s, measured in the same study); CPU efficiency: 1 / (1 + overhead), what the "
+          "wall-clock efficiency is on an idle machine whose cores the workers do not share; idle cluster: "
+          f"its CPU while it waits ({IDLE_S:g} s before the runs), which grows with the wall time a loaded "
+          "machine stretches; net of idle: the overhead without it; against the in-process loop: CPU per "
+          "run over the loop's, measured at another moment (the load moves it by 10-15 %)")
     return 0
 
 

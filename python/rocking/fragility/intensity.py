@@ -1,7 +1,15 @@
-"""Intensity measures of a ground-motion record: PGA, PGV, SA(T) and PGA / (g tan alpha).
+"""Intensity measures of a ground-motion record: PGA, PGV, SA(T), the averaged spectral
+acceleration AvgSA(T1-T2), and the rocking-specific dimensionless PGA / (g tan alpha) and
+PGV / (g tan alpha / p).
 
-    im = parse("SA(1.0)")           # or "PGA", "PGV", "PGA/gtana"
-    value = im.of(record, alpha=0.2, g=9.81)
+    im = parse("SA(1.0)")           # or "PGA", "PGV", "AvgSA(0.5-2)", "PGA/gtana", "PGV/(gtana/p)"
+    value = im.of(record, alpha=0.2, g=9.81, p=1.57)
+
+AvgSA(T1-T2) is the geometric mean of SA at 10 periods log-spaced from T1 to T2
+(Eads et al. 2015). PGV / (g tan alpha / p), p = sqrt(W R0 / IO) the body's frequency
+parameter (rad/s), is the velocity measure of rocking's dimensional analysis
+(Dimitrakopoulos & DeJong 2012): g tan alpha / p is the ground velocity scale at
+which a body of that size and slenderness responds alike.
 
 Every measure here is proportional to the record's scale factor, so a target
 intensity x is reached with the scale x / im.of(record).
@@ -33,6 +41,8 @@ from ..groundmotion.units import G
 
 #: Damping ratio of the spectral accelerations.
 ZETA = 0.05
+#: Periods AvgSA averages over.
+AVGSA_PERIODS = 10
 
 
 def oscillator_matrices(period, dt, zeta=ZETA):
@@ -75,53 +85,87 @@ def spectral_acceleration(acc, dt, period, zeta=ZETA):
 
 @dataclass(frozen=True)
 class IntensityMeasure:
-    """One intensity measure. kind: 'PGA', 'PGV', 'SA' or 'PGA/gtana'; period for SA (s)."""
+    """One intensity measure. kind: 'PGA', 'PGV', 'SA', 'AvgSA', 'PGA/gtana' or
+    'PGV/(gtana/p)'; period for SA, (period, period2) the range of AvgSA (s)."""
 
     kind: str
     period: float = math.nan
+    period2: float = math.nan
 
     @property
     def name(self):
-        return f"SA({self.period:g})" if self.kind == "SA" else self.kind
+        if self.kind == "SA":
+            return f"SA({self.period:g})"
+        if self.kind == "AvgSA":
+            return f"AvgSA({self.period:g}-{self.period2:g})"
+        return self.kind
 
     @property
     def unit(self):
-        return {"PGA": "g", "PGV": "m/s", "SA": "g", "PGA/gtana": "-"}[self.kind]
+        return {"PGA": "g", "PGV": "m/s", "SA": "g", "AvgSA": "g", "PGA/gtana": "-", "PGV/(gtana/p)": "-"}[self.kind]
 
     @property
     def label(self):
         """Axis label."""
         if self.kind == "PGA/gtana":
             return "PGA / (g tan alpha)"
-        text = f"SA(T = {self.period:g} s, 5 %)" if self.kind == "SA" else self.kind
-        return f"{text} ({self.unit})"
+        if self.kind == "PGV/(gtana/p)":
+            return "PGV / (g tan alpha / p)"
+        if self.kind == "SA":
+            return f"SA({self.period:g} s) ({self.unit})"
+        if self.kind == "AvgSA":
+            return f"AvgSA({self.period:g}-{self.period2:g} s) ({self.unit})"
+        return f"{self.kind} ({self.unit})"
 
-    def of(self, record, alpha=None, g=None):
+    def periods(self):
+        """The periods (s) AvgSA averages over."""
+        return np.geomspace(self.period, self.period2, AVGSA_PERIODS)
+
+    def of(self, record, alpha=None, g=None, p=None):
         """Value for the unscaled `record` (a groundmotion Record, acc in m/s²). alpha (rad)
-        and g (m/s², the body's) are needed for PGA/gtana only."""
+        and g (m/s², the body's) are needed for PGA/gtana, with p (rad/s) for PGV/(gtana/p)."""
         if self.kind == "PGA":
             return record.pga / G
         if self.kind == "PGV":
             return record.pgv
         if self.kind == "SA":
             return spectral_acceleration(record.acc, record.dt, self.period) / G
+        if self.kind == "AvgSA":
+            sa = [spectral_acceleration(record.acc, record.dt, t) for t in self.periods()]
+            return float(np.exp(np.mean(np.log(sa)))) / G
         if alpha is None or g is None:
-            raise ValueError("PGA/gtana needs the body's alpha and g")
-        return record.pga / (g * math.tan(alpha))
+            raise ValueError(f"{self.kind} needs the body's alpha and g")
+        if self.kind == "PGA/gtana":
+            return record.pga / (g * math.tan(alpha))
+        if p is None:
+            raise ValueError("PGV/(gtana/p) needs the body's frequency parameter p")
+        return record.pgv * p / (g * math.tan(alpha))
 
 
+_AVGSA = re.compile(r"AVGSA\s*\(\s*(?:T\s*=\s*)?([0-9.eE+]+)\s*(?:-|,|:|TO)\s*([0-9.eE+]+)\s*S?\s*\)$",
+                    re.IGNORECASE)
 _SA = re.compile(r"SA\s*\(?\s*(?:T\s*=\s*)?([0-9.eE+-]+)\s*s?\s*\)?$", re.IGNORECASE)
 
 
 def parse(text):
-    """IntensityMeasure of 'PGA', 'PGV', 'SA(1.0)' (also 'SA1', 'sa(T=0.5s)') or
-    'PGA/gtana'; ValueError naming the choices otherwise."""
+    """IntensityMeasure of 'PGA', 'PGV', 'SA(1.0)' (also 'SA1', 'sa(T=0.5s)'), 'AvgSA(0.5-2)',
+    'PGA/gtana' or 'PGV/(gtana/p)'; ValueError naming the choices otherwise."""
     t = text.strip()
     key = t.upper().replace(" ", "")
     if key in ("PGA", "PGV"):
         return IntensityMeasure(key)
     if key in ("PGA/GTANA", "PGA/GTAN(ALPHA)", "PGA/(GTANALPHA)", "PGA/(GTANA)"):
         return IntensityMeasure("PGA/gtana")
+    if key in ("PGV/(GTANA/P)", "PGVP/GTANA", "PGV*P/(GTANA)", "PGV/(GTAN(ALPHA)/P)"):
+        return IntensityMeasure("PGV/(gtana/p)")
+    m = _AVGSA.match(t.replace(" ", ""))
+    if m:
+        try:
+            t1, t2 = float(m.group(1)), float(m.group(2))
+        except ValueError:
+            t1 = t2 = math.nan
+        if 0 < t1 < t2:
+            return IntensityMeasure("AvgSA", t1, t2)
     m = _SA.match(t)
     if m:
         try:
@@ -130,4 +174,5 @@ def parse(text):
             period = math.nan
         if period > 0:
             return IntensityMeasure("SA", period)
-    raise ValueError(f"intensity measure {text!r}: expected PGA, PGV, SA(T) with T > 0 in s, or PGA/gtana")
+    raise ValueError(f"intensity measure {text!r}: expected PGA, PGV, SA(T) with T > 0 in s, "
+                     "AvgSA(T1-T2) with 0 < T1 < T2, PGA/gtana or PGV/(gtana/p)")

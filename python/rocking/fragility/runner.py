@@ -5,7 +5,7 @@ faster stepping loop behind that method serves the studies unchanged. The
 rows carry only what a fragility needs (no time histories): overturned,
 t_overturn, peak |theta| / alpha, and the run's wall time and error.
 
-A chunk of stripe runs (`run_stripes`) and one record's hunt-and-fill
+A batch of runs at fixed intensities (`run_batch`) and one record's search
 (`run_hunt`, sequential by nature) are the tasks; both never raise for a
 failed run (the error is in the row).
 """
@@ -16,7 +16,7 @@ import socket
 import threading
 import time
 
-from .hunt import HuntOptions, hunt_and_fill
+from .hunt import HuntOptions, hunt_and_fill, unresolved
 
 _FMUS = {}  # the RockingFMU of this process, by FMU digest
 _LOCK = threading.Lock()  # one run at a time per process (RockingFMU is not thread-safe)
@@ -48,9 +48,9 @@ def run_once(fmu, params, record, scale, opts):
 
 
 def _row(job, scale, im, phase, fmu, opts):
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     row = dict(job["meta"], scale=float(scale), im=float(im), phase=phase, overturned=None,
-               t_overturn=math.nan, peak_theta_over_alpha=math.nan, error="",
+               t_overturn=math.nan, peak_theta_over_alpha=math.nan, error="", unresolved="",
                worker=f"{socket.gethostname()}:{os.getpid()}")
     try:
         with _LOCK:
@@ -59,17 +59,23 @@ def _row(job, scale, im, phase, fmu, opts):
     except Exception as exc:  # noqa: BLE001 - the row says what failed
         row["error"] = " ".join(str(exc).split())[:500]
     row["wall_s"] = time.perf_counter() - t0
+    row["cpu_s"] = time.process_time() - c0  # the run's CPU: Dask's overhead is the rest
     return row
 
 
-def run_stripes(digest, job, stripes, opts):
+def run_stripes(digest, job, stripes, opts, phase="stripe"):
     """Rows of `job` (params, record, meta with im_record) at the intensities `stripes`."""
     fmu = process_fmu(digest, opts.get("fmu_path"))
-    return [_row(job, im / job["meta"]["im_record"], im, "stripe", fmu, opts) for im in stripes]
+    return [_row(job, im / job["meta"]["im_record"], im, phase, fmu, opts) for im in stripes]
+
+
+def run_batch(digest, parts, opts, phase="stripe"):
+    """Rows of several jobs' runs in one task: parts [(job, intensities)]."""
+    return [row for job, ims in parts for row in run_stripes(digest, job, ims, opts, phase)]
 
 
 def run_hunt(digest, job, start, hunt, opts):
-    """Rows of one record's hunt-and-fill from intensity `start` (HuntOptions fields in `hunt`)."""
+    """Rows of one record's search for its first collapse from intensity `start` (HuntOptions fields in `hunt`)."""
     fmu = process_fmu(digest, opts.get("fmu_path"))
     rows = []
 
@@ -80,12 +86,16 @@ def run_hunt(digest, job, start, hunt, opts):
             raise _RunFailed(row["error"])
         return row["overturned"], row["peak_theta_over_alpha"]
 
+    options = HuntOptions(**hunt)
     try:
-        trace = hunt_and_fill(collapses, start, HuntOptions(**hunt))
+        trace = hunt_and_fill(collapses, start, options)
         for row, (_, _, _, phase) in zip(rows, trace):
             row["phase"] = phase
+        why = unresolved(trace, options)
     except _RunFailed:
-        pass  # the failed row ends the hunt; it is kept and reported
+        why = "the hunt stopped on a failed run"  # the failed row is kept and reported
+    for row in rows:
+        row["unresolved"] = why
     return rows
 
 

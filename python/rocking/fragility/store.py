@@ -7,6 +7,7 @@ task run twice (a worker lost after it finished) replaces its own file, and
 """
 
 import hashlib
+import json
 import os
 from pathlib import Path
 
@@ -14,14 +15,39 @@ import pyarrow as pa
 import pyarrow.dataset as ds
 import pyarrow.parquet as pq
 
+#: Units of the columns (in the Parquet schema's field metadata, so the table stands alone);
+#: im and im_record are in the unit of im_name (IM_UNITS).
+UNITS = {"im_record": "unit of im_name", "alpha": "rad", "im": "unit of im_name", "scale": "1",
+         "t_overturn": "s", "peak_theta_over_alpha": "1 (peak |theta| / alpha)", "wall_s": "s", "cpu_s": "s"}
+IM_UNITS = {"PGA": "g", "PGV": "m/s", "SA(T)": "g", "AvgSA(T1-T2)": "g", "PGA/gtana": "1",
+            "PGV/(gtana/p)": "1"}
+_DESCRIPTION = {
+    "phase": "hunt, scan, bracket (ida), grid (ida, dense grid) or stripe (msa)",
+    "unresolved": "ida hunts: what the run budget left undone ('' if nothing)",
+    "t_overturn": "time of overturning, nan if the body stood",
+    "wall_s": "wall time of the run in its worker",
+    "cpu_s": "CPU time of the run in its worker (process time)",
+}
+
+
+def _field(name, kind):
+    meta = {}
+    if name in UNITS:
+        meta["unit"] = UNITS[name]
+    if name in _DESCRIPTION:
+        meta["description"] = _DESCRIPTION[name]
+    return pa.field(name, kind, metadata=meta or None)
+
+
 #: Columns of every row, in order (meta columns first).
-SCHEMA = pa.schema([
+SCHEMA = pa.schema([_field(n, k) for n, k in [
     ("task", pa.string()), ("method", pa.string()), ("body", pa.string()), ("record", pa.string()),
     ("im_name", pa.string()), ("im_record", pa.float64()), ("alpha", pa.float64()),
     ("im", pa.float64()), ("scale", pa.float64()), ("phase", pa.string()),
     ("overturned", pa.bool_()), ("t_overturn", pa.float64()), ("peak_theta_over_alpha", pa.float64()),
-    ("error", pa.string()), ("worker", pa.string()), ("wall_s", pa.float64()),
-])
+    ("error", pa.string()), ("unresolved", pa.string()), ("worker", pa.string()), ("wall_s", pa.float64()),
+    ("cpu_s", pa.float64()),
+]], metadata={"im_units": json.dumps(IM_UNITS)})
 
 
 def _file_name(task):
