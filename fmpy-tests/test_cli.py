@@ -332,6 +332,26 @@ def test_simulate_tail_and_outputs(fmu_path, tmp_path):
     assert "--tail" in line and "RECORD" in line
 
 
+def test_simulate_reports_the_friction_demand_against_mu(fmu_path, tmp_path):
+    """A rigid block held at rest by a constant ag (below uplift) needs a friction coefficient of
+    |ag|/g (Fx = m ag, Fz = W): the summary's peak demand is that, and --mu flags it only when the
+    demand is above mu (docs/model.md §5, "Friction demand")."""
+    ag = 0.8  # m/s2: 0.0816 g, below uplift of the default 0.5 x 2.5 m block (g tan(alpha) = 1.96 m/s2)
+    record = tmp_path / "constant.csv"
+    record.write_text("time,acc\n" + "".join(f"{k * 0.01:.2f},{ag}\n" for k in range(101)))
+    for mu, exceeds in [(0.05, True), (0.2, False)]:
+        out = tmp_path / f"mu{mu}"
+        proc = ok("simulate", record, "--units", "m/s2", "--interface", "rigid", "--mu", mu, "--out", out)
+        friction = json.loads((out / "summary.json").read_text())["friction"]
+        assert friction["peak_demand"] == pytest.approx(ag / 9.81, rel=1e-12)
+        assert friction["mu"] == mu and friction["exceeds_mu"] is exceeds
+        assert (friction["t_first_exceeds_s"] == 0.0) if exceeds else friction["t_first_exceeds_s"] is None
+        assert ("EXCEEDS mu" in proc.stdout) is exceeds
+    out = tmp_path / "nomu"
+    ok("simulate", record, "--units", "m/s2", "--interface", "rigid", "--out", out)
+    assert json.loads((out / "summary.json").read_text())["friction"]["exceeds_mu"] is None
+
+
 # --------------------------------------------------------------------------
 # sweep
 

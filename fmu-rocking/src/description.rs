@@ -740,6 +740,26 @@ mod tests {
         ROCKING_BLOCK.check().unwrap();
     }
 
+    /// The enumeration codes fmu-rocking/README.md gives fmpy users ("From
+    /// fmpy, on the first try") are this table's, for every enumeration
+    /// parameter.
+    #[test]
+    fn the_readme_lists_every_enumeration_code() {
+        let readme = include_str!("../README.md");
+        for v in VARIABLES {
+            if let Type::Enumeration { declared_type, .. } = v.ty {
+                let t = ROCKING_BLOCK.enum_type(declared_type).unwrap();
+                let items: Vec<String> = t
+                    .items
+                    .iter()
+                    .map(|i| format!("{}: `{}`", i.value, i.name))
+                    .collect();
+                let row = format!("| `{}` | {} |", v.name, items.join(", "));
+                assert!(readme.contains(&row), "README.md lacks the row {row}");
+            }
+        }
+    }
+
     #[test]
     fn sorted_by_value_reference() {
         for (i, v) in VARIABLES.iter().enumerate() {

@@ -110,7 +110,7 @@ impl RockingSlave {
             self.sliding.warned = true;
             log.warn(format!(
                 "frictionDemand = {demand} > mu = {mu} at t = {}: the base would slide, which the model does not \
-                 represent (it assumes no sliding); results from here on overstate rocking",
+                 represent (it assumes no sliding): the results from here on lie outside its assumptions",
                 self.state.t
             ));
         }
@@ -149,7 +149,7 @@ impl Slave for RockingSlave {
             ));
         }
         let mu = values.real(vr::MU);
-        if !(mu >= 0.0) {
+        if mu.is_nan() || mu < 0.0 {
             return Err(format!(
                 "mu = {mu}: the friction coefficient must be >= 0 (0: no sliding check)"
             ));

@@ -95,7 +95,8 @@ def cmd_simulate(args, params_given):
         if args.record:
             rec, fmt = horizontal_record(args.record, args.component, args.units, args.fmt)
         columns = chosen_outputs(fmu, args.outputs)
-        outputs = list(dict.fromkeys([o for o in SIMULATE_OUTPUTS if o in fmu.variables] + columns))
+        outputs = list(dict.fromkeys([o for o in (*SIMULATE_OUTPUTS, "frictionDemand") if o in fmu.variables]
+                                     + columns))
         stop_time = stop_time_of(args, rec)
         try:
             run = fmu.simulate(params, record=rec, scale=args.scale, stop_time=stop_time,
@@ -140,6 +141,8 @@ def cmd_simulate(args, params_given):
         "t_overturn_s": run.t_overturn if run.overturned else None,
         "impacts": int(last["impacts"]) if "impacts" in outputs else run.impacts,
     }
+    if "frictionDemand" in outputs:
+        summary["friction"] = friction_summary(t, res["frictionDemand"], params.get("mu", 0.0))
     if "zeroCrossings" in outputs:
         summary["zeroCrossings"] = int(last["zeroCrossings"])
     if "regime" in outputs:
@@ -153,6 +156,21 @@ def cmd_simulate(args, params_given):
     plot_simulation(png_path, table, summary, regimes, rec, args)  # plots.py
     print(summary_text(summary, out))
     return 0
+
+
+def friction_summary(t, demand, mu):
+    """The peak friction demand |Fx|/Fz over the samples, and whether it exceeds the base's
+    coefficient `mu` (0: not checked) and first when (docs/model.md §5, "Friction demand")."""
+    import numpy as np
+
+    k = int(np.argmax(demand))
+    s = {"peak_demand": float(demand[k]), "t_peak_s": float(t[k]), "mu": float(mu) if mu else None,
+         "exceeds_mu": None, "t_first_exceeds_s": None}
+    if mu:
+        over = np.flatnonzero(demand > mu)
+        s["exceeds_mu"] = bool(over.size)
+        s["t_first_exceeds_s"] = float(t[over[0]]) if over.size else None
+    return s
 
 
 def _json_default(value):
@@ -188,9 +206,21 @@ def summary_text(s, out):
     lines.append(f"counts      {counts}")
     if "regimes_reached" in s:
         lines.append(f"regimes     {', '.join(s['regimes_reached'])}")
+    if "friction" in s:
+        lines.append(f"friction    {friction_text(s['friction'])}")
     lines.append(f"wrote       {out / s['files']['timehistory']}, {out / 'summary.json'}, "
                  f"{out / s['files']['plot']}  ({s['rows']} rows, {s['wall_s']:.2f} s)")
     return "\n".join(lines)
+
+
+def friction_text(f):
+    text = f"peak |Fx|/Fz = {f['peak_demand']:.4g} at t = {f['t_peak_s']:.4f} s"
+    if f["mu"] is None:
+        return text + " (no sliding check: give --mu)"
+    if f["exceeds_mu"]:
+        return (text + f"; EXCEEDS mu = {f['mu']:g} from t = {f['t_first_exceeds_s']:.4f} s: the base would "
+                "slide, which the model does not represent")
+    return text + f"; below mu = {f['mu']:g}: no sliding"
 
 
 def register(sub, common):
@@ -206,7 +236,8 @@ def register(sub, common):
               "                        [--outputs A,B,...] [--rtol R] --out DIR",
         description=textwrap.fill(
             "Run one case through the FMU and write DIR/timehistory.csv (time, ag and the outputs), "
-            "DIR/summary.json (peak theta, overturning and its time, impacts, regimes, PGA) and "
+            "DIR/summary.json (peak theta, overturning and its time, impacts, regimes, PGA, "
+            "the peak friction demand |Fx|/Fz against --mu) and "
             "DIR/plot.png. Any FMU parameter can be given by its name, e.g. --shape hollowCircle "
             "--Ro 3.99 --kn 2e9 (theta and omega set the initial conditions); they override the preset's.", 100),
         epilog=textwrap.fill(f"presets: {NAMING}. `rocking info --presets` lists them; `rocking info` lists "
