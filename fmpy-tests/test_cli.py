@@ -579,3 +579,20 @@ def test_error_params_file(fmu_path, tmp_path):
     bad.write_text('{"Wt": 500}')
     line = fails("simulate", "--params", bad, "--out", tmp_path)
     assert "body.json: Wt" in line and "W" in line.split("did you mean", 1)[1]
+
+
+def test_summaries_are_strict_json():
+    """NaN and infinities become null: JSON has neither, and strict readers refuse the `NaN` that
+    json.dumps writes by default."""
+    import math
+
+    from rocking import jsonfile
+
+    text = jsonfile.dumps({"a": math.nan, "b": [1.0, math.inf, np.float64(-math.inf)], "c": np.float32(0.5),
+                           "d": {"e": np.array([2.0, math.nan])}})
+
+    def refuse(name):
+        raise ValueError(name)
+
+    assert json.loads(text, parse_constant=refuse) == {"a": None, "b": [1.0, None, None], "c": 0.5,
+                                                       "d": {"e": [2.0, None]}}

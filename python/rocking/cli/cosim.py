@@ -37,6 +37,7 @@ import textwrap
 import tomllib
 from pathlib import Path
 
+from .. import jsonfile
 from .common import CLIError, horizontal_record
 
 SECTIONS = {"frame", "block", "ground", "coupling"}
@@ -185,7 +186,7 @@ def cmd_cosim(args, _params):
                "steps": res.steps, "rejected_steps": res.rejected, "wall_s": res.wall,
                "error_against_reference": check,
                "files": {"timehistory": "timehistory.csv", "plot": "plot.png"}}
-    (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    jsonfile.write(out / "summary.json", summary)
     plot_cosim(out / "plot.png", res, calc["alpha"], calc["thetaOv"])
     outcome = (f"OVERTURNED at t = {res.t_overturn:.4f} s (the frame's state kept at that time)"
                if res.overturned else f"stands until t = {res.time[-1]:g} s")

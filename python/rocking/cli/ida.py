@@ -14,7 +14,6 @@ command resumes (finished tasks are skipped by key).
 """
 
 import argparse
-import json
 import math
 import re
 import sys
@@ -23,6 +22,7 @@ import time
 import tomllib
 from pathlib import Path
 
+from .. import jsonfile
 from .common import CLIError, check_parameter, fmu_path, open_fmu
 from .sweep import parse_scales
 
@@ -499,15 +499,9 @@ def write_outputs(out, study, df, result, args, opts):
     summary = dict(method=study.method, im=im.name, im_unit=im.unit, records=list(study.suite),
                    stations={n: station_of(n) for n in study.suite}, synthetic_records=stand_in, options=options,
                    runs=int(len(df)), failed_runs=int(len(failed)), bodies=bodies_json)
-    (out / "summary.json").write_text(json.dumps(summary, indent=2, default=_json) + "\n")
+    jsonfile.write(out / "summary.json", summary)
     lines.append(f"wrote {out / 'runs'}/, {out / 'summary.json'}, {out / 'fragility.png'}"
                  + (", ida-*.png" if study.method == "ida" else ""))
     return "\n".join(lines)
 
 
-def _json(value):
-    if hasattr(value, "item"):
-        return value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    raise TypeError(type(value).__name__)

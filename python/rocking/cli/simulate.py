@@ -1,13 +1,13 @@
 """`rocking simulate`: one run through the FMU -> time history CSV, summary JSON, plot."""
 
 import argparse
-import json
 import math
 import re
 import sys
 import textwrap
 from pathlib import Path
 
+from .. import jsonfile
 from ..fmu import FMUError
 from .common import (FMU_HELP, CLIError, add_record_options, check_parameter, drop_unused, horizontal_record, open_fmu,
                      read_params_file, record_facts, seconds, unit_of)
@@ -152,7 +152,7 @@ def cmd_simulate(args, params_given):
     summary["units"] = {"time": "s", "ag": "m/s2", **units}
     summary["wall_s"] = run.wall
     summary["files"] = {"timehistory": csv_path.name, "plot": png_path.name}
-    json_path.write_text(json.dumps(summary, indent=2, default=_json_default) + "\n")
+    jsonfile.write(json_path, summary)
     plot_simulation(png_path, table, summary, regimes, rec, args)  # plots.py
     print(summary_text(summary, out))
     return 0
@@ -173,10 +173,6 @@ def friction_summary(t, demand, mu):
     return s
 
 
-def _json_default(value):
-    if hasattr(value, "item"):
-        return value.item()
-    raise TypeError(type(value).__name__)
 
 
 def summary_text(s, out):
