@@ -524,4 +524,16 @@ impl Simulator {
     pub fn advance_to_event(&self, state: &mut State, t_end: f64, input: GroundInput) -> Events {
         self.run(state, t_end, input, VerticalInput::default(), true)
     }
+
+    /// [`advance_to_event`](Self::advance_to_event) under a vertical ground
+    /// acceleration too.
+    pub fn advance_to_event_vertical(
+        &self,
+        state: &mut State,
+        t_end: f64,
+        input: GroundInput,
+        vertical: VerticalInput,
+    ) -> Events {
+        self.run(state, t_end, input, vertical, true)
+    }
 }
