@@ -9,7 +9,10 @@ use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
 use fmi2_export::model_description::ModelDescription;
 use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Update, Values};
 use rocking::dynamics::continuous::Continuous;
-use rocking::dynamics::{GroundInput, OutputRates, Outputs, Simulator, State, WorkLimit};
+use rocking::dynamics::{
+    GroundInput, OutOfRange, OutputRates, Outputs, Simulator, State, Terminal, VerticalInput,
+    WorkLimit,
+};
 use rocking::{Params, Regime};
 
 /// Largest |ag| a step accepts, m/s2 (far beyond any ground motion; the
@@ -27,12 +30,17 @@ pub struct RockingSlave {
     side: f64,
     /// Model Exchange: `|omega|` after the last impact of a rigid body, rad/s.
     left_with: f64,
-    /// Outputs at `state` for the ground acceleration with these bits.
-    cache: Option<(u64, Outputs)>,
+    /// Outputs at `state` for the ground accelerations `(ag, av)` with these bits.
+    cache: Option<(u64, u64, Outputs)>,
     /// Output derivatives at `state` for the ground input `(ag, dag/dt)`
     /// with these bits.
     rates: Option<(u64, u64, OutputRates)>,
+    /// The input left the model's range (docs/model.md §6.5): `regime` 5.
+    terminal: Option<Terminal>,
 }
+
+/// `regime` once the input has left the model's range (docs/model.md §6.5).
+const REGIME_OUT_OF_RANGE: i32 = 5;
 
 /// The physics parameters from the stored values (table: [`crate::params`]).
 pub fn params(v: Values<'_>) -> Result<Params, String> {
@@ -50,12 +58,12 @@ fn regime_name(r: Regime) -> &'static str {
 }
 
 impl RockingSlave {
-    fn outputs(&mut self, ag: f64) -> Outputs {
+    fn outputs(&mut self, ag: f64, av: f64) -> Outputs {
         match self.cache {
-            Some((bits, o)) if bits == ag.to_bits() => o,
+            Some((a, v, o)) if (a, v) == (ag.to_bits(), av.to_bits()) => o,
             _ => {
-                let o = self.sim.outputs(&self.state, ag);
-                self.cache = Some((ag.to_bits(), o));
+                let o = self.sim.outputs_vertical(&self.state, ag, av);
+                self.cache = Some((ag.to_bits(), av.to_bits(), o));
                 o
             }
         }
@@ -81,12 +89,30 @@ impl RockingSlave {
         )
     }
 
-    fn regime(&mut self, ag: f64) -> Regime {
+    fn regime(&mut self, ag: f64, av: f64) -> Regime {
         if self.state.overturned {
             Regime::Overturned
         } else {
-            self.outputs(ag).regime
+            self.outputs(ag, av).regime
         }
+    }
+
+    /// The vertical input of a step, checked (docs/model.md §8).
+    fn vertical(inputs: &Inputs<'_>, h: f64) -> Result<VerticalInput, String> {
+        let av = inputs.real(vr::AV);
+        let dav = inputs.derivative(vr::AV);
+        if !(av.is_finite() && dav.is_finite()) {
+            return Err(format!(
+                "av = {av}, dav/dt = {dav}: the input must be finite"
+            ));
+        }
+        let a_end = av + dav * h;
+        if av.abs().max(a_end.abs()) > MAX_GROUND_ACCELERATION {
+            return Err(format!(
+                "av = {av} at the start of the step, {a_end} at its end: |av| must be <= {MAX_GROUND_ACCELERATION:e} m/s2"
+            ));
+        }
+        Ok(VerticalInput { av, dav })
     }
 }
 
@@ -126,6 +152,7 @@ impl Slave for RockingSlave {
             left_with: c.left_with,
             cache: None,
             rates: None,
+            terminal: None,
         })
     }
 
@@ -133,6 +160,7 @@ impl Slave for RockingSlave {
         let m = &self.sim.model;
         let b = &m.body;
         let ag = inputs.real(vr::AG);
+        let av = inputs.real(vr::AV);
         let x = match r {
             vr::THETA => self.state.theta,
             vr::OMEGA => self.state.omega,
@@ -146,12 +174,13 @@ impl Slave for RockingSlave {
             vr::THETA_JO => m.interface.theta_jo(),
             vr::THETA_C => m.interface.theta_c(),
             vr::THETA_OV => m.theta_ov,
-            vr::ANGULAR_ACCELERATION => self.outputs(ag).theta_dd,
-            vr::AF => self.outputs(ag).af,
-            vr::CONTACT_LENGTH => self.outputs(ag).contact_length,
-            vr::MR => self.outputs(ag).mr,
-            vr::FX => self.outputs(ag).fx,
-            vr::FZ => self.outputs(ag).fz,
+            vr::ANGULAR_ACCELERATION => self.outputs(ag, av).theta_dd,
+            vr::AF => self.outputs(ag, av).af,
+            vr::CONTACT_LENGTH => self.outputs(ag, av).contact_length,
+            vr::MR => self.outputs(ag, av).mr,
+            vr::FX => self.outputs(ag, av).fx,
+            vr::FZ => self.outputs(ag, av).fz,
+            vr::APPARENT_WEIGHT => self.outputs(ag, av).apparent_weight,
             vr::DER_THETA | vr::DER_OMEGA => self.me_derivative(r, inputs)?,
             _ => return Err(format!("no computed Real with value reference {r}")),
         };
@@ -166,7 +195,8 @@ impl Slave for RockingSlave {
 
     fn get_integer(&mut self, r: u32, inputs: Inputs<'_>) -> Result<i32, String> {
         match r {
-            vr::REGIME => Ok(self.regime(inputs.real(vr::AG)) as i32),
+            vr::REGIME if self.terminal.is_some() => Ok(REGIME_OUT_OF_RANGE),
+            vr::REGIME => Ok(self.regime(inputs.real(vr::AG), inputs.real(vr::AV)) as i32),
             vr::IMPACTS => Ok(i32::try_from(self.state.impacts).unwrap_or(i32::MAX)),
             vr::ZERO_CROSSINGS => Ok(i32::try_from(self.state.zero_crossings).unwrap_or(i32::MAX)),
             _ => Err(format!("no computed Integer with value reference {r}")),
@@ -186,6 +216,12 @@ impl Slave for RockingSlave {
             ag,
             dag: inputs.derivative(vr::AG),
         };
+        let (av, dav) = (inputs.real(vr::AV), inputs.derivative(vr::AV));
+        if av != 0.0 || dav != 0.0 {
+            return Err(format!(
+                "av = {av}, dav/dt = {dav}: output derivatives are available only without a vertical input (av = 0)"
+            ));
+        }
         // the FMI layer has checked 1 <= order <= maxOutputDerivativeOrder
         let k = match order {
             1 | 2 => order as usize,
@@ -233,15 +269,28 @@ impl Slave for RockingSlave {
                 "ag = {ag} at the start of the step, {a_end} at its end: |ag| must be <= {MAX_GROUND_ACCELERATION:e} m/s2"
             ));
         }
+        let v = Self::vertical(&inputs, h)?;
         if self.state.overturned {
             return Ok(StepEnd::Terminated {
                 time: self.state.t,
                 reason: "the body has already overturned".into(),
             });
         }
-        let before = log.enabled().then(|| self.regime(ag));
+        if let Some(term) = self.terminal {
+            return Ok(StepEnd::Terminated {
+                time: term.t,
+                reason: format!(
+                    "the run ended at t = {} ({})",
+                    term.t,
+                    term.condition.name()
+                ),
+            });
+        }
+        let before = log.enabled().then(|| self.regime(ag, v.av));
         let mut s = self.state;
-        let ev = self.sim.advance(&mut s, t + h, GroundInput { ag, dag });
+        let ev = self
+            .sim
+            .advance_vertical(&mut s, t + h, GroundInput { ag, dag }, v);
         if !(s.theta.is_finite() && s.omega.is_finite() && s.t.is_finite()) {
             return Err(format!(
                 "the integration produced a non-finite state (theta = {}, omega = {}) at t = {}",
@@ -272,7 +321,7 @@ impl Slave for RockingSlave {
                 log.event(format!("came to rest in ({t}, {}]", t + h));
             }
             let a_end = ag + dag * h;
-            let after = self.regime(a_end);
+            let after = self.regime(a_end, v.av + v.dav * h);
             if let Some(b) = before {
                 if b != after {
                     log.event(format!(
@@ -299,6 +348,23 @@ impl Slave for RockingSlave {
                 ),
             });
         }
+        if let Some(term) = ev.terminal {
+            self.terminal = Some(term);
+            let why = match term.condition {
+                OutOfRange::LiftOff => "the apparent weight N = m (g + av) reached 0: the body leaves the ground (free flight is not modelled)",
+                OutOfRange::BaseCrushing => "the apparent weight N reached fm A: the whole section crushes",
+                OutOfRange::RestUnstable => "N hG reached kn Is: the rest position is unstable",
+            };
+            return Ok(StepEnd::Terminated {
+                time: term.t,
+                reason: format!(
+                    "{} at t = {}: av = {} m/s2; {why}",
+                    term.condition.name(),
+                    term.t,
+                    term.av
+                ),
+            });
+        }
         if let Some(l) = ev.limited {
             let max_steps = self.sim.work_limit.map_or(0, |w| w.per_call);
             return Ok(StepEnd::Stopped {
@@ -319,6 +385,8 @@ impl Slave for RockingSlave {
     }
 
     fn set_state(&mut self, c: Continuous) {
+        // a state saved before the input left the range is in it
+        self.terminal = None;
         self.store(c);
     }
 

@@ -12,7 +12,7 @@ use host::*;
 use pulse::pulse;
 
 const NX: usize = 2;
-const NZ: usize = 9;
+const NZ: usize = fmu_rocking::description::EVENT_INDICATORS as usize;
 
 /// The Model Exchange calls of one instance.
 struct Me(Host);

@@ -267,7 +267,7 @@ pub(super) fn count_crossing(st: &mut State, ev: &mut Events) {
 impl Simulator {
     /// The restitution rule (docs/model.md §3), at every zero crossing: the
     /// angular velocity after the crossing from the one before, rad/s.
-    fn restitution(&self, omega: f64) -> f64 {
+    pub(super) fn restitution(&self, omega: f64) -> f64 {
         match self.model.restraint {
             // docs/model.md §7.1: the restraint reverses the motion
             Some(r) => -r.e * omega,
@@ -283,7 +283,7 @@ impl Simulator {
     /// `I(0) omega²/(2 m side ag hG) < 1e-13 alpha` (the bounces accumulate),
     /// or stopped dead (`omega = 0`) and not pushed away, or without any
     /// ground motion below the error floor ([`settles`](Self::settles)).
-    fn rests_on_restraint(&self, omega: f64, ag: f64, av: f64, quiet: bool) -> bool {
+    pub(super) fn rests_on_restraint(&self, omega: f64, ag: f64, av: f64, quiet: bool) -> bool {
         let Some(r) = self.model.restraint else {
             return false;
         };
