@@ -268,6 +268,26 @@ impl Interface {
         self.solve(phi, n, regime, a_hint)
     }
 
+    /// The event functions of docs/model.md §6.4 at `phi` under the bed
+    /// resultant `n`, relative to `n`: `1 - Nbed(D, phi)/n`, positive while
+    /// the heel is closed (`a > D`), and `1 - Nbed(a1, phi)/n`
+    /// (`a1 = fm/(kn phi)`), positive while the toe crushes (`xp > 0`).
+    /// At `phi = 0` (and for `phi <= 0`) `[1, -1]`.
+    pub fn bed_margins(&self, phi: f64, n: f64) -> [f64; 2] {
+        if phi <= 0.0 || self.law == Law::Rigid {
+            return [1.0, -1.0];
+        }
+        let k = self.kn * phi;
+        let a1 = self.fm / k;
+        let heel = 1.0 - self.resultants(k, a1, self.d).n / n;
+        let toe = if a1.is_finite() {
+            1.0 - self.resultants(k, a1, a1).n / n
+        } else {
+            -1.0
+        };
+        [heel, toe]
+    }
+
     /// The equilibrium `Nbed(a, phi) = w` in the given regime: the contact
     /// and the elastic zone's centroid `xel` (m from the toe).
     #[inline(always)]

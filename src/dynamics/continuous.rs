@@ -148,6 +148,16 @@ impl Simulator {
             return z;
         }
         z[0] = c.side * st.theta;
+        if av != 0.0 && !self.is_rigid() {
+            // the thresholds move with N (docs/model.md §6.4): joint opening
+            // and crushing onset from the bed resultant (the corners of a
+            // hollow section's width are left to the host's error control)
+            let n = self.model.body.weight + self.model.body.mass * av;
+            let [heel, toe] = self.model.interface.bed_margins(phi, n);
+            z[3] = heel;
+            z[4] = toe;
+            return z;
+        }
         for (zi, level) in z[3..].iter_mut().zip(self.kinks.as_slice()) {
             *zi = phi - level;
         }
