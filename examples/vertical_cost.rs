@@ -14,7 +14,6 @@
 use rocking::dynamics::{GroundInput, Simulator, VerticalInput};
 use rocking::model::LawKind;
 use rocking::Params;
-use std::time::Instant;
 
 const DT: f64 = 0.01;
 const N: usize = 2000;
@@ -59,7 +58,7 @@ fn run(sim: &Simulator, ag: &[f64], av: &[f64]) -> u64 {
 
 /// CPU time of the process so far, s.
 fn cpu() -> f64 {
-    let mut ts = libc_timespec {
+    let mut ts = Timespec {
         tv_sec: 0,
         tv_nsec: 0,
     };
@@ -69,13 +68,13 @@ fn cpu() -> f64 {
 }
 
 #[repr(C)]
-struct libc_timespec {
+struct Timespec {
     tv_sec: i64,
     tv_nsec: i64,
 }
 
 extern "C" {
-    fn clock_gettime(clk: i32, ts: *mut libc_timespec) -> i32;
+    fn clock_gettime(clk: i32, ts: *mut Timespec) -> i32;
 }
 
 fn main() {

@@ -317,7 +317,7 @@ fn me_host_reproduces_co_simulation_under_constant_av_and_one_sided() {
     compare(
         &with(&[("av", -0.3 * 9.81)]),
         &[("interface", enums::RIGID)],
-        -1.0 * g_tan,
+        -g_tan,
         1e-8,
     );
     compare(

@@ -99,7 +99,10 @@ impl Simulator {
     /// constant `av` (or `av = 0`) this is the co-simulation's equation.
     pub fn derivatives_vertical(&self, c: &Continuous, ag: f64, av: f64) -> [f64; 2] {
         let st = &c.state;
-        if st.overturned || (st.at_rest && self.is_rigid()) {
+        // a one-sided body at rest is held by the restraint (docs/model.md
+        // §7.1) until the uplift indicator fires
+        let held = self.is_rigid() || self.model.restraint.is_some();
+        if st.overturned || (st.at_rest && held) {
             return [0.0, 0.0];
         }
         let eom = Eom::with_vertical(
@@ -293,7 +296,8 @@ impl Simulator {
         if st.theta.abs() > self.model.interface.theta_jo() {
             st.opened = true;
         }
-        if st.at_rest && !self.is_rigid() && (st.theta != 0.0 || st.omega != 0.0) {
+        let held = self.is_rigid() || self.model.restraint.is_some();
+        if st.at_rest && !held && (st.theta != 0.0 || st.omega != 0.0) {
             // a flexible body leaves rest on the side the ground pushed it to
             st.at_rest = false;
             c.side = self.side(st.theta, st.omega, 0.0);

@@ -46,7 +46,7 @@ impl Simulator {
         let out = self.out_of_range(vertical, tau_end);
         let tau_stop = out.map_or(tau_end, |(tau, _)| tau);
         let mut ev = if tau_stop > 0.0 {
-            self.run_local(st, t0, tau_stop, input, vertical, stop_at_event, budget)
+            self.run_local(st, t0, tau_stop, (input, vertical), stop_at_event, budget)
         } else {
             Events::default()
         };
@@ -81,8 +81,7 @@ impl Simulator {
         st: &mut State,
         t0: f64,
         t_end: f64,
-        input: GroundInput,
-        vertical: VerticalInput,
+        (input, vertical): (GroundInput, VerticalInput),
         stop_at_event: bool,
         budget: Option<u64>,
     ) -> Events {
