@@ -97,22 +97,25 @@ impl RockingSlave {
         }
     }
 
-    /// The vertical input of a step, checked (docs/model.md §8).
-    fn vertical(inputs: &Inputs<'_>, h: f64) -> Result<VerticalInput, String> {
-        let av = inputs.real(vr::AV);
-        let dav = inputs.derivative(vr::AV);
-        if !(av.is_finite() && dav.is_finite()) {
+    /// The input `name` over a step of `h` s, `(x, dx/dt)`, checked: finite,
+    /// and `|x| <= MAX_GROUND_ACCELERATION` at both ends of the step.
+    fn input_line(inputs: &Inputs<'_>, r: u32, name: &str, h: f64) -> Result<(f64, f64), String> {
+        let (x, dx) = (inputs.real(r), inputs.derivative(r));
+        if !(x.is_finite() && dx.is_finite()) {
             return Err(format!(
-                "av = {av}, dav/dt = {dav}: the input must be finite"
+                "{name} = {x}, d{name}/dt = {dx}: the input must be finite"
             ));
         }
-        let a_end = av + dav * h;
-        if av.abs().max(a_end.abs()) > MAX_GROUND_ACCELERATION {
+        // Beyond this the equations of motion overflow on the way to
+        // overturning and the integrator cannot finish the step (the limit
+        // itself is far above any ground motion and costs microseconds).
+        let x_end = x + dx * h;
+        if x.abs().max(x_end.abs()) > MAX_GROUND_ACCELERATION {
             return Err(format!(
-                "av = {av} at the start of the step, {a_end} at its end: |av| must be <= {MAX_GROUND_ACCELERATION:e} m/s2"
+                "{name} = {x} at the start of the step, {x_end} at its end: |{name}| must be <= {MAX_GROUND_ACCELERATION:e} m/s2"
             ));
         }
-        Ok(VerticalInput { av, dav })
+        Ok((x, dx))
     }
 }
 
@@ -253,23 +256,10 @@ impl Slave for RockingSlave {
         inputs: Inputs<'_>,
         log: &mut EventLog,
     ) -> Result<StepEnd, String> {
-        let ag = inputs.real(vr::AG);
-        let dag = inputs.derivative(vr::AG);
-        if !(ag.is_finite() && dag.is_finite()) {
-            return Err(format!(
-                "ag = {ag}, dag/dt = {dag}: the input must be finite"
-            ));
-        }
-        // Beyond this the equations of motion overflow on the way to
-        // overturning and the integrator cannot finish the step (the limit
-        // itself is far above any ground motion and costs microseconds).
-        let a_end = ag + dag * h;
-        if ag.abs().max(a_end.abs()) > MAX_GROUND_ACCELERATION {
-            return Err(format!(
-                "ag = {ag} at the start of the step, {a_end} at its end: |ag| must be <= {MAX_GROUND_ACCELERATION:e} m/s2"
-            ));
-        }
-        let v = Self::vertical(&inputs, h)?;
+        let (ag, dag) = Self::input_line(&inputs, vr::AG, "ag", h)?;
+        // docs/model.md §7.4: av is checked like ag
+        let (av, dav) = Self::input_line(&inputs, vr::AV, "av", h)?;
+        let v = VerticalInput { av, dav };
         if self.state.overturned {
             return Ok(StepEnd::Terminated {
                 time: self.state.t,

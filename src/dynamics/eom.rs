@@ -154,13 +154,7 @@ impl<'a> Eom<'a> {
         side: f64,
         hint: &mut f64,
     ) -> f64 {
-        let s = if theta > 0.0 {
-            1.0
-        } else if theta < 0.0 {
-            -1.0
-        } else {
-            side
-        };
+        let s = toe(theta, side);
         let phi = theta.abs();
         let model = &self.sim.model;
         let (c, daf_dn) = if model.interface.is_elastic() {
@@ -187,13 +181,7 @@ impl<'a> Eom<'a> {
 
     #[inline]
     fn accel_flexible(&self, ag: f64, theta: f64, omega: f64, side: f64, hint: &mut f64) -> f64 {
-        let s = if theta > 0.0 {
-            1.0
-        } else if theta < 0.0 {
-            -1.0
-        } else {
-            side
-        };
+        let s = toe(theta, side);
         let phi = theta.abs();
         let c = self.sim.reaction(phi, *hint);
         if c.a.is_finite() {
@@ -205,6 +193,18 @@ impl<'a> Eom<'a> {
             num -= 0.5 * s * l.dinertia * omega * omega;
         }
         num / l.inertia
+    }
+}
+
+/// The sign of `theta`, `side` at `theta = 0` (a flexible law's toe).
+#[inline(always)]
+fn toe(theta: f64, side: f64) -> f64 {
+    if theta > 0.0 {
+        1.0
+    } else if theta < 0.0 {
+        -1.0
+    } else {
+        side
     }
 }
 
