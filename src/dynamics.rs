@@ -525,6 +525,25 @@ impl Simulator {
         self.run(state, t_end, input, VerticalInput::default(), true)
     }
 
+    /// A jump of the vertical input from `av_before` to `av_after` (m/s²)
+    /// between two calls (a zero-order-hold host): the apparent weight
+    /// jumps, and with it `I(phi, N)`; the kinetic energy `I omega²/2` stays
+    /// continuous, `omega+ = omega- sqrt(I(phi, N-)/I(phi, N+))`
+    /// (docs/model.md §6.2). The rigid law's `IO` does not depend on N.
+    pub fn vertical_jump(&self, st: &mut State, av_before: f64, av_after: f64) {
+        let m = &self.model;
+        if av_before == av_after || st.at_rest || m.interface.law() == Law::Rigid {
+            return;
+        }
+        let b = &m.body;
+        let phi = st.theta.abs();
+        let inertia = |av: f64| {
+            let (c, _) = m.contact_loaded(phi, b.weight + b.mass * av);
+            m.levers(phi, &c).inertia
+        };
+        st.omega *= (inertia(av_before) / inertia(av_after)).sqrt();
+    }
+
     /// [`advance_to_event`](Self::advance_to_event) under a vertical ground
     /// acceleration too.
     pub fn advance_to_event_vertical(

@@ -393,3 +393,36 @@ fn flexible_overturning_at_the_moving_threshold() {
         );
     }
 }
+
+/// A host that holds `av` constant over each step (zero-order hold): N
+/// jumps between calls. Within a call `dN/dt = 0` and the energy is
+/// conserved; at a jump the kinetic energy is ([`Simulator::vertical_jump`])
+/// and the potential changes by `V(phi, N+) - V(phi, N-)`. So `E` minus the
+/// sum of those changes stays at `E0`.
+#[test]
+fn held_av_jumps_keep_the_kinetic_energy() {
+    let m = soft_block();
+    let sim = Simulator::new(m, 1e-12);
+    let b = &m.body;
+    let theta0 = 0.3 * m.theta_ov;
+    let mut st = sim.initial_state(theta0, 0.0);
+    let e0 = energy(&m, b.weight, theta0, 0.0);
+    let (dt, mut prev, mut jumps, mut worst) = (0.01, 0.0, 0.0, 0.0f64);
+    for k in 0..200 {
+        let av = av_of(k as f64 * dt);
+        let (n0, n1) = (b.weight + b.mass * prev, b.weight + b.mass * av);
+        jumps += energy(&m, n1, st.theta, 0.0) - energy(&m, n0, st.theta, 0.0);
+        sim.vertical_jump(&mut st, prev, av);
+        sim.advance_vertical(
+            &mut st,
+            (k + 1) as f64 * dt,
+            GroundInput::default(),
+            VerticalInput { av, dav: 0.0 },
+        );
+        assert!(!st.overturned);
+        worst = worst.max((energy(&m, n1, st.theta, st.omega) - e0 - jumps).abs() / e0);
+        prev = av;
+    }
+    println!("zero-order hold: max |E - E0 - sum of jumps| / E0 = {worst:.2e}");
+    assert!(worst <= 1e-9, "{worst:e}");
+}

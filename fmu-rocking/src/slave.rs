@@ -37,6 +37,9 @@ pub struct RockingSlave {
     rates: Option<(u64, u64, OutputRates)>,
     /// The input left the model's range (docs/model.md §6.5): `regime` 5.
     terminal: Option<Terminal>,
+    /// `av` at the end of the last step (none before the first, or after
+    /// a state was set): a host that holds its inputs makes it jump.
+    av_end: Option<f64>,
 }
 
 /// `regime` once the input has left the model's range (docs/model.md §6.5).
@@ -156,6 +159,7 @@ impl Slave for RockingSlave {
             cache: None,
             rates: None,
             terminal: None,
+            av_end: None,
         })
     }
 
@@ -278,6 +282,9 @@ impl Slave for RockingSlave {
         }
         let before = log.enabled().then(|| self.regime(ag, v.av));
         let mut s = self.state;
+        if let Some(prev) = self.av_end {
+            self.sim.vertical_jump(&mut s, prev, v.av);
+        }
         let ev = self
             .sim
             .advance_vertical(&mut s, t + h, GroundInput { ag, dag }, v);
@@ -288,6 +295,7 @@ impl Slave for RockingSlave {
             ));
         }
         self.state = s;
+        self.av_end = Some(v.av + v.dav * (s.t - t));
         self.cache = None;
         self.rates = None;
         if log.enabled() {
@@ -377,6 +385,7 @@ impl Slave for RockingSlave {
     fn set_state(&mut self, c: Continuous) {
         // a state saved before the input left the range is in it
         self.terminal = None;
+        self.av_end = None;
         self.store(c);
     }
 
