@@ -4,7 +4,7 @@
 //! (`shiftingPivot`; `costa` drops the `omega^2` term; the rigid law has
 //! `af = 0`, `I = IO` and both coincide), with `phi = |theta|`, `s = sgn theta`.
 
-use crate::interface::Law;
+use crate::interface::{Law, Regime};
 use crate::model::Formulation;
 
 use super::{GroundInput, Simulator, VerticalInput};
@@ -157,9 +157,12 @@ impl<'a> Eom<'a> {
         let s = toe(theta, side);
         let phi = theta.abs();
         let model = &self.sim.model;
+        let r = self.w / n;
         let (c, daf_dn) = if model.interface.is_elastic() {
-            let r = self.w / n;
             let mut c = self.sim.reaction(phi * r, *hint);
+            c.daf *= r;
+            (c, -phi / n * c.daf)
+        } else if let Some(mut c) = self.uncrushed(phi, r, *hint) {
             c.daf *= r;
             (c, -phi / n * c.daf)
         } else {
@@ -177,6 +180,21 @@ impl<'a> Eom<'a> {
             num -= 0.5 * (s * l.dinertia * omega + di_dn * self.dn()) * omega;
         }
         num / l.inertia
+    }
+
+    /// The contact of a crushing bed at `(phi, N)`, `r = W/N`, where the toe
+    /// has not crushed: then the bed is elastic and the contact is the one
+    /// at the weight at `phi r` (docs/model.md §6.1), if that one has not
+    /// crushed either and its `a` stays below `a1 = fm/(kn phi)`. `None`:
+    /// solve at N. `daf` is per radian of `phi r`.
+    #[inline]
+    fn uncrushed(&self, phi: f64, r: f64, hint: f64) -> Option<crate::interface::Contact> {
+        let Law::ElastoPlastic { kn, fm } = self.sim.model.interface.law() else {
+            return None;
+        };
+        let c = self.sim.contact(phi * r, hint);
+        let elastic = matches!(c.regime, Regime::FullContact | Regime::Partial);
+        (elastic && c.a <= fm / (kn * phi)).then_some(c)
     }
 
     #[inline]
