@@ -426,3 +426,43 @@ fn held_av_jumps_keep_the_kinetic_energy() {
     println!("zero-order hold: max |E - E0 - sum of jumps| / E0 = {worst:.2e}");
     assert!(worst <= 1e-9, "{worst:e}");
 }
+
+/// Where the toe has not crushed, a crushing bed is elastic and its contact
+/// at `(phi, N)` is the one at the weight at `phi W/N` (what the equation of
+/// motion reads from the table): against the solve at N.
+#[test]
+fn uncrushed_contact_scales_with_n() {
+    let m = Params::default().build().unwrap();
+    let w = m.body.weight;
+    let mut checked = 0;
+    for n in [0.6 * w, 0.9 * w, 1.4 * w] {
+        for k in 1..200 {
+            let phi = m.theta_ov * k as f64 / 200.0;
+            let (c, _) = m.interface.contact_loaded(phi, n, f64::NAN);
+            if c.regime != rocking::Regime::FullContact && c.regime != rocking::Regime::Partial {
+                continue;
+            }
+            let s = m.interface.contact(phi * w / n);
+            if s.regime != rocking::Regime::FullContact && s.regime != rocking::Regime::Partial {
+                // crushed at the weight (its a1 is shorter): the code solves at N
+                continue;
+            }
+            assert!(
+                (s.af - c.af).abs() <= 1e-12 * c.af.abs().max(1e-3),
+                "N/W {}: phi {phi}: af {} vs {}",
+                n / w,
+                s.af,
+                c.af
+            );
+            let daf = s.daf * w / n;
+            assert!(
+                (daf - c.daf).abs() <= 1e-9 * c.daf.abs(),
+                "N/W {}: phi {phi}: daf {daf} vs {}",
+                n / w,
+                c.daf
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 100, "{checked} uncrushed contacts");
+}
