@@ -129,7 +129,10 @@ impl Hasher {
             overturned_at,
             stats,
             limited,
+            terminal,
         } = *e;
+        // without a vertical input the model's range is never left
+        assert!(terminal.is_none());
         let Stats {
             steps,
             rejected,
@@ -170,6 +173,9 @@ impl Hasher {
             regime,
             fx,
             fz,
+            // the weight without a vertical input (not hashed: the digest
+            // predates it)
+            apparent_weight: _,
         } = *o;
         for x in [theta_dd, af, contact_length, mr, fx, fz] {
             self.f(x);

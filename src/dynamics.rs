@@ -112,6 +112,47 @@ pub struct GroundInput {
     pub dag: f64,
 }
 
+/// Vertical ground acceleration over one call: `av(t) = av + dav (t - t0)`,
+/// m/s² and m/s³, positive up (docs/model.md §6). Zero: the model of §3.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct VerticalInput {
+    pub av: f64,
+    pub dav: f64,
+}
+
+/// The conditions under which the model stops applying (docs/model.md §6.5);
+/// they depend on the input only.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutOfRange {
+    /// `N <= 0`: the body leaves the ground (free flight is not modelled).
+    LiftOff,
+    /// `N >= fm A`: the whole section crushes.
+    BaseCrushing,
+    /// `N hG >= kn Is`: the rest position is unstable (`thetaOv(N) = 0`).
+    RestUnstable,
+}
+
+impl OutOfRange {
+    /// The public name of the condition.
+    pub fn name(self) -> &'static str {
+        match self {
+            OutOfRange::LiftOff => "liftOff",
+            OutOfRange::BaseCrushing => "baseCrushing",
+            OutOfRange::RestUnstable => "restUnstable",
+        }
+    }
+}
+
+/// Where and why a run left the model's range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Terminal {
+    /// Time, s.
+    pub t: f64,
+    pub condition: OutOfRange,
+    /// The vertical ground acceleration there, m/s².
+    pub av: f64,
+}
+
 /// Work done by one call.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Stats {
@@ -141,6 +182,9 @@ pub struct Events {
     /// The call stopped at its work limit ([`Simulator::work_limit`])
     /// before `t_end`: where and why.
     pub limited: Option<Limited>,
+    /// The input left the model's range (docs/model.md §6.5): the call
+    /// ended there, and the run is over.
+    pub terminal: Option<Terminal>,
 }
 
 impl Events {
@@ -159,12 +203,14 @@ pub struct Outputs {
     pub theta_dd: f64,
     pub af: f64,
     pub contact_length: f64,
-    /// Restoring moment W hW, N m.
+    /// Restoring moment N hW, N m.
     pub mr: f64,
     pub regime: Regime,
     /// Forces of the support on the body, N.
     pub fx: f64,
     pub fz: f64,
+    /// Apparent weight `N = m (g + av)`, N (docs/model.md §6.1).
+    pub apparent_weight: f64,
 }
 
 impl Outputs {
@@ -279,6 +325,22 @@ impl Simulator {
     }
 
     pub fn initial_state(&self, theta0: f64, omega0: f64) -> State {
+        let mut st = self.state_at_start(theta0, omega0);
+        // docs/model.md §7.1: at theta = 0 moving into the restraint, a
+        // restraint impact at t = 0
+        if let Some(r) = self.model.restraint {
+            if theta0 == 0.0 && r.side * omega0 < 0.0 {
+                st.omega = -r.e * omega0;
+                st.zero_crossings = 1;
+                st.impacts = 1;
+                st.opened = false;
+                st.at_rest = st.omega == 0.0;
+            }
+        }
+        st
+    }
+
+    fn state_at_start(&self, theta0: f64, omega0: f64) -> State {
         State {
             t: 0.0,
             theta: theta0,
@@ -347,11 +409,89 @@ impl Simulator {
     /// ground motion (any `ag` moves the body: `theta'' = -m ag hG / I(0)`);
     /// for the rigid law while `|ag| <= g tan(alpha)` (no uplift).
     pub fn held_at_rest(&self, ag: f64) -> bool {
-        if self.model.interface.law() == Law::Rigid {
-            ag.abs() <= self.uplift_acceleration()
-        } else {
-            ag == 0.0
+        self.held(ag, 0.0)
+    }
+
+    /// [`held_at_rest`](Self::held_at_rest) under the vertical ground
+    /// acceleration `av` (m/s²): the rigid threshold is `(g + av) tan(alpha)`
+    /// (docs/model.md §6.2). A one-sided body (docs/model.md §7.1) is held
+    /// by the restraint against any push toward it: rigid, it leaves only
+    /// when `-side ag > (g + av) tan(alpha)`; flexible, as soon as
+    /// `side ag < 0`.
+    pub fn held(&self, ag: f64, av: f64) -> bool {
+        let b = &self.model.body;
+        let rigid = self.model.interface.law() == Law::Rigid;
+        match (self.model.restraint, rigid) {
+            (None, true) => ag.abs() <= (b.g + av) * b.b / b.hg,
+            (None, false) => ag == 0.0,
+            (Some(r), true) => -r.side * ag <= (b.g + av) * b.b / b.hg,
+            (Some(r), false) => r.side * ag >= 0.0,
         }
+    }
+
+    /// The toe the body rocks about (see `eom::side_of`); a one-sided body
+    /// always rocks on the restraint's side.
+    #[inline]
+    pub(crate) fn side(&self, theta: f64, omega: f64, ag: f64) -> f64 {
+        match self.model.restraint {
+            Some(r) => r.side,
+            None => eom::side_of(theta, omega, ag),
+        }
+    }
+
+    /// The first time in `[0, tau_end]` (call-local, s) at which the vertical
+    /// input `v` leaves the model's range (docs/model.md §6.5), and which
+    /// limit: `N = W + m av` is linear in time over the call.
+    pub fn out_of_range(&self, v: VerticalInput, tau_end: f64) -> Option<(f64, OutOfRange)> {
+        if v.av == 0.0 && v.dav == 0.0 {
+            return None;
+        }
+        let m = &self.model;
+        let b = &m.body;
+        let n = |tau: f64| b.weight + b.mass * (v.av + v.dav * tau);
+        let dn = b.mass * v.dav;
+        // (limit, below: the range is N > limit, else N < limit)
+        let mut limits = vec![(0.0, true, OutOfRange::LiftOff)];
+        match m.interface.law() {
+            Law::Rigid => {}
+            Law::Elastic { kn } => {
+                limits.push((
+                    kn * m.interface.shape().second_moment() / b.hg,
+                    false,
+                    OutOfRange::RestUnstable,
+                ));
+            }
+            Law::ElastoPlastic { kn, fm } => {
+                let shape = m.interface.shape();
+                limits.push((fm * shape.area(), false, OutOfRange::BaseCrushing));
+                limits.push((
+                    kn * shape.second_moment() / b.hg,
+                    false,
+                    OutOfRange::RestUnstable,
+                ));
+            }
+        }
+        let outside =
+            |tau: f64, lim: f64, below: bool| if below { n(tau) <= lim } else { n(tau) >= lim };
+        let mut first: Option<(f64, OutOfRange)> = None;
+        for (lim, below, cond) in limits {
+            let tau = if outside(0.0, lim, below) {
+                0.0
+            } else if dn != 0.0 && (dn < 0.0) == below {
+                let x = (lim - n(0.0)) / dn;
+                if outside(x, lim, below) {
+                    x
+                } else {
+                    x.next_up()
+                }
+            } else {
+                continue;
+            };
+            if tau <= tau_end && first.is_none_or(|(t, _)| tau < t) {
+                first = Some((tau, cond));
+            }
+        }
+        first
     }
 
     /// The rest criterion (rigid law). After an impact at ground acceleration
@@ -363,8 +503,13 @@ impl Simulator {
     /// `(|omega|, omega² / (2 a_min))` in `(omega, theta)`. Returns those two
     /// bounds, or `None` if rest is impossible (`|ag| >= g tan(alpha)`).
     pub fn rest_bound(&self, omega: f64, ag: f64) -> Option<(f64, f64)> {
+        self.rest_bound_at(omega, ag, self.model.body.weight)
+    }
+
+    /// [`rest_bound`](Self::rest_bound) under the apparent weight `n` (N).
+    pub fn rest_bound_at(&self, omega: f64, ag: f64, n: f64) -> Option<(f64, f64)> {
         let b = &self.model.body;
-        let a_min = (b.weight * b.b - b.mass * ag.abs() * b.hg) / b.io;
+        let a_min = (n * b.b - b.mass * ag.abs() * b.hg) / b.io;
         if a_min > 0.0 {
             Some((omega.abs(), omega * omega / (2.0 * a_min)))
         } else {
@@ -374,7 +519,20 @@ impl Simulator {
 
     /// Integrate from `state.t` to `t_end` (or to overturning) under `input`.
     pub fn advance(&self, state: &mut State, t_end: f64, input: GroundInput) -> Events {
-        self.run(state, t_end, input, false)
+        self.run(state, t_end, input, VerticalInput::default(), false)
+    }
+
+    /// [`advance`](Self::advance) under a vertical ground acceleration too
+    /// (docs/model.md §6). Stops early at overturning or where the input
+    /// leaves the model's range ([`Events::terminal`]).
+    pub fn advance_vertical(
+        &self,
+        state: &mut State,
+        t_end: f64,
+        input: GroundInput,
+        vertical: VerticalInput,
+    ) -> Events {
+        self.run(state, t_end, input, vertical, false)
     }
 
     /// Like [`advance`](Self::advance) but return at the first event (zero crossing,
@@ -382,6 +540,37 @@ impl Simulator {
     /// `t_end`. The input is `ag + dag (t - t0)` with `t0` the `state.t` of
     /// this call.
     pub fn advance_to_event(&self, state: &mut State, t_end: f64, input: GroundInput) -> Events {
-        self.run(state, t_end, input, true)
+        self.run(state, t_end, input, VerticalInput::default(), true)
+    }
+
+    /// A jump of the vertical input from `av_before` to `av_after` (m/s²)
+    /// between two calls (a zero-order-hold host): the apparent weight
+    /// jumps, and with it `I(phi, N)`; the kinetic energy `I omega²/2` stays
+    /// continuous, `omega+ = omega- sqrt(I(phi, N-)/I(phi, N+))`
+    /// (docs/model.md §6.2). The rigid law's `IO` does not depend on N.
+    pub fn vertical_jump(&self, st: &mut State, av_before: f64, av_after: f64) {
+        let m = &self.model;
+        if av_before == av_after || st.at_rest || m.interface.law() == Law::Rigid {
+            return;
+        }
+        let b = &m.body;
+        let phi = st.theta.abs();
+        let inertia = |av: f64| {
+            let (c, _) = m.contact_loaded(phi, b.weight + b.mass * av);
+            m.levers(phi, &c).inertia
+        };
+        st.omega *= (inertia(av_before) / inertia(av_after)).sqrt();
+    }
+
+    /// [`advance_to_event`](Self::advance_to_event) under a vertical ground
+    /// acceleration too.
+    pub fn advance_to_event_vertical(
+        &self,
+        state: &mut State,
+        t_end: f64,
+        input: GroundInput,
+        vertical: VerticalInput,
+    ) -> Events {
+        self.run(state, t_end, input, vertical, true)
     }
 }

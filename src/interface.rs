@@ -125,6 +125,10 @@ impl Interface {
     pub fn law(&self) -> Law {
         self.law
     }
+    /// Elastic without crushing: the contact depends on `phi / N` only.
+    pub fn is_elastic(&self) -> bool {
+        matches!(self.law, Law::Elastic { .. })
+    }
     /// Base depth `D`, m.
     pub fn depth(&self) -> f64 {
         self.d
@@ -234,13 +238,67 @@ impl Interface {
     /// solver tolerance, fewer iterations.
     pub fn contact_near(&self, phi: f64, a_hint: f64) -> Contact {
         let phi = phi.abs();
+        self.solve(phi, self.weight, self.regime_at(phi), a_hint).0
+    }
+
+    /// The contact at `phi` (rad) under the bed resultant `n` (N) instead of
+    /// the weight (docs/model.md §6.1: a vertical ground acceleration makes
+    /// the apparent weight `N = m (g + av)`), starting from `a_hint` (m; NaN
+    /// for none), and `xel`, the centroid (m from the toe) of the elastic
+    /// part of the contact, for `daf/dN = (xel - af)/N`. The regime comes
+    /// from the explicit bed resultant `Nbed(a, phi)` (docs/model.md §6.4),
+    /// not from the thresholds at the weight. Flexible laws; `n > 0`.
+    pub fn contact_loaded(&self, phi: f64, n: f64, a_hint: f64) -> (Contact, f64) {
+        let phi = phi.abs();
+        let regime = if phi == 0.0 || self.law == Law::Rigid {
+            Regime::FullContact
+        } else {
+            let k = self.kn * phi;
+            let a1 = self.fm / k;
+            // Nbed grows with a: a >= D iff n >= Nbed(D), xp > 0 iff n > Nbed(a1)
+            let closed = n >= self.resultants(k, a1, self.d).n;
+            let crushed = a1.is_finite() && n > self.resultants(k, a1, a1).n;
+            match (closed, crushed) {
+                (true, false) => Regime::FullContact,
+                (false, false) => Regime::Partial,
+                (false, true) => Regime::PartialCrushing,
+                (true, true) => Regime::FullCrushing,
+            }
+        };
+        self.solve(phi, n, regime, a_hint)
+    }
+
+    /// The event functions of docs/model.md §6.4 at `phi` under the bed
+    /// resultant `n`, relative to `n`: `1 - Nbed(D, phi)/n`, positive while
+    /// the heel is closed (`a > D`), and `1 - Nbed(a1, phi)/n`
+    /// (`a1 = fm/(kn phi)`), positive while the toe crushes (`xp > 0`).
+    /// At `phi = 0` (and for `phi <= 0`) `[1, -1]`.
+    pub fn bed_margins(&self, phi: f64, n: f64) -> [f64; 2] {
+        if phi <= 0.0 || self.law == Law::Rigid {
+            return [1.0, -1.0];
+        }
+        let k = self.kn * phi;
+        let a1 = self.fm / k;
+        let heel = 1.0 - self.resultants(k, a1, self.d).n / n;
+        let toe = if a1.is_finite() {
+            1.0 - self.resultants(k, a1, a1).n / n
+        } else {
+            -1.0
+        };
+        [heel, toe]
+    }
+
+    /// The equilibrium `Nbed(a, phi) = w` in the given regime: the contact
+    /// and the elastic zone's centroid `xel` (m from the toe).
+    #[inline(always)]
+    fn solve(&self, phi: f64, w: f64, regime: Regime, a_hint: f64) -> (Contact, f64) {
         if phi == 0.0 {
-            return Contact {
+            let c = Contact {
                 af: self.d / 2.0,
                 daf: if self.law == Law::Rigid {
                     0.0
                 } else {
-                    -self.kn * self.is / self.weight
+                    -self.kn * self.is / w
                 },
                 a: f64::INFINITY,
                 contact_length: self.d,
@@ -249,9 +307,10 @@ impl Interface {
                 regime: Regime::FullContact,
                 iterations: 0,
             };
+            return (c, self.d / 2.0);
         }
         if self.law == Law::Rigid {
-            return Contact {
+            let c = Contact {
                 af: 0.0,
                 daf: 0.0,
                 a: 0.0,
@@ -261,14 +320,14 @@ impl Interface {
                 regime: Regime::Partial,
                 iterations: 0,
             };
+            return (c, 0.0);
         }
-        let regime = self.regime_at(phi);
-        let (w, d) = (self.weight, self.d);
+        let d = self.d;
         let k = self.kn * phi; // stress per unit length of closure, Pa/m
         if regime == Regime::FullContact {
             // Closed form (docs/model.md §2): N = k (a A - A D/2) = W.
             let a = w / (k * self.area) + d / 2.0;
-            return Contact {
+            let c = Contact {
                 af: d / 2.0 - k * self.is / w,
                 daf: -self.kn * self.is / w,
                 a,
@@ -278,6 +337,8 @@ impl Interface {
                 regime,
                 iterations: 0,
             };
+            // the whole section is elastic: its centroid
+            return (c, self.s_full[1] / self.s_full[0]);
         }
         // Elastic length a1: the closure at which the stress reaches fm.
         let a1 = self.fm / k;
@@ -328,7 +389,7 @@ impl Interface {
         // docs/model.md §2: af = M/W; d af/d phi = -(kn/W) x (second moment of the
         // elastic zone about its own centroid), the plastic-boundary terms
         // cancelling as in dN/da.
-        Contact {
+        let c = Contact {
             af: r.m / w,
             daf: -self.kn * r.central / w,
             a,
@@ -338,7 +399,8 @@ impl Interface {
             da: -r.zone_force / (phi * r.zone_area),
             regime,
             iterations,
-        }
+        };
+        (c, r.xp + r.zone_moment / r.zone_area)
     }
 
     /// Second derivatives in `phi` of a solved contact `c`:
@@ -464,6 +526,8 @@ impl Interface {
             (0.0, 0.0)
         };
         Resultants {
+            xp,
+            zone_moment: l[1],
             n: np + k * f,
             m: mp + k * mz,
             dn_da: k * l[0],
@@ -480,6 +544,10 @@ impl Interface {
 
 /// The stress profile's resultants at one `a`, with their `a`-derivatives.
 struct Resultants {
+    /// Start of the elastic zone (end of the plastic one), m from the toe.
+    xp: f64,
+    /// First moment of the elastic zone about `xp`, m³.
+    zone_moment: f64,
     /// Normal force `N`, N.
     n: f64,
     /// Moment about the toe, N m.

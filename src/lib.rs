@@ -26,5 +26,5 @@ mod trig;
 
 pub use body::{Body, MassModel};
 pub use interface::{Contact, ContactTable, Interface, Law, Regime};
-pub use model::{Formulation, Model, ParamError, Params, Restitution};
+pub use model::{Formulation, Model, ParamError, Params, Restitution, Restraint, RestraintKind};
 pub use shape::Shape;

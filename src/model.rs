@@ -25,6 +25,25 @@ pub enum Restitution {
     Given,
 }
 
+/// Whether the body may rock both ways (docs/model.md §7).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum RestraintKind {
+    /// Rocks on both toes (the default).
+    #[default]
+    None,
+    /// Held on one side: rotates only with `sgn(theta) = side`.
+    OneSided,
+}
+
+/// A one-sided restraint at `theta = 0` (docs/model.md §7).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Restraint {
+    /// The sign of `theta` allowed, `+1` or `-1`.
+    pub side: f64,
+    /// Restitution at the restraint, `omega <- -e omega`, in `[0, 1]`.
+    pub e: f64,
+}
+
 /// Base shape selector (the FMU's `shape` enumeration).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ShapeKind {
@@ -90,6 +109,12 @@ pub struct Params {
     pub theta0: f64,
     /// Initial angular velocity, rad/s.
     pub omega0: f64,
+    /// One-sided rocking (docs/model.md §7).
+    pub restraint: RestraintKind,
+    /// The sign of `theta` a one-sided body may take, `+1` or `-1`.
+    pub side: i32,
+    /// Restitution at the restraint, in `[0, 1]`.
+    pub e_restraint: f64,
 }
 
 impl Default for Params {
@@ -118,6 +143,9 @@ impl Default for Params {
             g: 9.81,
             theta0: 0.0,
             omega0: 0.0,
+            restraint: RestraintKind::None,
+            side: 1,
+            e_restraint: 1.0,
         }
     }
 }
@@ -330,6 +358,7 @@ impl Params {
             self.omega0,
             "must be finite",
         )?;
+        let restraint = self.restraint()?;
         let interface = Interface::new(shape, law, body.weight);
         if law != Law::Rigid {
             // Below this the integrator's scales (tolerances of order
@@ -352,6 +381,7 @@ impl Params {
             formulation: self.formulation,
             eta,
             theta_ov: body.alpha,
+            restraint,
         };
         model.theta_ov = model.find_theta_ov();
         check(
@@ -370,6 +400,38 @@ impl Params {
             ),
         )?;
         Ok(model)
+    }
+
+    /// The restraint of docs/model.md §7 and its checks (docs/model.md §8):
+    /// `side` is `±1`, `eRestraint` in `[0, 1]`, and the start value lies on
+    /// the allowed side (`restraintViolated`).
+    fn restraint(&self) -> Result<Option<Restraint>, ParamError> {
+        if self.restraint == RestraintKind::None {
+            return Ok(None);
+        }
+        check(
+            self.side == 1 || self.side == -1,
+            "side",
+            self.side as f64,
+            "must be 1 or -1",
+        )?;
+        check(
+            (0.0..=1.0).contains(&self.e_restraint),
+            "eRestraint",
+            self.e_restraint,
+            "must be in [0, 1]",
+        )?;
+        let side = self.side as f64;
+        check(
+            side * self.theta0 >= 0.0,
+            "theta",
+            self.theta0,
+            format!("restraintViolated: a one-sided body with side = {side} must start with side*theta >= 0"),
+        )?;
+        Ok(Some(Restraint {
+            side,
+            e: self.e_restraint,
+        }))
     }
 }
 
@@ -398,8 +460,10 @@ pub struct Model {
     pub formulation: Formulation,
     /// Coefficient of restitution applied at every impact.
     pub eta: f64,
-    /// Overturning rotation, rad.
+    /// Overturning rotation at the weight, rad.
     pub theta_ov: f64,
+    /// One-sided rocking (docs/model.md §7), `None`: both ways.
+    pub restraint: Option<Restraint>,
 }
 
 impl Model {
@@ -436,20 +500,54 @@ impl Model {
         (self.body.weight * l.hw, self.body.weight * l.dhw)
     }
 
+    /// The contact at `phi` under the apparent weight `n` (N, docs/model.md
+    /// §6.1), with `daf/dN` (m/N) in place of nothing: `(contact, daf/dN)`.
+    /// At `n = W` exactly, the contact at the weight.
+    pub fn contact_loaded(&self, phi: f64, n: f64) -> (Contact, f64) {
+        if n == self.body.weight || self.interface.law() == Law::Rigid {
+            let c = self.interface.contact(phi);
+            let (_, xel) = self.interface.contact_loaded(phi, n, c.a);
+            return (c, (xel - c.af) / n);
+        }
+        let (c, xel) = self.interface.contact_loaded(phi, n, f64::NAN);
+        (c, (xel - c.af) / n)
+    }
+
+    /// Overturning rotation under the apparent weight `n` (N): the first root
+    /// of `hW(phi, N)` (docs/model.md §6.1); `alpha` for the rigid law.
+    pub fn theta_ov_at(&self, n: f64) -> f64 {
+        if n == self.body.weight {
+            return self.theta_ov;
+        }
+        self.find_theta_ov_at(n)
+    }
+
+    fn find_theta_ov(&self) -> f64 {
+        self.find_theta_ov_at(self.body.weight)
+    }
+
     /// The first root of `hW(phi) = 0` for `phi > 0` (docs/model.md §3): alpha for
     /// the rigid law; otherwise a geometric scan from far below the first
     /// threshold up to alpha, where `hW = -af cos(alpha) < 0`, refined by bisection.
-    fn find_theta_ov(&self) -> f64 {
+    fn find_theta_ov_at(&self, n: f64) -> f64 {
         let alpha = self.body.alpha;
         if self.interface.law() == Law::Rigid {
             return alpha;
         }
-        let hw = |phi: f64| self.levers(phi, &self.interface.contact(phi)).hw;
+        let contact = |phi: f64| {
+            if n == self.body.weight {
+                self.interface.contact(phi)
+            } else {
+                self.interface.contact_loaded(phi, n, f64::NAN).0
+            }
+        };
+        let hw = |phi: f64| self.levers(phi, &contact(phi)).hw;
         let first = self
             .interface
             .theta_jo()
             .min(self.interface.theta_c())
-            .min(alpha);
+            .min(alpha)
+            * (n / self.body.weight).min(1.0);
         let start = first * 1e-6;
         let n = 400;
         let ratio = (alpha / start).powf(1.0 / n as f64);

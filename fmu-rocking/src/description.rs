@@ -12,9 +12,10 @@ use model_description::*;
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 
 /// Event indicators of the Model Exchange interface: the zero crossing of
-/// theta, overturning, uplift from rest and six kinks of af
-/// (`rocking::dynamics::continuous::EVENT_INDICATORS`, checked by the FMU).
-pub const EVENT_INDICATORS: u32 = 9;
+/// theta, overturning, uplift from rest, six kinks of af and the range of
+/// the apparent weight (`rocking::dynamics::continuous::EVENT_INDICATORS`,
+/// checked by the FMU).
+pub const EVENT_INDICATORS: u32 = 10;
 
 /// Declares the value-reference constants ([`vr`]) and the variable table
 /// ([`VARIABLES`]) from one list.
@@ -137,6 +138,7 @@ const D_CONTACT: &[&str] = &[
     "kn",
     "fm",
     "g",
+    "av",
     "theta",
 ];
 const D_MOMENT: &[&str] = &[
@@ -155,6 +157,7 @@ const D_MOMENT: &[&str] = &[
     "kn",
     "fm",
     "g",
+    "av",
     "theta",
 ];
 const D_DYNAMIC: &[&str] = &[
@@ -176,8 +179,25 @@ const D_DYNAMIC: &[&str] = &[
     "formulation",
     "g",
     "ag",
+    "av",
+    "restraint",
+    "side",
     "theta",
     "omega",
+];
+const D_APPARENT: &[&str] = &[
+    "shape",
+    "B",
+    "L",
+    "t",
+    "Ro",
+    "Ri",
+    "massModel",
+    "H",
+    "rho",
+    "W",
+    "g",
+    "av",
 ];
 
 variables! {
@@ -344,14 +364,14 @@ variables! {
     }
     MR = 26 => {
         name: "MR",
-        description: "Restoring moment W hW(|theta|) about the shifted pivot",
+        description: "Restoring moment N hW(|theta|, N) about the shifted pivot (N the apparent weight; W without av)",
         causality: Output, variability: Continuous, initial: Some(Calculated),
         ty: real(Some("N.m"), Some("kN.m"), None),
         depends_on: D_MOMENT,
     }
     REGIME = 27 => {
         name: "regime",
-        description: "Contact regime: 0 full contact, 1 partial contact, 2 partial contact with crushing, 3 full contact with crushing, 4 overturned",
+        description: "Contact regime: 0 full contact, 1 partial contact, 2 partial contact with crushing, 3 full contact with crushing, 4 overturned, 5 out of the model's range (liftOff, baseCrushing or restUnstable under av)",
         causality: Output, variability: Discrete, initial: Some(Calculated),
         ty: Type::Integer { start: None },
         depends_on: D_CONTACT,
@@ -377,7 +397,7 @@ variables! {
     }
     FZ = 31 => {
         name: "Fz",
-        description: "Vertical force of the support on the body, m (g + zG'')",
+        description: "Vertical force of the support on the body, m (g + av + zG'')",
         causality: Output, variability: Continuous, initial: Some(Calculated),
         ty: real(Some("N"), Some("kN"), None),
         depends_on: D_DYNAMIC,
@@ -473,14 +493,45 @@ variables! {
         depends_on: D_DYNAMIC,
         derivative: Some("omega"),
     }
-    FRICTION_DEMAND = 45 => {
+    AV = 45 => {
+        name: "av",
+        description: "Vertical ground acceleration, positive up (interpolated with its first derivative when given); the apparent weight is m (g + av)",
+        causality: Input, variability: Continuous,
+        ty: real(Some("m/s2"), Some("g"), Some(0.0)),
+    }
+    RESTRAINT = 46 => {
+        name: "restraint",
+        description: "none: the body rocks both ways; oneSided: it may rotate only with sgn(theta) = side, held at theta = 0 by a restraint (restitution eRestraint)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: enumeration("RestraintKind", 1),
+    }
+    SIDE = 47 => {
+        name: "side",
+        description: "One-sided rocking: the sign of theta allowed, 1 or -1",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: Type::Integer { start: Some(1) },
+    }
+    E_RESTRAINT = 48 => {
+        name: "eRestraint",
+        description: "One-sided rocking: coefficient of restitution at the restraint, omega <- -eRestraint omega (0 <= eRestraint <= 1; 1: no loss, set it)",
+        causality: Parameter, variability: Fixed, initial: Some(Exact),
+        ty: real(Some("1"), None, Some(1.0)),
+    }
+    APPARENT_WEIGHT = 49 => {
+        name: "apparentWeight",
+        description: "Apparent weight N = W + m av, the resultant of the bed",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("N"), Some("kN"), None),
+        depends_on: D_APPARENT,
+    }
+    FRICTION_DEMAND = 50 => {
         name: "frictionDemand",
         description: "Friction coefficient the no-sliding assumption needs, |Fx|/Fz (+inf when Fz <= 0); compare with the base's friction coefficient mu",
         causality: Output, variability: Continuous, initial: Some(Calculated),
         ty: real(Some("1"), None, None),
         depends_on: D_DYNAMIC,
     }
-    MU = 46 => {
+    MU = 51 => {
         name: "mu",
         description: "Friction coefficient of the base for the sliding check: the first time frictionDemand exceeds it, a warning names the time (0: no check; >= 0)",
         causality: Parameter, variability: Fixed, initial: Some(Exact),
@@ -600,6 +651,8 @@ pub mod enums {
     pub const SHIFTING_PIVOT: i32 = 2;
     pub const HOUSNER: i32 = 1;
     pub const GIVEN: i32 = 2;
+    pub const NONE: i32 = 1;
+    pub const ONE_SIDED: i32 = 2;
 }
 
 pub static TYPES: &[EnumType] = &[
@@ -684,6 +737,18 @@ pub static TYPES: &[EnumType] = &[
         items: &[
             item("housner", enums::HOUSNER, "eta = 1 - 2 m b^2 / IO"),
             item("given", enums::GIVEN, "eta = the parameter eta"),
+        ],
+    },
+    EnumType {
+        name: "RestraintKind",
+        description: "Whether the body rocks both ways",
+        items: &[
+            item("none", enums::NONE, "Rocks on both toes"),
+            item(
+                "oneSided",
+                enums::ONE_SIDED,
+                "Held on one side: rotates only with sgn(theta) = side",
+            ),
         ],
     },
 ];
@@ -811,6 +876,11 @@ mod tests {
             "thetaJo",
             "thetaC",
             "thetaOv",
+            "av",
+            "restraint",
+            "side",
+            "eRestraint",
+            "apparentWeight",
         ] {
             assert!(ROCKING_BLOCK.variable(n).is_some(), "{n}");
         }
@@ -830,8 +900,9 @@ mod tests {
     #[test]
     fn structure_lists() {
         let xml = xml::render(&ROCKING_BLOCK, "x", None);
-        // Fx (index 31) depends on ag (index 20) only among the inputs.
-        assert!(xml.contains("<Unknown index=\"31\" dependencies=\"20\"/>"));
+        // Fx (index 31) depends on ag (index 20) and av (index 46) only
+        // among the inputs.
+        assert!(xml.contains("<Unknown index=\"31\" dependencies=\"20 46\"/>"));
         // theta (21) is an output with no direct feedthrough.
         assert!(xml.contains("<Unknown index=\"21\" dependencies=\"\"/>"));
     }

@@ -4,7 +4,7 @@
 
 use fmi2_export::model_description::BaseType;
 use rocking::model::{LawKind, MassKind, ShapeKind};
-use rocking::{Formulation, Params, Restitution};
+use rocking::{Formulation, Params, Restitution, RestraintKind};
 
 use crate::description::{enums::*, vr, ROCKING_BLOCK};
 
@@ -28,6 +28,10 @@ pub const FORMULATIONS: &[(i32, Formulation)] = &[
 ];
 pub const RESTITUTIONS: &[(i32, Restitution)] =
     &[(HOUSNER, Restitution::Housner), (GIVEN, Restitution::Given)];
+pub const RESTRAINTS: &[(i32, RestraintKind)] = &[
+    (NONE, RestraintKind::None),
+    (ONE_SIDED, RestraintKind::OneSided),
+];
 
 /// The physics value of the enumeration value `x`, if it is an item.
 fn item<T: Copy>(table: &[(i32, T)], x: i32) -> Option<T> {
@@ -38,6 +42,7 @@ fn item<T: Copy>(table: &[(i32, T)], x: i32) -> Option<T> {
 #[derive(Clone, Copy)]
 pub enum Field {
     Real(fn(&mut Params, f64)),
+    Integer(fn(&mut Params, i32)),
     /// An enumeration: `None` if the value is no item.
     Enumeration(fn(&mut Params, i32) -> Option<()>),
 }
@@ -47,6 +52,9 @@ pub enum Field {
 macro_rules! field {
     ($f:ident) => {
         Field::Real(|p, x| p.$f = x)
+    };
+    (integer $f:ident) => {
+        Field::Integer(|p, x| p.$f = x)
     };
     ($f:ident in $items:ident) => {
         Field::Enumeration(|p, x| item($items, x).map(|v| p.$f = v))
@@ -77,13 +85,16 @@ pub static FIELDS: &[(u32, Field)] = &[
     (vr::G, field!(g)),
     (vr::THETA, field!(theta0)),
     (vr::OMEGA, field!(omega0)),
+    (vr::RESTRAINT, field!(restraint in RESTRAINTS)),
+    (vr::SIDE, field!(integer side)),
+    (vr::E_RESTRAINT, field!(e_restraint)),
 ];
 
 /// The name of the variable `vr` of the type of `field`.
 pub fn name(vr: u32, field: Field) -> &'static str {
     let base = match field {
         Field::Real(_) => BaseType::Real,
-        Field::Enumeration(_) => BaseType::Integer,
+        Field::Enumeration(_) | Field::Integer(_) => BaseType::Integer,
     };
     ROCKING_BLOCK
         .by_vr(base, vr)
@@ -110,6 +121,7 @@ pub fn params(real: impl Fn(u32) -> f64, integer: impl Fn(u32) -> i32) -> Result
     for &(vr, f) in FIELDS {
         match f {
             Field::Real(set) => set(&mut p, real(vr)),
+            Field::Integer(set) => set(&mut p, integer(vr)),
             Field::Enumeration(set) => {
                 let x = integer(vr);
                 set(&mut p, x).ok_or_else(|| {

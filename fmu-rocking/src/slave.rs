@@ -9,7 +9,10 @@ use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
 use fmi2_export::model_description::ModelDescription;
 use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Update, Values};
 use rocking::dynamics::continuous::Continuous;
-use rocking::dynamics::{GroundInput, OutputRates, Outputs, Simulator, State, WorkLimit};
+use rocking::dynamics::{
+    GroundInput, OutOfRange, OutputRates, Outputs, Simulator, State, Terminal, VerticalInput,
+    WorkLimit,
+};
 use rocking::{Params, Regime};
 
 /// Largest |ag| a step accepts, m/s2 (far beyond any ground motion; the
@@ -27,11 +30,16 @@ pub struct RockingSlave {
     side: f64,
     /// Model Exchange: `|omega|` after the last impact of a rigid body, rad/s.
     left_with: f64,
-    /// Outputs at `state` for the ground acceleration with these bits.
-    cache: Option<(u64, Outputs)>,
+    /// Outputs at `state` for the ground accelerations `(ag, av)` with these bits.
+    cache: Option<(u64, u64, Outputs)>,
     /// Output derivatives at `state` for the ground input `(ag, dag/dt)`
     /// with these bits.
     rates: Option<(u64, u64, OutputRates)>,
+    /// The input left the model's range (docs/model.md §6.5): `regime` 5.
+    terminal: Option<Terminal>,
+    /// `av` at the end of the last step (none before the first, or after
+    /// a state was set): a host that holds its inputs makes it jump.
+    av_end: Option<f64>,
     sliding: SlidingCheck,
 }
 
@@ -43,6 +51,9 @@ struct SlidingCheck {
     mu: f64,
     warned: bool,
 }
+
+/// `regime` once the input has left the model's range (docs/model.md §6.5).
+const REGIME_OUT_OF_RANGE: i32 = 5;
 
 /// The physics parameters from the stored values (table: [`crate::params`]).
 pub fn params(v: Values<'_>) -> Result<Params, String> {
@@ -66,12 +77,12 @@ fn regime_name(r: Regime) -> &'static str {
 }
 
 impl RockingSlave {
-    fn outputs(&mut self, ag: f64) -> Outputs {
+    fn outputs(&mut self, ag: f64, av: f64) -> Outputs {
         match self.cache {
-            Some((bits, o)) if bits == ag.to_bits() => o,
+            Some((a, v, o)) if (a, v) == (ag.to_bits(), av.to_bits()) => o,
             _ => {
-                let o = self.sim.outputs(&self.state, ag);
-                self.cache = Some((ag.to_bits(), o));
+                let o = self.sim.outputs_vertical(&self.state, ag, av);
+                self.cache = Some((ag.to_bits(), av.to_bits(), o));
                 o
             }
         }
@@ -100,12 +111,12 @@ impl RockingSlave {
     /// Warns, once, when the friction demand at the current state exceeds
     /// `mu` (checked where the state is: at communication points and at
     /// Model Exchange's completed integrator steps).
-    fn check_sliding(&mut self, ag: f64, log: &mut EventLog) {
+    fn check_sliding(&mut self, ag: f64, av: f64, log: &mut EventLog) {
         let SlidingCheck { mu, warned } = self.sliding;
         if mu == 0.0 || warned {
             return;
         }
-        let demand = self.outputs(ag).friction_demand();
+        let demand = self.outputs(ag, av).friction_demand();
         if demand > mu {
             self.sliding.warned = true;
             log.warn(format!(
@@ -116,12 +127,33 @@ impl RockingSlave {
         }
     }
 
-    fn regime(&mut self, ag: f64) -> Regime {
+    fn regime(&mut self, ag: f64, av: f64) -> Regime {
         if self.state.overturned {
             Regime::Overturned
         } else {
-            self.outputs(ag).regime
+            self.outputs(ag, av).regime
         }
+    }
+
+    /// The input `name` over a step of `h` s, `(x, dx/dt)`, checked: finite,
+    /// and `|x| <= MAX_GROUND_ACCELERATION` at both ends of the step.
+    fn input_line(inputs: &Inputs<'_>, r: u32, name: &str, h: f64) -> Result<(f64, f64), String> {
+        let (x, dx) = (inputs.real(r), inputs.derivative(r));
+        if !(x.is_finite() && dx.is_finite()) {
+            return Err(format!(
+                "{name} = {x}, d{name}/dt = {dx}: the input must be finite"
+            ));
+        }
+        // Beyond this the equations of motion overflow on the way to
+        // overturning and the integrator cannot finish the step (the limit
+        // itself is far above any ground motion and costs microseconds).
+        let x_end = x + dx * h;
+        if x.abs().max(x_end.abs()) > MAX_GROUND_ACCELERATION {
+            return Err(format!(
+                "{name} = {x} at the start of the step, {x_end} at its end: |{name}| must be <= {MAX_GROUND_ACCELERATION:e} m/s2"
+            ));
+        }
+        Ok((x, dx))
     }
 }
 
@@ -167,6 +199,8 @@ impl Slave for RockingSlave {
             left_with: c.left_with,
             cache: None,
             rates: None,
+            terminal: None,
+            av_end: None,
             sliding: SlidingCheck { mu, warned: false },
         })
     }
@@ -175,6 +209,7 @@ impl Slave for RockingSlave {
         let m = &self.sim.model;
         let b = &m.body;
         let ag = inputs.real(vr::AG);
+        let av = inputs.real(vr::AV);
         let x = match r {
             vr::THETA => self.state.theta,
             vr::OMEGA => self.state.omega,
@@ -188,13 +223,14 @@ impl Slave for RockingSlave {
             vr::THETA_JO => m.interface.theta_jo(),
             vr::THETA_C => m.interface.theta_c(),
             vr::THETA_OV => m.theta_ov,
-            vr::ANGULAR_ACCELERATION => self.outputs(ag).theta_dd,
-            vr::AF => self.outputs(ag).af,
-            vr::CONTACT_LENGTH => self.outputs(ag).contact_length,
-            vr::MR => self.outputs(ag).mr,
-            vr::FX => self.outputs(ag).fx,
-            vr::FZ => self.outputs(ag).fz,
-            vr::FRICTION_DEMAND => self.outputs(ag).friction_demand(),
+            vr::ANGULAR_ACCELERATION => self.outputs(ag, av).theta_dd,
+            vr::AF => self.outputs(ag, av).af,
+            vr::CONTACT_LENGTH => self.outputs(ag, av).contact_length,
+            vr::MR => self.outputs(ag, av).mr,
+            vr::FX => self.outputs(ag, av).fx,
+            vr::FZ => self.outputs(ag, av).fz,
+            vr::APPARENT_WEIGHT => self.outputs(ag, av).apparent_weight,
+            vr::FRICTION_DEMAND => self.outputs(ag, av).friction_demand(),
             vr::DER_THETA | vr::DER_OMEGA => self.me_derivative(r, inputs)?,
             _ => return Err(format!("no computed Real with value reference {r}")),
         };
@@ -210,7 +246,8 @@ impl Slave for RockingSlave {
 
     fn get_integer(&mut self, r: u32, inputs: Inputs<'_>) -> Result<i32, String> {
         match r {
-            vr::REGIME => Ok(self.regime(inputs.real(vr::AG)) as i32),
+            vr::REGIME if self.terminal.is_some() => Ok(REGIME_OUT_OF_RANGE),
+            vr::REGIME => Ok(self.regime(inputs.real(vr::AG), inputs.real(vr::AV)) as i32),
             vr::IMPACTS => Ok(i32::try_from(self.state.impacts).unwrap_or(i32::MAX)),
             vr::ZERO_CROSSINGS => Ok(i32::try_from(self.state.zero_crossings).unwrap_or(i32::MAX)),
             _ => Err(format!("no computed Integer with value reference {r}")),
@@ -230,6 +267,12 @@ impl Slave for RockingSlave {
             ag,
             dag: inputs.derivative(vr::AG),
         };
+        let (av, dav) = (inputs.real(vr::AV), inputs.derivative(vr::AV));
+        if av != 0.0 || dav != 0.0 {
+            return Err(format!(
+                "av = {av}, dav/dt = {dav}: output derivatives are available only without a vertical input (av = 0)"
+            ));
+        }
         // the FMI layer has checked 1 <= order <= maxOutputDerivativeOrder
         let k = match order {
             1 | 2 => order as usize,
@@ -262,31 +305,34 @@ impl Slave for RockingSlave {
         inputs: Inputs<'_>,
         log: &mut EventLog,
     ) -> Result<StepEnd, String> {
-        let ag = inputs.real(vr::AG);
-        let dag = inputs.derivative(vr::AG);
-        if !(ag.is_finite() && dag.is_finite()) {
-            return Err(format!(
-                "ag = {ag}, dag/dt = {dag}: the input must be finite"
-            ));
-        }
-        // Beyond this the equations of motion overflow on the way to
-        // overturning and the integrator cannot finish the step (the limit
-        // itself is far above any ground motion and costs microseconds).
-        let a_end = ag + dag * h;
-        if ag.abs().max(a_end.abs()) > MAX_GROUND_ACCELERATION {
-            return Err(format!(
-                "ag = {ag} at the start of the step, {a_end} at its end: |ag| must be <= {MAX_GROUND_ACCELERATION:e} m/s2"
-            ));
-        }
+        let (ag, dag) = Self::input_line(&inputs, vr::AG, "ag", h)?;
+        // docs/model.md §7.4: av is checked like ag
+        let (av, dav) = Self::input_line(&inputs, vr::AV, "av", h)?;
+        let v = VerticalInput { av, dav };
         if self.state.overturned {
             return Ok(StepEnd::Terminated {
                 time: self.state.t,
                 reason: "the body has already overturned".into(),
             });
         }
-        let before = log.enabled().then(|| self.regime(ag));
+        if let Some(term) = self.terminal {
+            return Ok(StepEnd::Terminated {
+                time: term.t,
+                reason: format!(
+                    "the run ended at t = {} ({})",
+                    term.t,
+                    term.condition.name()
+                ),
+            });
+        }
+        let before = log.enabled().then(|| self.regime(ag, v.av));
         let mut s = self.state;
-        let ev = self.sim.advance(&mut s, t + h, GroundInput { ag, dag });
+        if let Some(prev) = self.av_end {
+            self.sim.vertical_jump(&mut s, prev, v.av);
+        }
+        let ev = self
+            .sim
+            .advance_vertical(&mut s, t + h, GroundInput { ag, dag }, v);
         if !(s.theta.is_finite() && s.omega.is_finite() && s.t.is_finite()) {
             return Err(format!(
                 "the integration produced a non-finite state (theta = {}, omega = {}) at t = {}",
@@ -294,9 +340,10 @@ impl Slave for RockingSlave {
             ));
         }
         self.state = s;
+        self.av_end = Some(v.av + v.dav * (s.t - t));
         self.cache = None;
         self.rates = None;
-        self.check_sliding(ag + dag * h, log);
+        self.check_sliding(ag + dag * h, av + dav * h, log);
         if log.enabled() {
             if ev.uplift {
                 log.event(format!(
@@ -318,7 +365,7 @@ impl Slave for RockingSlave {
                 log.event(format!("came to rest in ({t}, {}]", t + h));
             }
             let a_end = ag + dag * h;
-            let after = self.regime(a_end);
+            let after = self.regime(a_end, v.av + v.dav * h);
             if let Some(b) = before {
                 if b != after {
                     log.event(format!(
@@ -345,6 +392,23 @@ impl Slave for RockingSlave {
                 ),
             });
         }
+        if let Some(term) = ev.terminal {
+            self.terminal = Some(term);
+            let why = match term.condition {
+                OutOfRange::LiftOff => "the apparent weight N = m (g + av) reached 0: the body leaves the ground (free flight is not modelled)",
+                OutOfRange::BaseCrushing => "the apparent weight N reached fm A: the whole section crushes",
+                OutOfRange::RestUnstable => "N hG reached kn Is: the rest position is unstable",
+            };
+            return Ok(StepEnd::Terminated {
+                time: term.t,
+                reason: format!(
+                    "{} at t = {}: av = {} m/s2; {why}",
+                    term.condition.name(),
+                    term.t,
+                    term.av
+                ),
+            });
+        }
         if let Some(l) = ev.limited {
             let max_steps = self.sim.work_limit.map_or(0, |w| w.per_call);
             return Ok(StepEnd::Stopped {
@@ -365,6 +429,9 @@ impl Slave for RockingSlave {
     }
 
     fn set_state(&mut self, c: Continuous) {
+        // a state saved before the input left the range is in it
+        self.terminal = None;
+        self.av_end = None;
         self.store(c);
     }
 
@@ -481,7 +548,7 @@ impl Slave for RockingSlave {
         log: &mut EventLog,
     ) -> Result<bool, String> {
         let event = self.me_completed_step()?;
-        self.check_sliding(inputs.real(vr::AG), log);
+        self.check_sliding(inputs.real(vr::AG), inputs.real(vr::AV), log);
         Ok(event)
     }
 

@@ -527,6 +527,9 @@ fn replay_fuzz_input() {
     println!("{:?}", d.finish());
 }
 
+/// Event indicators the FMU declares.
+const NZ: usize = fmu_rocking::description::EVENT_INDICATORS as usize;
+
 /// Model Exchange through the driver: an ME instance, initialized, answers
 /// its evaluations and mode changes (the random sequences reach them too:
 /// `what_random_sequences_reach` counts `model_exchange_ok`).
@@ -542,7 +545,7 @@ fn model_exchange_sequence() {
     let mut ops = vec![me_instance(0)];
     ops.push(Op::Init(0));
     for w in [5, 2, 3, 4, 7, 8, 0, 1, 3, 4, 9, 6, 7, 8, 3] {
-        ops.push(me(w, if w == 4 { 9 } else { 2 }));
+        ops.push(me(w, if w == 4 { NZ } else { 2 }));
     }
     let stats = run_bounded(ops);
     assert_eq!(stats.model_exchange_ok, 15, "{stats:?}");

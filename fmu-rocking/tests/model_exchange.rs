@@ -12,7 +12,7 @@ use host::*;
 use pulse::pulse;
 
 const NX: usize = 2;
-const NZ: usize = 9;
+const NZ: usize = fmu_rocking::description::EVENT_INDICATORS as usize;
 
 /// The Model Exchange calls of one instance.
 struct Me(Host);
@@ -300,6 +300,42 @@ fn me_host_reproduces_co_simulation_rigid_crushing_and_overturning() {
         &[("interface", enums::ELASTO_PLASTIC)],
         -1.3 * g_tan,
         1e-7,
+    );
+}
+
+/// A constant vertical input (set once before initialization, so that both
+/// hosts apply it: an input-free case for the vertical) and one-sided
+/// bodies: the Model Exchange run reproduces co-simulation.
+#[test]
+fn me_host_reproduces_co_simulation_under_constant_av_and_one_sided() {
+    let g_tan = 9.81 * 0.2;
+    let with = |extra: &[(&'static str, f64)]| {
+        let mut p = vec![("B", 0.5), ("H", 2.5), ("kn", 1e8), ("fm", 2e6)];
+        p.extend_from_slice(extra);
+        p
+    };
+    compare(
+        &with(&[("av", -0.3 * 9.81)]),
+        &[("interface", enums::RIGID)],
+        -g_tan,
+        1e-8,
+    );
+    compare(
+        &with(&[("av", 0.25 * 9.81)]),
+        &[("interface", enums::ELASTO_PLASTIC)],
+        -1.5 * g_tan,
+        1e-7,
+    );
+    let one_sided = [
+        ("interface", enums::RIGID),
+        ("restraint", enums::ONE_SIDED),
+        ("side", 1),
+    ];
+    compare(
+        &with(&[("eRestraint", 0.8)]),
+        &one_sided,
+        -1.3 * g_tan,
+        1e-8,
     );
 }
 

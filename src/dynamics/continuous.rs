@@ -14,6 +14,12 @@
 //! | 1 | `thetaOv - abs(theta)` | overturning: the run ends |
 //! | 2 | `g tan(alpha) - abs(ag)` while a rigid body rests, else 1 | uplift from rest |
 //! | 3.. | `abs(theta) - level` per kink of `af` ([`KINK_SLOTS`], unused ones 1) | none: the solver restarts at the kink |
+//! | 9 | the smallest relative margin of `N = W + m av` to its limits (1 without `av`) | the input left the model's range (docs/model.md §6.5): the run ends |
+//!
+//! Under a vertical input `av` (docs/model.md §6) the uplift threshold is
+//! `(g + av) tan(alpha)` and, for a flexible law, indicator 1 is
+//! `hW(phi, N)/phi`, positive below `thetaOv(N)`. A one-sided body
+//! (docs/model.md §7) keeps its toe: the crossing is a restraint impact.
 //!
 //! `side` (the toe the body rocks about, `±1`) is a discrete state: the
 //! crossing indicator is positive on the toe's side, so a body that the
@@ -22,16 +28,19 @@
 
 use crate::interface::Law;
 
-use super::eom::{side_of, Eom};
+use super::eom::Eom;
 use super::events::count_crossing;
-use super::{Events, GroundInput, Simulator, State};
+use super::{Events, GroundInput, OutOfRange, Simulator, State, VerticalInput};
 
 /// Event-indicator slots for the kinks of `af` (docs/model.md §2: `thetaJo`,
 /// `thetaC`, and up to two corners of the width function, each passed by the
 /// contact edge and by the plastic edge).
 pub const KINK_SLOTS: usize = 6;
-/// Number of event indicators: crossing, overturning, uplift, kinks.
-pub const EVENT_INDICATORS: usize = 3 + KINK_SLOTS;
+/// Number of event indicators: crossing, overturning, uplift, kinks, and the
+/// range of the apparent weight (docs/model.md §6.5).
+pub const EVENT_INDICATORS: usize = 4 + KINK_SLOTS;
+/// The slot of the range indicator.
+const RANGE: usize = 3 + KINK_SLOTS;
 
 /// The state of a run under Model Exchange: the co-simulation [`State`]
 /// (its `theta`, `omega` are the continuous states; `t` the host's time;
@@ -59,6 +68,9 @@ pub struct EventUpdate {
     pub uplift: bool,
     /// The body overturned: the run is over.
     pub overturned: bool,
+    /// The vertical input left the model's range (docs/model.md §6.5): the
+    /// run is over.
+    pub out_of_range: Option<OutOfRange>,
 }
 
 impl Simulator {
@@ -67,7 +79,7 @@ impl Simulator {
     pub fn continuous(&self, theta0: f64, omega0: f64, ag: f64) -> Continuous {
         Continuous {
             state: self.initial_state(theta0, omega0),
-            side: side_of(theta0, omega0, ag),
+            side: self.side(theta0, omega0, ag),
             left_with: 0.0,
         }
     }
@@ -78,11 +90,27 @@ impl Simulator {
     /// overturning, whatever states the host sets (a solver probing its
     /// Jacobian): rest ends at uplift only, which sets the states to 0.
     pub fn derivatives(&self, c: &Continuous, ag: f64) -> [f64; 2] {
+        self.derivatives_vertical(c, ag, 0.0)
+    }
+
+    /// [`derivatives`](Self::derivatives) under the vertical ground
+    /// acceleration `av` (m/s²) too. The host gives no input derivative,
+    /// so the `dI/dN dN/dt` term of docs/model.md §6.2 is left out: under a
+    /// constant `av` (or `av = 0`) this is the co-simulation's equation.
+    pub fn derivatives_vertical(&self, c: &Continuous, ag: f64, av: f64) -> [f64; 2] {
         let st = &c.state;
-        if st.overturned || (st.at_rest && self.is_rigid()) {
+        // a one-sided body at rest is held by the restraint (docs/model.md
+        // §7.1) until the uplift indicator fires
+        let held = self.is_rigid() || self.model.restraint.is_some();
+        if st.overturned || (st.at_rest && held) {
             return [0.0, 0.0];
         }
-        let eom = Eom::new(self, st.t, GroundInput { ag, dag: 0.0 });
+        let eom = Eom::with_vertical(
+            self,
+            st.t,
+            GroundInput { ag, dag: 0.0 },
+            VerticalInput { av, dav: 0.0 },
+        );
         let mut hint = st.a;
         [
             st.omega,
@@ -92,6 +120,19 @@ impl Simulator {
 
     /// The event indicators at `c` under `ag` (see the module doc).
     pub fn event_indicators(&self, c: &Continuous, ag: f64) -> [f64; EVENT_INDICATORS] {
+        self.event_indicators_vertical(c, ag, 0.0)
+    }
+
+    /// [`event_indicators`](Self::event_indicators) under `av` (m/s²): the
+    /// uplift threshold `(g + av) tan(alpha)`; overturning, for a flexible
+    /// law, the sign of `hW(phi, N)/phi` (docs/model.md §6.4); and the
+    /// range indicator, the smallest relative margin of `N` to its limits.
+    pub fn event_indicators_vertical(
+        &self,
+        c: &Continuous,
+        ag: f64,
+        av: f64,
+    ) -> [f64; EVENT_INDICATORS] {
         let mut z = [1.0; EVENT_INDICATORS];
         let st = &c.state;
         if st.overturned {
@@ -99,11 +140,27 @@ impl Simulator {
         }
         let phi = st.theta.abs();
         z[1] = self.model.theta_ov - phi;
-        if st.at_rest && self.is_rigid() {
-            z[2] = self.uplift_acceleration() - ag.abs();
+        if av != 0.0 {
+            z[RANGE] = self.range_margin(av);
+            if !self.is_rigid() {
+                z[1] = self.hw_over_phi(phi, av);
+            }
+        }
+        if st.at_rest && (self.is_rigid() || self.model.restraint.is_some()) {
+            z[2] = self.release_margin(ag, av);
             return z;
         }
         z[0] = c.side * st.theta;
+        if av != 0.0 && !self.is_rigid() {
+            // the thresholds move with N (docs/model.md §6.4): joint opening
+            // and crushing onset from the bed resultant (the corners of a
+            // hollow section's width are left to the host's error control)
+            let n = self.model.body.weight + self.model.body.mass * av;
+            let [heel, toe] = self.model.interface.bed_margins(phi, n);
+            z[3] = heel;
+            z[4] = toe;
+            return z;
+        }
         for (zi, level) in z[3..].iter_mut().zip(self.kinks.as_slice()) {
             *zi = phi - level;
         }
@@ -128,24 +185,44 @@ impl Simulator {
     /// step near the excursion's duration: explicit Euler settles into
     /// impacts every few steps that never decay) would chatter for ever.
     pub fn event_update(&self, c: &mut Continuous, ag: f64) -> EventUpdate {
+        self.event_update_vertical(c, ag, 0.0)
+    }
+
+    /// [`event_update`](Self::event_update) under `av` (m/s²): the range of
+    /// docs/model.md §6.5 first, the moving overturning level, the
+    /// restraint of §7.
+    pub fn event_update_vertical(&self, c: &mut Continuous, ag: f64, av: f64) -> EventUpdate {
         let mut u = EventUpdate::default();
         self.completed_step(c);
         let rigid = self.is_rigid();
+        if av != 0.0 && !c.state.overturned {
+            u.out_of_range = self
+                .out_of_range(VerticalInput { av, dav: 0.0 }, 0.0)
+                .map(|x| x.1);
+            if u.out_of_range.is_some() {
+                return u;
+            }
+        }
+        let beyond = if av != 0.0 && !rigid {
+            c.state.theta != 0.0 && self.hw_over_phi(c.state.theta.abs(), av) <= 0.0
+        } else {
+            c.state.theta.abs() >= self.model.theta_ov
+        };
         let st = &mut c.state;
         if st.overturned {
             return u;
         }
-        if st.theta.abs() >= self.model.theta_ov {
+        if beyond {
             st.overturned = true;
             u.overturned = true;
             return u;
         }
         if st.at_rest {
-            if rigid && !self.held_at_rest(ag) {
+            if (rigid || self.model.restraint.is_some()) && !self.held(ag, av) {
                 st.theta = 0.0;
                 st.omega = 0.0;
                 st.at_rest = false;
-                c.side = side_of(0.0, 0.0, ag);
+                c.side = self.side(0.0, 0.0, ag);
                 c.left_with = 0.0;
                 leave_zero(c.side, &mut st.theta);
                 u.uplift = true;
@@ -158,29 +235,38 @@ impl Simulator {
         }
         u.crossing = true;
         u.states_changed = true;
-        let eta = self.model.eta;
+        let eta = match self.model.restraint {
+            Some(r) => r.e,
+            None => self.model.eta,
+        };
         let unresolved = rigid
             && eta < 1.0
             && c.left_with > 0.0
             && ag == 0.0
             && st.omega.abs() * eta.sqrt() >= c.left_with;
-        if rigid {
-            // docs/model.md §3: for the rigid law every crossing is an impact
+        if rigid || self.model.restraint.is_some() {
+            // docs/model.md §3: for the rigid law every crossing is an
+            // impact; §7.1: every return to the restraint is one
             st.opened = true;
         }
         count_crossing(st, &mut Events::default());
-        st.omega *= eta;
+        st.omega = self.restitution(st.omega);
         c.left_with = if rigid && ag == 0.0 {
             st.omega.abs()
         } else {
             0.0
         };
-        c.side = -c.side;
+        if self.model.restraint.is_none() {
+            c.side = -c.side;
+        }
         leave_zero(c.side, &mut st.theta);
-        let rest = if rigid {
-            unresolved || self.comes_to_rest(st.omega, ag)
+        let n = self.model.body.weight + self.model.body.mass * av;
+        let rest = if self.model.restraint.is_some() {
+            unresolved || self.rests_on_restraint(st.omega, ag, av, ag == 0.0 && av == 0.0)
+        } else if rigid {
+            unresolved || self.comes_to_rest_at(st.omega, ag, n)
         } else {
-            ag == 0.0 && self.settles(st.omega)
+            ag == 0.0 && av == 0.0 && self.settles(st.omega)
         };
         if rest {
             st.theta = 0.0;
@@ -188,9 +274,9 @@ impl Simulator {
             st.at_rest = true;
             c.left_with = 0.0;
             u.came_to_rest = true;
-        } else if st.omega == 0.0 && !self.held_at_rest(ag) {
+        } else if st.omega == 0.0 && !self.held(ag, av) {
             // eta = 0: stopped dead above the uplift threshold
-            c.side = side_of(0.0, 0.0, ag);
+            c.side = self.side(0.0, 0.0, ag);
             leave_zero(c.side, &mut st.theta);
         }
         u
@@ -210,12 +296,57 @@ impl Simulator {
         if st.theta.abs() > self.model.interface.theta_jo() {
             st.opened = true;
         }
-        if st.at_rest && !self.is_rigid() && (st.theta != 0.0 || st.omega != 0.0) {
+        let held = self.is_rigid() || self.model.restraint.is_some();
+        if st.at_rest && !held && (st.theta != 0.0 || st.omega != 0.0) {
             // a flexible body leaves rest on the side the ground pushed it to
             st.at_rest = false;
-            c.side = side_of(st.theta, st.omega, 0.0);
+            c.side = self.side(st.theta, st.omega, 0.0);
         }
         false
+    }
+
+    /// `hW(phi, N)/phi` at `N = W + m av` (docs/model.md §6.4), m/rad:
+    /// positive below `thetaOv(N)`; at `phi = 0` its limit `kn Is/N - hG`.
+    fn hw_over_phi(&self, phi: f64, av: f64) -> f64 {
+        let b = &self.model.body;
+        let n = b.weight + b.mass * av;
+        if phi == 0.0 {
+            let (c, _) = self.model.contact_loaded(0.0, n);
+            return -c.daf - b.hg;
+        }
+        let (c, _) = self.model.contact_loaded(phi, n);
+        self.model.levers(phi, &c).hw / phi
+    }
+
+    /// The smallest relative margin of `N = W + m av` to the limits of
+    /// docs/model.md §6.5, positive inside the range.
+    fn range_margin(&self, av: f64) -> f64 {
+        let b = &self.model.body;
+        let n = b.weight + b.mass * av;
+        let mut z = n / b.weight;
+        let shape = self.model.interface.shape();
+        let unstable = |kn: f64| kn * shape.second_moment() / b.hg;
+        match self.model.interface.law() {
+            Law::Rigid => {}
+            Law::Elastic { kn } => z = z.min(1.0 - n / unstable(kn)),
+            Law::ElastoPlastic { kn, fm } => {
+                z = z
+                    .min(1.0 - n / unstable(kn))
+                    .min(1.0 - n / (fm * shape.area()))
+            }
+        }
+        z
+    }
+
+    /// How far a body at rest is from leaving it ([`Simulator::held`]),
+    /// m/s², positive while held.
+    fn release_margin(&self, ag: f64, av: f64) -> f64 {
+        let b = &self.model.body;
+        let k = if self.is_rigid() { b.b / b.hg } else { 0.0 };
+        match self.model.restraint {
+            None => (b.g + av) * k - ag.abs(),
+            Some(r) => (b.g + av) * k + r.side * ag,
+        }
     }
 
     /// Nominal values of `(theta, omega)`: the scales of the motion

@@ -4,10 +4,10 @@
 //! (`shiftingPivot`; `costa` drops the `omega^2` term; the rigid law has
 //! `af = 0`, `I = IO` and both coincide), with `phi = |theta|`, `s = sgn theta`.
 
-use crate::interface::Law;
+use crate::interface::{Law, Regime};
 use crate::model::Formulation;
 
-use super::{GroundInput, Simulator};
+use super::{GroundInput, Simulator, VerticalInput};
 
 /// The equation of motion of one model under the ground input of one
 /// `advance` call: `ag(t) = ag + dag (t - t0)`.
@@ -24,10 +24,25 @@ pub(crate) struct Eom<'a> {
     t0: f64,
     ag0: f64,
     dag: f64,
+    /// A vertical ground acceleration acts (docs/model.md §6); `false`: the
+    /// apparent weight is the weight and none of its terms is evaluated.
+    pub vertical: bool,
+    av0: f64,
+    dav: f64,
 }
 
 impl<'a> Eom<'a> {
     pub fn new(sim: &'a Simulator, t0: f64, input: GroundInput) -> Eom<'a> {
+        Eom::with_vertical(sim, t0, input, VerticalInput::default())
+    }
+
+    /// The same under the vertical input `av(t) = av + dav (t - t0)`.
+    pub fn with_vertical(
+        sim: &'a Simulator,
+        t0: f64,
+        input: GroundInput,
+        v: VerticalInput,
+    ) -> Eom<'a> {
         let model = &sim.model;
         let rigid = model.interface.law() == Law::Rigid;
         let body = &model.body;
@@ -43,7 +58,38 @@ impl<'a> Eom<'a> {
             t0,
             ag0: input.ag,
             dag: input.dag,
+            vertical: v.av != 0.0 || v.dav != 0.0,
+            av0: v.av,
+            dav: v.dav,
         }
+    }
+
+    /// Vertical ground acceleration at `t`, m/s².
+    #[inline(always)]
+    pub fn av(&self, t: f64) -> f64 {
+        self.av0 + self.dav * (t - self.t0)
+    }
+
+    /// Apparent weight `N(t) = W + m av(t)` (docs/model.md §6.1), N.
+    #[inline(always)]
+    pub fn apparent_weight(&self, t: f64) -> f64 {
+        if self.vertical {
+            self.w + self.mass * self.av(t)
+        } else {
+            self.w
+        }
+    }
+
+    /// Slope of the vertical ground acceleration, m/s³.
+    #[inline(always)]
+    pub fn dav(&self) -> f64 {
+        self.dav
+    }
+
+    /// `dN/dt = m dav/dt`, N/s.
+    #[inline(always)]
+    pub fn dn(&self) -> f64 {
+        self.mass * self.dav
     }
 
     /// Ground acceleration at `t`, m/s².
@@ -79,21 +125,81 @@ impl<'a> Eom<'a> {
             // R0 sin(alpha - phi) = b cos(phi) - hG sin(phi), R0 cos(alpha - phi) = hG cos(phi) + b sin(phi)
             let hw = self.b * cp - self.hg * sp;
             let hgl = self.hg * cp + self.b * sp;
-            -(side * self.w * hw + self.mass * ag * hgl) * self.inv_io
+            // docs/model.md §6.2, rigid: the weight becomes N = m (g + av)
+            let n = self.apparent_weight(t);
+            -(side * n * hw + self.mass * ag * hgl) * self.inv_io
+        } else if self.vertical {
+            self.accel_loaded(ag, self.apparent_weight(t), theta, omega, side, hint)
         } else {
             self.accel_flexible(ag, theta, omega, side, hint)
         }
     }
 
+    /// `theta''` of a flexible law under the apparent weight `n` (docs/model.md
+    /// §6.2, shiftingPivot): `I theta'' + (1/2)(dI/dt) omega = -s N hW - m ag hg`
+    /// with `dI/dt = s (dI/dphi) omega + (dI/dN) dN/dt` — the power form
+    /// `d/dt(I omega²/2) = (-s N hW - m ag hg) omega`, which balances the
+    /// energy against the work of the vertical input (§6.3); costa drops
+    /// both terms. The contact at `(phi, N)`: for an elastic bed `a` depends
+    /// on `phi/N` only, so the table at the weight answers at `phi W/N`
+    /// (`af(phi, N) = af(phi W/N, W)`, `daf/dphi` scaled by `W/N`,
+    /// `daf/dN = -(phi/N) daf/dphi`); a crushing bed is solved at N.
+    #[inline]
+    fn accel_loaded(
+        &self,
+        ag: f64,
+        n: f64,
+        theta: f64,
+        omega: f64,
+        side: f64,
+        hint: &mut f64,
+    ) -> f64 {
+        let s = toe(theta, side);
+        let phi = theta.abs();
+        let model = &self.sim.model;
+        let r = self.w / n;
+        let (c, daf_dn) = if model.interface.is_elastic() {
+            let mut c = self.sim.reaction(phi * r, *hint);
+            c.daf *= r;
+            (c, -phi / n * c.daf)
+        } else if let Some(mut c) = self.uncrushed(phi, r, *hint) {
+            c.daf *= r;
+            (c, -phi / n * c.daf)
+        } else {
+            let (c, xel) = model.interface.contact_loaded(phi, n, *hint);
+            (c, (xel - c.af) / n)
+        };
+        if c.a.is_finite() {
+            *hint = c.a;
+        }
+        let l = model.levers(phi, &c);
+        let mut num = -s * n * l.hw - self.mass * ag * l.hg;
+        if self.pivot_term {
+            // dI/dN = -2 m (b - af) daf/dN, like dI/dphi
+            let di_dn = -2.0 * self.mass * (self.b - c.af) * daf_dn;
+            num -= 0.5 * (s * l.dinertia * omega + di_dn * self.dn()) * omega;
+        }
+        num / l.inertia
+    }
+
+    /// The contact of a crushing bed at `(phi, N)`, `r = W/N`, where the toe
+    /// has not crushed: then the bed is elastic and the contact is the one
+    /// at the weight at `phi r` (docs/model.md §6.1), if that one has not
+    /// crushed either and its `a` stays below `a1 = fm/(kn phi)`. `None`:
+    /// solve at N. `daf` is per radian of `phi r`.
+    #[inline]
+    fn uncrushed(&self, phi: f64, r: f64, hint: f64) -> Option<crate::interface::Contact> {
+        let Law::ElastoPlastic { kn, fm } = self.sim.model.interface.law() else {
+            return None;
+        };
+        let c = self.sim.contact(phi * r, hint);
+        let elastic = matches!(c.regime, Regime::FullContact | Regime::Partial);
+        (elastic && c.a <= fm / (kn * phi)).then_some(c)
+    }
+
     #[inline]
     fn accel_flexible(&self, ag: f64, theta: f64, omega: f64, side: f64, hint: &mut f64) -> f64 {
-        let s = if theta > 0.0 {
-            1.0
-        } else if theta < 0.0 {
-            -1.0
-        } else {
-            side
-        };
+        let s = toe(theta, side);
         let phi = theta.abs();
         let c = self.sim.reaction(phi, *hint);
         if c.a.is_finite() {
@@ -105,6 +211,18 @@ impl<'a> Eom<'a> {
             num -= 0.5 * s * l.dinertia * omega * omega;
         }
         num / l.inertia
+    }
+}
+
+/// The sign of `theta`, `side` at `theta = 0` (a flexible law's toe).
+#[inline(always)]
+fn toe(theta: f64, side: f64) -> f64 {
+    if theta > 0.0 {
+        1.0
+    } else if theta < 0.0 {
+        -1.0
+    } else {
+        side
     }
 }
 

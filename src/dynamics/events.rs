@@ -4,7 +4,6 @@
 //! step is redone to end exactly there.
 
 use super::dense::{max_abs, Hermite, Hit};
-use super::eom::side_of;
 use super::erk::{Pair, StepOut, Tol};
 use super::free::FreeRigid;
 use super::integrate::{Flow, StepCx, Stop, Trial};
@@ -33,7 +32,7 @@ impl StepCx<'_, '_> {
     fn level(&self, hit: Hit) -> f64 {
         match hit {
             Hit::Impact => 0.0,
-            Hit::Overturn => self.side * self.call.sim.model.theta_ov,
+            Hit::Overturn => self.side * self.ov_level,
             Hit::Kink(i) => self.side * self.call.sim.kinks.as_slice()[i],
         }
     }
@@ -109,7 +108,10 @@ impl StepCx<'_, '_> {
         );
         self.ev.stats.evals += 1;
         self.st.a = self.hint;
-        self.side = side_of(self.st.theta, self.st.omega, self.call.eom.ag(self.st.t));
+        self.side = self
+            .call
+            .sim
+            .side(self.st.theta, self.st.omega, self.call.eom.ag(self.st.t));
     }
 
     /// `|theta|` reached `thetaOv` at `t_ev`: the run is over.
@@ -128,11 +130,18 @@ impl StepCx<'_, '_> {
         let (sim, eom) = (self.call.sim, self.call.eom);
         self.st.theta = 0.0;
         self.st.omega = sim.restitution(omega);
+        if sim.model.restraint.is_some() {
+            // docs/model.md §7.1: every return to the restraint is an impact
+            self.st.opened = true;
+        }
         count_crossing(self.st, self.ev);
         let ag = eom.ag(t_ev);
-        let quiet = ag == 0.0 && eom.dag() == 0.0;
-        let mut rest = if eom.rigid {
-            sim.comes_to_rest(self.st.omega, ag)
+        let quiet = ag == 0.0 && eom.dag() == 0.0 && !eom.vertical;
+        let n = eom.apparent_weight(t_ev);
+        let mut rest = if sim.model.restraint.is_some() {
+            sim.rests_on_restraint(self.st.omega, ag, eom.av(t_ev), quiet)
+        } else if eom.rigid {
+            sim.comes_to_rest_at(self.st.omega, ag, n)
         } else {
             quiet && sim.settles(self.st.omega)
         };
@@ -150,7 +159,7 @@ impl StepCx<'_, '_> {
                 Stop::End
             });
         }
-        self.side = side_of(0.0, self.st.omega, ag);
+        self.side = sim.side(0.0, self.st.omega, ag);
         self.hint = self.st.a;
         self.a0 = eom.accel(self.st.t, 0.0, self.st.omega, self.side, &mut self.hint);
         self.ev.stats.evals += 1;
@@ -258,8 +267,40 @@ pub(super) fn count_crossing(st: &mut State, ev: &mut Events) {
 impl Simulator {
     /// The restitution rule (docs/model.md §3), at every zero crossing: the
     /// angular velocity after the crossing from the one before, rad/s.
-    fn restitution(&self, omega: f64) -> f64 {
-        self.model.eta * omega
+    pub(super) fn restitution(&self, omega: f64) -> f64 {
+        match self.model.restraint {
+            // docs/model.md §7.1: the restraint reverses the motion
+            Some(r) => -r.e * omega,
+            None => self.model.eta * omega,
+        }
+    }
+
+    /// Rest against the restraint after an impact that left `omega` (rad/s)
+    /// under `ag`, `av` (m/s², docs/model.md §7.1): rigid, when the energy
+    /// left is below `1e-13 alpha` of the work to lift the body by a tilt
+    /// of alpha, `IO omega²/(2 N b) < 1e-13 alpha`, and the ground cannot
+    /// lift it; flexible, when pushed into the restraint (`side ag > 0`) with
+    /// `I(0) omega²/(2 m side ag hG) < 1e-13 alpha` (the bounces accumulate),
+    /// or stopped dead (`omega = 0`) and not pushed away, or without any
+    /// ground motion below the error floor ([`settles`](Self::settles)).
+    pub(super) fn rests_on_restraint(&self, omega: f64, ag: f64, av: f64, quiet: bool) -> bool {
+        let Some(r) = self.model.restraint else {
+            return false;
+        };
+        let b = &self.model.body;
+        let small = 1e-13 * b.alpha;
+        if !self.held(ag, av) {
+            return false;
+        }
+        if self.model.interface.law() == Law::Rigid {
+            let n = b.weight + b.mass * av;
+            return b.io * omega * omega / (2.0 * n * b.b) < small;
+        }
+        let push = r.side * ag;
+        let i0 = b.ic + b.mass * b.hg * b.hg;
+        omega == 0.0
+            || (push > 0.0 && i0 * omega * omega / (2.0 * b.mass * push * b.hg) < small)
+            || (quiet && self.settles(omega))
     }
 
     /// Rigid law without ground motion, after an impact: the half-cycles
@@ -288,7 +329,12 @@ impl Simulator {
             // the half-cycle rose to phi > 0 = thetaJo: an impact
             st.opened = true;
             count_crossing(st, ev);
-            if self.comes_to_rest(st.omega, 0.0) {
+            let rest = if self.model.restraint.is_some() {
+                self.rests_on_restraint(st.omega, 0.0, 0.0, true)
+            } else {
+                self.comes_to_rest(st.omega, 0.0)
+            };
+            if rest {
                 return true;
             }
         }
@@ -320,9 +366,14 @@ impl Simulator {
     /// rest to the tolerance ([`rest_bound`](Self::rest_bound) below the
     /// step's absolute tolerances).
     pub(super) fn comes_to_rest(&self, omega: f64, ag: f64) -> bool {
+        self.comes_to_rest_at(omega, ag, self.model.body.weight)
+    }
+
+    /// [`comes_to_rest`](Self::comes_to_rest) under the apparent weight `n`, N.
+    pub(super) fn comes_to_rest_at(&self, omega: f64, ag: f64, n: f64) -> bool {
         let rtol = self.effective_rtol();
         let (th, om) = self.scales();
-        match self.rest_bound(omega, ag) {
+        match self.rest_bound_at(omega, ag, n) {
             Some((dw, dth)) => dw <= rtol * om && dth <= rtol * th,
             None => false,
         }

@@ -4,12 +4,12 @@
 //! context ([`StepCx`]).
 
 use super::controller;
-use super::dense::{first_event, Hermite};
-use super::eom::{side_of, Eom};
+use super::dense::{first_event, Hermite, Hit};
+use super::eom::Eom;
 use super::erk::{Dop853, Dp5, Pair, Start, StepOut, Tol};
 use super::rodas::Jac;
 use super::stiffness::{self, Kind};
-use super::{Events, GroundInput, Limited, Method, Simulator, State};
+use super::{Events, GroundInput, Limited, Method, Simulator, State, Terminal, VerticalInput};
 
 /// Why a step loop stopped.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -32,6 +32,7 @@ impl Simulator {
         st: &mut State,
         t_end: f64,
         input: GroundInput,
+        vertical: VerticalInput,
         stop_at_event: bool,
     ) -> Events {
         if st.overturned || t_end.is_nan() || t_end <= st.t {
@@ -41,7 +42,14 @@ impl Simulator {
         let tau_end = t_end - t0;
         st.t = 0.0;
         let budget = self.work_limit.map(|w| w.budget(tau_end));
-        let mut ev = self.run_local(st, t0, tau_end, input, stop_at_event, budget);
+        // docs/model.md §6.5: the call ends where the input leaves the range
+        let out = self.out_of_range(vertical, tau_end);
+        let tau_stop = out.map_or(tau_end, |(tau, _)| tau);
+        let mut ev = if tau_stop > 0.0 {
+            self.run_local(st, t0, tau_stop, (input, vertical), stop_at_event, budget)
+        } else {
+            Events::default()
+        };
         let to_absolute = move |tau: f64| -> f64 {
             if tau >= tau_end {
                 t_end
@@ -50,6 +58,15 @@ impl Simulator {
             }
         };
         ev.overturned_at = ev.overturned_at.map(to_absolute);
+        if let Some((tau, condition)) = out {
+            if !st.overturned && ev.limited.is_none() && st.t >= tau {
+                ev.terminal = Some(Terminal {
+                    t: to_absolute(tau),
+                    condition,
+                    av: vertical.av + vertical.dav * tau,
+                });
+            }
+        }
         st.t = to_absolute(st.t);
         if let Some(l) = ev.limited.as_mut() {
             l.t = st.t;
@@ -64,12 +81,12 @@ impl Simulator {
         st: &mut State,
         t0: f64,
         t_end: f64,
-        input: GroundInput,
+        (input, vertical): (GroundInput, VerticalInput),
         stop_at_event: bool,
         budget: Option<u64>,
     ) -> Events {
         let mut ev = Events::default();
-        let eom = Eom::new(self, st.t, input);
+        let eom = Eom::with_vertical(self, st.t, input, vertical);
         let tol = self.tol();
         let call = Call {
             sim: self,
@@ -83,9 +100,9 @@ impl Simulator {
             st.at_rest = true;
         }
         loop {
-            if st.at_rest && !eom.rigid {
+            if st.at_rest && !eom.rigid && self.model.restraint.is_none() {
                 // flexible law: theta = omega = 0 is an equilibrium as long
-                // as there is no ground motion
+                // as there is no ground motion (hW(0, N) = 0 for every N)
                 if self.held_at_rest(eom.ag(st.t)) && eom.dag() == 0.0 {
                     st.t = t_end;
                     return ev;
@@ -129,6 +146,9 @@ impl Simulator {
     /// When a rigid body at rest at `t` lifts off before `t_end`: the first
     /// time `|ag| > g tan(alpha)` (the input is linear), or `None`.
     fn uplift_time(&self, eom: &Eom, t: f64, t_end: f64) -> Option<f64> {
+        if eom.vertical || self.model.restraint.is_some() {
+            return self.release_time(eom, t, t_end);
+        }
         let thr = self.uplift_acceleration();
         let ag = eom.ag(t);
         if !self.held_at_rest(ag) {
@@ -147,6 +167,44 @@ impl Simulator {
             tu.next_up()
         };
         (tu < t_end).then_some(tu)
+    }
+}
+
+impl Simulator {
+    /// When a body at rest at `t` is no longer held before `t_end`, for a
+    /// vertical input or a one-sided body ([`Simulator::held`]): on each side
+    /// `s` it may leave to, the push `-s ag(t) - k (g + av(t))` is linear in
+    /// `t` (`k = tan(alpha)` rigid, 0 flexible one-sided); the first time it
+    /// is positive.
+    fn release_time(&self, eom: &Eom, t: f64, t_end: f64) -> Option<f64> {
+        let b = &self.model.body;
+        let k = if eom.rigid { b.b / b.hg } else { 0.0 };
+        let sides: &[f64] = match self.model.restraint {
+            Some(ref r) => std::slice::from_ref(&r.side),
+            None => &[1.0, -1.0],
+        };
+        let push = |s: f64, t: f64| -s * eom.ag(t) - k * (b.g + eom.av(t));
+        let mut first: Option<f64> = None;
+        for &s in sides {
+            let f0 = push(s, t);
+            let df = -s * eom.dag() - k * eom.dav();
+            let tu = if f0 > 0.0 {
+                t
+            } else if df > 0.0 {
+                let x = t - f0 / df;
+                if push(s, x) > 0.0 {
+                    x
+                } else {
+                    x.next_up()
+                }
+            } else {
+                continue;
+            };
+            if tu < t_end && first.is_none_or(|f| tu < f) {
+                first = Some(tu);
+            }
+        }
+        first
     }
 }
 
@@ -183,6 +241,10 @@ pub(super) struct StepCx<'c, 'm> {
     pub(super) rejected: bool,
     /// The Rosenbrock Jacobian at the current step start.
     pub(super) jac: Option<Jac>,
+    /// `|theta|` of the overturning event being located, rad: `thetaOv`,
+    /// or under a vertical input (flexible laws) the root of `hW(phi, N(t))`
+    /// found on the step (docs/model.md §6.4).
+    pub(super) ov_level: f64,
 }
 
 /// One attempted step from the context's state.
@@ -218,7 +280,7 @@ impl<'c, 'm> StepCx<'c, 'm> {
     /// (the state's suggestion, else Hairer's starting step).
     fn new<P: Pair>(call: Call<'c, 'm>, st: &'c mut State, ev: &'c mut Events) -> StepCx<'c, 'm> {
         let Call { sim, eom, tol, .. } = call;
-        let side = side_of(st.theta, st.omega, eom.ag(st.t));
+        let side = sim.side(st.theta, st.omega, eom.ag(st.t));
         let mut hint = st.a;
         let a0 = eom.accel(st.t, st.theta, st.omega, side, &mut hint);
         ev.stats.evals += 1;
@@ -247,7 +309,51 @@ impl<'c, 'm> StepCx<'c, 'm> {
             h,
             rejected: false,
             jac: None,
+            ov_level: sim.model.theta_ov,
         }
+    }
+
+    /// Under a vertical input the thresholds move with `N(t)`
+    /// (docs/model.md §6.4): the fixed levels (kinks, `thetaOv` at the
+    /// weight) are not used, and overturning is the zero of `hW(phi, N)`.
+    fn moving_thresholds(&self) -> bool {
+        self.call.eom.vertical && !self.call.eom.rigid
+    }
+
+    /// `hW(|theta(tau)|, N(t + tau h))` on the step's interpolant `herm`
+    /// (`tau` a fraction of the step `tr`), m.
+    fn hw_on_step(&self, tr: &Trial, herm: &Hermite, tau: f64) -> f64 {
+        let phi = herm.theta(tau).abs();
+        let n = self.call.eom.apparent_weight(tr.t + tau * tr.hh);
+        let m = &self.call.sim.model;
+        let (c, _) = m.contact_loaded(phi, n);
+        m.levers(phi, &c).hw
+    }
+
+    /// Under moving thresholds, the overturning on the accepted step `tr`
+    /// (docs/model.md §6.4: the first zero of `hW(phi, N)` moving outwards),
+    /// as a fraction of the step, located by bisection on the interpolant.
+    fn moving_overturn(&mut self, tr: &Trial, herm: &Hermite) -> Option<f64> {
+        if self.side * tr.out.y[1] <= 0.0 || self.side * tr.out.y[0] <= 0.0 {
+            return None;
+        }
+        if self.hw_on_step(tr, herm, 1.0) > 0.0 {
+            return None;
+        }
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if self.hw_on_step(tr, herm, mid) > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        self.ov_level = herm.theta(hi).abs();
+        Some(hi)
     }
 
     /// The loop: attempt, reject or accept, then take the step or the event
@@ -273,12 +379,24 @@ impl<'c, 'm> StepCx<'c, 'm> {
             self.jac = None;
             // RODAS steps are not cut at the kinks: its steps are long, and
             // the projection on the slow manifold moves the state off them
-            let kinks = if self.st.stiff {
+            let moving = self.moving_thresholds();
+            let kinks = if self.st.stiff || moving {
                 &[][..]
             } else {
                 self.call.sim.kinks.as_slice()
             };
-            match first_event(&herm, self.side, self.call.sim.model.theta_ov, kinks) {
+            let theta_ov = if moving {
+                f64::INFINITY
+            } else {
+                self.call.sim.model.theta_ov
+            };
+            let found = match first_event(&herm, self.side, theta_ov, kinks) {
+                None if moving => self
+                    .moving_overturn(&tr, &herm)
+                    .map(|tau| (Hit::Overturn, tau)),
+                f => f,
+            };
+            match found {
                 None => {
                     self.take(&tr, &herm);
                     self.h = h_next;
@@ -382,7 +500,11 @@ impl<'c, 'm> StepCx<'c, 'm> {
         let f = controller::shrink(tr.out.err, tr.kind.err_exp::<P>());
         self.h = (tr.hh * f).max(tr.min_step);
         let kinks = &self.call.sim.kinks;
-        if !kinks.as_slice().is_empty() && !self.st.stiff && tr.out.err.is_finite() {
+        if !kinks.as_slice().is_empty()
+            && !self.st.stiff
+            && !self.moving_thresholds()
+            && tr.out.err.is_finite()
+        {
             let herm = Hermite::new(
                 tr.hh,
                 [tr.y0[0], tr.y0[1], self.a0],
@@ -445,7 +567,10 @@ impl<'c, 'm> StepCx<'c, 'm> {
         self.hint = tr.hint;
         self.st.a = self.hint;
         if !self.call.eom.rigid {
-            self.side = side_of(self.st.theta, self.st.omega, self.call.eom.ag(self.st.t));
+            self.side =
+                self.call
+                    .sim
+                    .side(self.st.theta, self.st.omega, self.call.eom.ag(self.st.t));
         }
     }
 }

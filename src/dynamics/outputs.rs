@@ -1,8 +1,8 @@
 //! Output quantities at a state (docs/model.md §5): `theta''`, the contact,
 //! the restoring moment and the forces of the support.
 
-use super::eom::{side_of, Eom};
-use super::{GroundInput, Outputs, Simulator, State};
+use super::eom::Eom;
+use super::{GroundInput, Outputs, Simulator, State, VerticalInput};
 use crate::interface::Regime;
 
 impl Simulator {
@@ -23,14 +23,22 @@ impl Simulator {
     /// the work of `Fx`; for the rigid law they are G turning rigidly about
     /// the toe.
     pub fn outputs(&self, state: &State, ag: f64) -> Outputs {
+        self.outputs_vertical(state, ag, 0.0)
+    }
+
+    /// [`outputs`](Self::outputs) under the vertical ground acceleration `av`
+    /// too (docs/model.md §6.2): the contact at the apparent weight `N`,
+    /// `MR = N hW(phi, N)`, `Fz = m (g + av + zG'')`.
+    pub fn outputs_vertical(&self, state: &State, ag: f64, av: f64) -> Outputs {
         if !state.at_rest {
-            return self.outputs_in_motion(state, ag);
+            return self.outputs_in_motion(state, ag, av);
         }
         let b = &self.model.body;
         // The contact of a body at rest is the whole base, whatever ag: the
         // contact outputs do not depend on ag (docs/model.md §5 declares
         // only angularAcceleration, Fx, Fz as depending on it).
         let c = self.model.interface.contact(0.0);
+        let n = b.weight + b.mass * av;
         let rest = Outputs {
             theta_dd: 0.0,
             af: c.af,
@@ -38,12 +46,13 @@ impl Simulator {
             mr: 0.0,
             regime: c.regime,
             fx: b.mass * ag,
-            fz: b.weight,
+            fz: n,
+            apparent_weight: n,
         };
-        if self.held_at_rest(ag) {
+        if self.held(ag, av) {
             return rest;
         }
-        let start = self.outputs_in_motion(state, ag);
+        let start = self.outputs_in_motion(state, ag, av);
         Outputs {
             theta_dd: start.theta_dd,
             fx: start.fx,
@@ -53,24 +62,28 @@ impl Simulator {
     }
 
     /// [`outputs`](Self::outputs) from the equation of motion at `state`.
-    fn outputs_in_motion(&self, state: &State, ag: f64) -> Outputs {
+    fn outputs_in_motion(&self, state: &State, ag: f64, av: f64) -> Outputs {
         let m = &self.model;
         let b = &m.body;
-        let side = side_of(state.theta, state.omega, ag);
-        let eom = Eom::new(
+        let side = self.side(state.theta, state.omega, ag);
+        let eom = Eom::with_vertical(
             self,
             state.t,
             GroundInput {
                 ag,
                 ..Default::default()
             },
+            VerticalInput { av, dav: 0.0 },
         );
+        let n = eom.apparent_weight(state.t);
         let mut hint = state.a;
         let theta_dd = eom.accel(state.t, state.theta, state.omega, side, &mut hint);
         let phi = state.theta.abs();
         // rigid law in motion: the reaction is at the toe even at theta = 0
         let c = if eom.rigid {
             m.interface.contact(phi.max(f64::MIN_POSITIVE))
+        } else if eom.vertical {
+            m.contact_loaded(phi, n).0
         } else {
             self.contact(phi, state.a)
         };
@@ -82,14 +95,16 @@ impl Simulator {
             theta_dd,
             af: c.af,
             contact_length: c.contact_length,
-            mr: b.weight * l.hw,
+            mr: n * l.hw,
             regime: if state.overturned {
                 Regime::Overturned
             } else {
                 c.regime
             },
             fx: b.mass * (ag + xg_dd),
-            fz: b.mass * (b.g + zg_dd),
+            // av = 0: b.g + 0.0 is b.g, the same bits
+            fz: b.mass * (b.g + av + zg_dd),
+            apparent_weight: n,
         }
     }
 }

@@ -56,6 +56,12 @@ fn item(name: &str, s: &str) -> i32 {
 fn set(p: &mut Params, name: &str, s: &str) {
     match params::field(name) {
         Some((_, Field::Real(set))) => set(p, number(name, s)),
+        Some((_, Field::Integer(set))) => {
+            let x = s
+                .parse()
+                .unwrap_or_else(|_| die(format!("{name} = {s}: not an integer")));
+            set(p, x)
+        }
         Some((_, Field::Enumeration(set))) => {
             set(p, item(name, s)).expect("an item of the table");
         }

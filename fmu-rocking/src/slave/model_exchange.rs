@@ -29,15 +29,18 @@ impl RockingSlave {
         self.rates = None;
     }
 
-    /// The ground acceleration now, checked as in a step.
-    fn ground(inputs: &Inputs<'_>) -> Result<f64, String> {
+    /// The ground accelerations `(ag, av)` now, checked as in a step.
+    fn ground(inputs: &Inputs<'_>) -> Result<(f64, f64), String> {
         let ag = inputs.real(vr::AG);
-        if !ag.is_finite() || ag.abs() > MAX_GROUND_ACCELERATION {
-            return Err(format!(
-                "ag = {ag}: the input must be finite and |ag| <= {MAX_GROUND_ACCELERATION:e} m/s2"
-            ));
+        let av = inputs.real(vr::AV);
+        for (name, x) in [("ag", ag), ("av", av)] {
+            if !x.is_finite() || x.abs() > MAX_GROUND_ACCELERATION {
+                return Err(format!(
+                    "{name} = {x}: the input must be finite and |{name}| <= {MAX_GROUND_ACCELERATION:e} m/s2"
+                ));
+            }
         }
-        Ok(ag)
+        Ok((ag, av))
     }
 
     pub(crate) fn me_set_time(&mut self, t: f64) -> Result<(), String> {
@@ -65,8 +68,8 @@ impl RockingSlave {
         inputs: Inputs<'_>,
         dx: &mut [f64],
     ) -> Result<(), String> {
-        let ag = Self::ground(&inputs)?;
-        let d = self.sim.derivatives(&self.continuous(), ag);
+        let (ag, av) = Self::ground(&inputs)?;
+        let d = self.sim.derivatives_vertical(&self.continuous(), ag, av);
         if let Some(x) = d.iter().find(|x| !x.is_finite()) {
             return Err(self.overflow(*x, ag));
         }
@@ -79,8 +82,12 @@ impl RockingSlave {
         inputs: Inputs<'_>,
         z: &mut [f64],
     ) -> Result<(), String> {
-        let ag = Self::ground(&inputs)?;
-        z.copy_from_slice(&self.sim.event_indicators(&self.continuous(), ag));
+        let (ag, av) = Self::ground(&inputs)?;
+        z.copy_from_slice(
+            &self
+                .sim
+                .event_indicators_vertical(&self.continuous(), ag, av),
+        );
         Ok(())
     }
 
@@ -89,9 +96,9 @@ impl RockingSlave {
         inputs: Inputs<'_>,
         log: &mut EventLog,
     ) -> Result<Update, String> {
-        let ag = Self::ground(&inputs)?;
+        let (ag, av) = Self::ground(&inputs)?;
         let mut c = self.continuous();
-        let u = self.sim.event_update(&mut c, ag);
+        let u = self.sim.event_update_vertical(&mut c, ag, av);
         self.store(c);
         let t = c.state.t;
         if u.uplift {
@@ -106,12 +113,23 @@ impl RockingSlave {
         if u.came_to_rest {
             log.event(format!("came to rest at t = {t}"));
         }
-        let terminate = u.overturned.then(|| {
+        let mut terminate = u.overturned.then(|| {
             format!(
                 "the body overturned (|theta| reached thetaOv = {} rad) at t = {t}",
                 self.sim.model.theta_ov
             )
         });
+        if let Some(cond) = u.out_of_range {
+            self.terminal = Some(rocking::dynamics::Terminal {
+                t,
+                condition: cond,
+                av,
+            });
+            terminate = Some(format!(
+                "{} at t = {t}: av = {av} m/s2 leaves the model's range",
+                cond.name()
+            ));
+        }
         Ok(Update {
             states_changed: u.states_changed,
             terminate,

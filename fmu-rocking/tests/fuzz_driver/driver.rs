@@ -148,6 +148,13 @@ impl Stored {
             g: r(vr::G),
             theta0: r(vr::THETA),
             omega0: r(vr::OMEGA),
+            restraint: match i(vr::RESTRAINT) {
+                NONE => RestraintKind::None,
+                ONE_SIDED => RestraintKind::OneSided,
+                _ => return None,
+            },
+            side: i(vr::SIDE),
+            e_restraint: r(vr::E_RESTRAINT),
         })
     }
 

@@ -51,7 +51,7 @@ use fmi2_export::types::*;
 use fmu_rocking as fmu;
 use fmu_rocking::description::{enums, vr, LOG_CATEGORIES, VARIABLES};
 use rocking::model::{LawKind, MassKind, ShapeKind};
-use rocking::{Formulation, Params, Restitution};
+use rocking::{Formulation, Params, Restitution, RestraintKind};
 
 mod calls;
 mod driver;

@@ -1,5 +1,8 @@
 //! Operations: decoded from the input bytes.
 
+/// Event indicators the FMU declares.
+const NZ: usize = fmu_rocking::description::EVENT_INDICATORS as usize;
+
 use super::*;
 
 /// Bytes consumed from the front; zeros once exhausted.
@@ -380,12 +383,15 @@ pub fn decode_op(b: &mut Bytes) -> Op {
             which: b.u8(),
             x: [b.near(0.05), b.near(0.0)],
             n: if b.chance(1) {
-                [0, 1, 3, 8, 10][b.below(5)]
+                [0, 1, 3, NZ - 1, NZ + 1][b.below(5)]
             } else {
-                [2, 2, 9, 9][b.below(4)]
+                [2, 2, NZ, NZ][b.below(4)]
             },
         },
-        41 => Op::SetInputDerivatives(s, vec![vr::AG], vec![1], vec![b.int() as f64 * 10.0]),
+        41 => {
+            let input = if b.chance(1) { vr::AV } else { vr::AG };
+            Op::SetInputDerivatives(s, vec![input], vec![1], vec![b.int() as f64 * 10.0])
+        }
         0..=2 => Op::Instantiate(s, spec(b)),
         3 => Op::Free(s),
         4 => {

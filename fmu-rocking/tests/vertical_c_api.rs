@@ -1,0 +1,85 @@
+//! The vertical input and the one-sided parameters through the C API
+//! (docs/model.md §6, §7, §8): the terminal condition `liftOff` is an
+//! `fmi2Discard` at the exact time `N = W + m av` reaches 0 (computed here
+//! from the FMU's `weight` and `mass`), with `fmi2Terminated`, `regime` 5
+//! and a message naming the condition, `av` and the time; a non-finite
+//! `av` and bad `side`, `eRestraint` are `fmi2Error` naming the variable.
+
+mod host;
+
+use host::*;
+
+#[test]
+fn lift_off_is_a_discard_at_the_exact_time() {
+    let h = Host::new();
+    h.init();
+    let (w, m) = (h.real("weight"), h.real("mass"));
+    let dav = -20.0;
+    let dt = 0.1;
+    let mut t = 0.0;
+    let mut k = 0;
+    loop {
+        assert_eq!(h.set_real("av", dav * t), fmi2OK);
+        assert_eq!(h.set_input_derivative("av", 1, dav), fmi2OK);
+        let s = h.do_step(t, dt);
+        if s == fmi2Discard {
+            break;
+        }
+        assert_eq!(s, fmi2OK, "{:?}", h.messages());
+        assert!((h.real("apparentWeight") - (w + m * dav * (t + dt))).abs() <= 1e-9 * w);
+        t += dt;
+        k += 1;
+        assert!(k < 10, "no discard");
+    }
+    let (_, t_star) = h.last_successful_time();
+    let n = |x: f64| w + m * (dav * t + dav * (x - t));
+    assert!(
+        n(t_star) <= 0.0 && n(t_star.next_down()) > 0.0,
+        "N = {} at {t_star}",
+        n(t_star)
+    );
+    assert_eq!(h.terminated(), (fmi2OK, true));
+    assert_eq!(h.integer("regime"), 5);
+    let text: Vec<String> = h.messages().into_iter().map(|m| m.text).collect();
+    let said = text.iter().any(|m| {
+        m.contains("liftOff") && m.contains("av = ") && m.contains(&format!("t = {t_star}"))
+    });
+    assert!(said, "{text:?}");
+}
+
+#[test]
+fn non_finite_av_is_an_error_naming_av() {
+    for bad in [f64::NAN, f64::INFINITY] {
+        let h = Host::new();
+        h.init();
+        assert_eq!(h.set_real("av", bad), fmi2Error);
+        assert!(h.logged("av"), "{:?}", h.errors());
+    }
+    // finite, but the line av + dav h overflows within the step
+    let h = Host::new();
+    h.init();
+    assert_eq!(h.set_real("av", 1.0), fmi2OK);
+    assert_eq!(h.set_input_derivative("av", 1, 1e300), fmi2OK);
+    assert_eq!(h.do_step(0.0, 0.01), fmi2Error);
+    assert!(h.logged("av = 1"), "{:?}", h.errors());
+}
+
+#[test]
+fn bad_one_sided_parameters_are_errors_naming_the_variable() {
+    let cases: [(&str, i32, f64, f64, &str); 3] = [
+        ("side", 0, 0.5, 0.0, "side"),
+        ("eRestraint", 1, 1.5, 0.0, "eRestraint"),
+        ("theta", 1, 0.5, -0.01, "restraintViolated"),
+    ];
+    for (what, side, e, theta, word) in cases {
+        let h = Host::new();
+        assert_eq!(h.setup(None, 0.0, None), fmi2OK);
+        assert_eq!(h.set_integer("restraint", enums::ONE_SIDED), fmi2OK);
+        assert_eq!(h.set_integer("side", side), fmi2OK);
+        assert_eq!(h.set_real("eRestraint", e), fmi2OK);
+        assert_eq!(h.set_real("theta", theta), fmi2OK);
+        let s = [h.enter_init(), h.exit_init()];
+        assert!(s.contains(&fmi2Error), "{what}: {s:?}");
+        assert!(h.logged(word), "{what}: {:?}", h.errors());
+    }
+}

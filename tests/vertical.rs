@@ -1,0 +1,468 @@
+//! Vertical ground acceleration (docs/model.md §6) against independent
+//! references: the rigid block under a constant `av` is the block under
+//! `g' = g + av` (Housner's closed form, quadrature in `support::exact`);
+//! uplift from rest at `(g + av) tan(alpha)`; the terminal conditions at the
+//! exact limits of `N = W + m av`; the energy in the apparent field against
+//! the work of the vertical input (§6.3), which the power form balances and
+//! the naive form (Eq. 9 with N frozen in the inertia term, integrated here
+//! by a reference RK4) does not.
+
+mod support;
+
+use rocking::dynamics::{GroundInput, OutOfRange, Simulator, State, VerticalInput};
+use rocking::model::{LawKind, Restitution};
+use rocking::{Model, Params};
+use support::exact::Exact;
+use support::{quad, rigid_block};
+
+const G: f64 = 9.81;
+
+/// Runs event to event until `n` impacts: the time of each and the
+/// `omega` after it.
+fn impacts(sim: &Simulator, st: &mut State, v: VerticalInput, n: usize) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    while out.len() < n {
+        let before = st.impacts;
+        let ev = sim.advance_to_event_vertical(st, 100.0, GroundInput::default(), v);
+        assert!(!st.overturned && ev.terminal.is_none() && st.t < 100.0);
+        if st.impacts > before {
+            out.push((st.t, st.omega));
+        }
+    }
+    out
+}
+
+#[test]
+fn rigid_under_constant_av_is_housner_under_reduced_gravity() {
+    let m = rigid_block(0.4, 2.0);
+    let sim = Simulator::new(m, 1e-12);
+    let b = &m.body;
+    for av in [-0.3 * G, 0.4 * G] {
+        let n = b.weight + b.mass * av;
+        let exact = Exact {
+            w_r0: n * b.r0,
+            io: b.io,
+            alpha: b.alpha,
+            eta: m.eta,
+        };
+        let theta0 = 0.6 * b.alpha;
+        let want = exact.impacts(theta0, 20);
+        let mut st = sim.initial_state(theta0, 0.0);
+        let got = impacts(&sim, &mut st, VerticalInput { av, dav: 0.0 }, 20);
+        for (k, ((tg, wg), (tw, aw))) in got.iter().zip(&want).enumerate() {
+            assert!(
+                (tg - tw).abs() <= 1e-10,
+                "av {av}: impact {k} at {tg}, closed form {tw}"
+            );
+            let amp = exact.amplitude(0.5 * b.io * wg * wg);
+            assert!(
+                (amp - aw).abs() <= 1e-9 * aw,
+                "av {av}: impact {k}: amplitude {amp}, closed form {aw}"
+            );
+        }
+    }
+}
+
+#[test]
+fn rigid_uplift_at_apparent_gravity_tan_alpha() {
+    let m = rigid_block(0.4, 2.0);
+    let sim = Simulator::new(m, 1e-12);
+    let b = &m.body;
+    let k = 0.5; // ag = -k t, m/s³
+    for av in [-0.45 * G, 0.0, 0.3 * G] {
+        let mut st = sim.initial_state(0.0, 0.0);
+        let ev = sim.advance_to_event_vertical(
+            &mut st,
+            10.0,
+            GroundInput { ag: 0.0, dag: -k },
+            VerticalInput { av, dav: 0.0 },
+        );
+        let want = (G + av) * (b.b / b.hg) / k;
+        assert!(ev.uplift, "av {av}: no uplift");
+        assert!(
+            (st.t - want).abs() <= 1e-13 * want,
+            "av {av}: uplift at {}, want {want}",
+            st.t
+        );
+    }
+}
+
+/// `N(t) = W + m (av0 + dav t)` as the test computes it.
+fn apparent(m: &Model, av0: f64, dav: f64, t: f64) -> f64 {
+    m.body.weight + m.body.mass * (av0 + dav * t)
+}
+
+/// Runs one call under the ramp `av0 + dav t` to 10 s: the terminal event.
+fn terminal(m: Model, theta0: f64, av0: f64, dav: f64) -> (State, rocking::dynamics::Terminal) {
+    let sim = Simulator::new(m, 1e-10);
+    let mut st = sim.initial_state(theta0, 0.0);
+    let ev = sim.advance_vertical(
+        &mut st,
+        10.0,
+        GroundInput::default(),
+        VerticalInput { av: av0, dav },
+    );
+    let term = ev.terminal.expect("a terminal condition");
+    assert_eq!(st.t, term.t, "the call ends at the terminal time");
+    (st, term)
+}
+
+#[test]
+fn terminal_conditions_at_the_exact_limits_of_n() {
+    let elastoplastic = Params::default().build().unwrap();
+    let elastic = Params {
+        interface: LawKind::Elastic,
+        kn: 2e7,
+        ..Params::default()
+    }
+    .build()
+    .unwrap();
+    let shape = elastoplastic.interface.shape();
+    let (area, is) = (shape.area(), shape.second_moment());
+    let cases = [
+        (elastoplastic, 0.0, -G / 0.7, OutOfRange::LiftOff, 0.0, true),
+        (
+            rigid_block(0.4, 2.0),
+            0.01,
+            -3.0,
+            OutOfRange::LiftOff,
+            0.0,
+            true,
+        ),
+        (
+            elastoplastic,
+            0.0,
+            1500.0,
+            OutOfRange::BaseCrushing,
+            5e6 * area,
+            false,
+        ),
+        (
+            elastic,
+            0.0,
+            20.0,
+            OutOfRange::RestUnstable,
+            2e7 * is / elastic.body.hg,
+            false,
+        ),
+    ];
+    for (m, theta0, dav, cond, limit, below) in cases {
+        let (_, term) = terminal(m, theta0, 0.0, dav);
+        assert_eq!(term.condition, cond);
+        let (at, before) = (
+            apparent(&m, 0.0, dav, term.t),
+            apparent(&m, 0.0, dav, term.t.next_down()),
+        );
+        if below {
+            assert!(
+                at <= limit && before > limit,
+                "{cond:?}: N = {at} at {}, {before} just before",
+                term.t
+            );
+        } else {
+            assert!(
+                at >= limit && before < limit,
+                "{cond:?}: N = {at} at {}, {before} just before",
+                term.t
+            );
+        }
+        assert_eq!(term.av, dav * term.t);
+    }
+    // out of range from the start: a zero-length call
+    let (st, term) = terminal(elastoplastic, 0.0, -1.5 * G, 0.0);
+    assert_eq!(
+        (term.t, st.t, term.condition),
+        (0.0, 0.0, OutOfRange::LiftOff)
+    );
+}
+
+// ---- energy against the work of the vertical input (docs/model.md §6.3) ----
+
+/// The elastic 0.5 m x 1 m x 2.5 m block on a soft joint, no impact loss.
+fn soft_block() -> Model {
+    Params {
+        interface: LawKind::Elastic,
+        kn: 1e8,
+        restitution: Restitution::Given,
+        eta: 1.0,
+        ..Params::default()
+    }
+    .build()
+    .unwrap()
+}
+
+/// Joint opening at N for the solid rectangle: `2N/(kn A D)`.
+fn theta_jo(m: &Model, n: f64) -> f64 {
+    let s = m.interface.shape();
+    2.0 * n / (1e8 * s.area() * m.interface.depth())
+}
+
+/// `∫_0^phi f` split at the joint opening (a kink of the contact).
+fn split(m: &Model, n: f64, phi: f64, f: &dyn Fn(f64) -> f64) -> f64 {
+    let jo = theta_jo(m, n);
+    if phi <= jo {
+        quad(f, 0.0, phi, 2)
+    } else {
+        quad(f, 0.0, jo, 2) + quad(f, jo, phi, 4)
+    }
+}
+
+/// `E = I(phi, N) omega²/2 + V(phi, N)`, `V = N ∫ hW(phi', N) dphi'`.
+fn energy(m: &Model, n: f64, theta: f64, omega: f64) -> f64 {
+    let phi = theta.abs();
+    let hw = |p: f64| {
+        m.levers(p, &m.interface.contact_loaded(p, n, f64::NAN).0)
+            .hw
+    };
+    let l = m.levers(phi, &m.interface.contact_loaded(phi, n, f64::NAN).0);
+    0.5 * l.inertia * omega * omega + n * split(m, n, phi, &hw)
+}
+
+/// `dz(phi, N) = ∫ [(b - xel) cos phi' - hG sin phi'] dphi'`, the rise of G.
+fn dz(m: &Model, n: f64, theta: f64) -> f64 {
+    let b = &m.body;
+    let f = |p: f64| {
+        let xel = m.interface.contact_loaded(p, n, f64::NAN).1;
+        (b.b - xel) * p.cos() - b.hg * p.sin()
+    };
+    split(m, n, theta.abs(), &f)
+}
+
+/// `av(t)`: 0.3 g at 1.4 Hz.
+fn av_of(t: f64) -> f64 {
+    0.3 * G * (2.0 * std::f64::consts::PI * 1.4 * t).sin()
+}
+
+/// The largest `|E - E0 - W_av| / E0` over 2 s of the simulator's run,
+/// `av` linear over calls of `dt`, the work by 5-point Gauss-Legendre on
+/// each call (the input is the same linear function on the sub-calls).
+#[test]
+fn energy_balances_the_work_of_av() {
+    let m = soft_block();
+    let sim = Simulator::new(m, 1e-12);
+    let theta0 = 0.3 * m.theta_ov;
+    let mut st = sim.initial_state(theta0, 0.0);
+    let e0 = energy(&m, m.body.weight, theta0, 0.0);
+    let gl = support::gauss_legendre(5);
+    let dt = 1e-3;
+    let mut work = 0.0;
+    let mut worst = 0.0f64;
+    for k in 0..2000 {
+        let (t0, t1) = (k as f64 * dt, (k + 1) as f64 * dt);
+        let v = VerticalInput {
+            av: av_of(t0),
+            dav: (av_of(t1) - av_of(t0)) / dt,
+        };
+        let n_at = |t: f64| m.body.weight + m.body.mass * (v.av + v.dav * (t - t0));
+        let mut nodes: Vec<(f64, f64)> = gl
+            .iter()
+            .map(|&(x, w)| (t0 + 0.5 * dt * (1.0 + x), w))
+            .collect();
+        nodes.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut sum = 0.0;
+        for (tn, w) in nodes {
+            let vv = VerticalInput {
+                av: v.av + v.dav * (st.t - t0),
+                dav: v.dav,
+            };
+            sim.advance_vertical(&mut st, tn, GroundInput::default(), vv);
+            sum += w * dz(&m, n_at(tn), st.theta);
+        }
+        work += m.body.mass * v.dav * 0.5 * dt * sum;
+        let vv = VerticalInput {
+            av: v.av + v.dav * (st.t - t0),
+            dav: v.dav,
+        };
+        let ev = sim.advance_vertical(&mut st, t1, GroundInput::default(), vv);
+        assert!(ev.terminal.is_none() && !st.overturned);
+        let e = energy(&m, n_at(t1), st.theta, st.omega);
+        worst = worst.max((e - e0 - work).abs() / e0);
+    }
+    println!(
+        "simulator: max |E - E0 - W_av| / E0 = {worst:.2e}, W_av/E0 at the end {:.2}",
+        work / e0
+    );
+    assert!(worst <= 1e-9, "energy error {worst:e}");
+}
+
+/// `theta''` of the flexible law under `N(t)` with the inertia term of
+/// the power form (`pivot`) or Eq. 9 with N frozen (naive), written out
+/// here from the model's contact and levers.
+fn reference_accel(m: &Model, n: f64, dn: f64, theta: f64, omega: f64, power: bool) -> f64 {
+    let s = if theta >= 0.0 { 1.0 } else { -1.0 };
+    let phi = theta.abs();
+    let b = &m.body;
+    let (c, xel) = m.interface.contact_loaded(phi, n, f64::NAN);
+    let l = m.levers(phi, &c);
+    let mut num = -s * n * l.hw - 0.5 * s * l.dinertia * omega * omega;
+    if power {
+        let di_dn = -2.0 * b.mass * (b.b - c.af) * (xel - c.af) / n;
+        num -= 0.5 * di_dn * dn * omega;
+    }
+    num / l.inertia
+}
+
+/// RK4 at a fixed step on `(theta, omega, W_av)` from the reference
+/// right-hand side: the largest `|E - E0 - W_av| / E0`.
+fn reference_energy_error(m: &Model, power: bool) -> f64 {
+    let b = &m.body;
+    let h = 1e-4;
+    let n_of = |t: f64| b.weight + b.mass * av_of(t);
+    let dn_of = |t: f64| {
+        b.mass
+            * 0.3
+            * G
+            * 2.0
+            * std::f64::consts::PI
+            * 1.4
+            * (2.0 * std::f64::consts::PI * 1.4 * t).cos()
+    };
+    let f = |t: f64, y: [f64; 3]| -> [f64; 3] {
+        [
+            y[1],
+            reference_accel(m, n_of(t), dn_of(t), y[0], y[1], power),
+            dn_of(t) * dz(m, n_of(t), y[0]),
+        ]
+    };
+    let theta0 = 0.3 * m.theta_ov;
+    let mut y = [theta0, 0.0, 0.0];
+    let e0 = energy(m, b.weight, theta0, 0.0);
+    let mut worst = 0.0f64;
+    for k in 0..5000 {
+        let t = k as f64 * h;
+        let add =
+            |y: [f64; 3], d: [f64; 3], c: f64| [y[0] + c * d[0], y[1] + c * d[1], y[2] + c * d[2]];
+        let k1 = f(t, y);
+        let k2 = f(t + 0.5 * h, add(y, k1, 0.5 * h));
+        let k3 = f(t + 0.5 * h, add(y, k2, 0.5 * h));
+        let k4 = f(t + h, add(y, k3, h));
+        for i in 0..3 {
+            y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        }
+        if k % 50 == 49 {
+            let e = energy(m, n_of(t + h), y[0], y[1]);
+            worst = worst.max((e - e0 - y[2]).abs() / e0);
+        }
+    }
+    worst
+}
+
+/// The balance tells the forms apart: the power form holds it to the
+/// reference integrator's own error, the naive form misses it by orders of
+/// magnitude more.
+#[test]
+fn naive_inertia_term_fails_the_energy_balance() {
+    let m = soft_block();
+    let power = reference_energy_error(&m, true);
+    let naive = reference_energy_error(&m, false);
+    println!("reference RK4 over 0.5 s: power form {power:.2e}, naive form {naive:.2e}");
+    assert!(power <= 1e-6, "power form {power:e}");
+    assert!(naive >= 1e3 * power.max(1e-9), "naive form {naive:e}");
+}
+
+/// Under a constant `av` a flexible body overturns where `hW(phi, N) = 0`:
+/// at `thetaOv(N)` of the model's scan (which falls as N grows), not at
+/// `thetaOv(W)`.
+#[test]
+fn flexible_overturning_at_the_moving_threshold() {
+    let m = Params::default().build().unwrap();
+    let sim = Simulator::new(m, 1e-12);
+    for av in [0.3 * G, -0.3 * G] {
+        let n = m.body.weight + m.body.mass * av;
+        let ov = m.theta_ov_at(n);
+        assert!(
+            (ov < m.theta_ov) == (av > 0.0),
+            "thetaOv(N) = {ov}, thetaOv(W) = {}",
+            m.theta_ov
+        );
+        let mut st = sim.initial_state(0.98 * ov, 0.02);
+        let ev = sim.advance_vertical(
+            &mut st,
+            5.0,
+            GroundInput::default(),
+            VerticalInput { av, dav: 0.0 },
+        );
+        assert!(
+            st.overturned && ev.overturned_at.is_some(),
+            "av {av}: no overturning"
+        );
+        assert!(
+            (st.theta - ov).abs() <= 1e-9 * ov,
+            "av {av}: overturned at {}, thetaOv(N) = {ov}",
+            st.theta
+        );
+    }
+}
+
+/// A host that holds `av` constant over each step (zero-order hold): N
+/// jumps between calls. Within a call `dN/dt = 0` and the energy is
+/// conserved; at a jump the kinetic energy is ([`Simulator::vertical_jump`])
+/// and the potential changes by `V(phi, N+) - V(phi, N-)`. So `E` minus the
+/// sum of those changes stays at `E0`.
+#[test]
+fn held_av_jumps_keep_the_kinetic_energy() {
+    let m = soft_block();
+    let sim = Simulator::new(m, 1e-12);
+    let b = &m.body;
+    let theta0 = 0.3 * m.theta_ov;
+    let mut st = sim.initial_state(theta0, 0.0);
+    let e0 = energy(&m, b.weight, theta0, 0.0);
+    let (dt, mut prev, mut jumps, mut worst) = (0.01, 0.0, 0.0, 0.0f64);
+    for k in 0..200 {
+        let av = av_of(k as f64 * dt);
+        let (n0, n1) = (b.weight + b.mass * prev, b.weight + b.mass * av);
+        jumps += energy(&m, n1, st.theta, 0.0) - energy(&m, n0, st.theta, 0.0);
+        sim.vertical_jump(&mut st, prev, av);
+        sim.advance_vertical(
+            &mut st,
+            (k + 1) as f64 * dt,
+            GroundInput::default(),
+            VerticalInput { av, dav: 0.0 },
+        );
+        assert!(!st.overturned);
+        worst = worst.max((energy(&m, n1, st.theta, st.omega) - e0 - jumps).abs() / e0);
+        prev = av;
+    }
+    println!("zero-order hold: max |E - E0 - sum of jumps| / E0 = {worst:.2e}");
+    assert!(worst <= 1e-9, "{worst:e}");
+}
+
+/// Where the toe has not crushed, a crushing bed is elastic and its contact
+/// at `(phi, N)` is the one at the weight at `phi W/N` (what the equation of
+/// motion reads from the table): against the solve at N.
+#[test]
+fn uncrushed_contact_scales_with_n() {
+    let m = Params::default().build().unwrap();
+    let w = m.body.weight;
+    let mut checked = 0;
+    for n in [0.6 * w, 0.9 * w, 1.4 * w] {
+        for k in 1..200 {
+            let phi = m.theta_ov * k as f64 / 200.0;
+            let (c, _) = m.interface.contact_loaded(phi, n, f64::NAN);
+            if c.regime != rocking::Regime::FullContact && c.regime != rocking::Regime::Partial {
+                continue;
+            }
+            let s = m.interface.contact(phi * w / n);
+            if s.regime != rocking::Regime::FullContact && s.regime != rocking::Regime::Partial {
+                // crushed at the weight (its a1 is shorter): the code solves at N
+                continue;
+            }
+            assert!(
+                (s.af - c.af).abs() <= 1e-12 * c.af.abs().max(1e-3),
+                "N/W {}: phi {phi}: af {} vs {}",
+                n / w,
+                s.af,
+                c.af
+            );
+            let daf = s.daf * w / n;
+            assert!(
+                (daf - c.daf).abs() <= 1e-9 * c.daf.abs(),
+                "N/W {}: phi {phi}: daf {daf} vs {}",
+                n / w,
+                c.daf
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 100, "{checked} uncrushed contacts");
+}
