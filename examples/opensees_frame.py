@@ -163,7 +163,7 @@ def main():
         print(f"{label}: periods {periods[0]:.3f} s, {periods[1]:.3f} s; peak roof acceleration "
               f"{np.abs(result.a_floor).max():.2f} m/s2; peak roof drift ratio {tracker.peak_drift:.4f}; "
               f"columns yielded: {tracker.yielded}; peak |theta| {np.abs(result.theta).max():.4f} rad; "
-              f"overturned: {result.overturned}")
+              f"overturned: " + (f"at {result.t_end:.2f} s" if result.overturned else "no"))
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
