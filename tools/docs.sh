@@ -19,5 +19,5 @@ cargo doc --no-deps --quiet -p rocking -p model-description -p fmi2-export -p co
 NO_MKDOCS_2_WARNING=1 .venv/bin/mkdocs build --strict --quiet
 echo "site: target/site/index.html"
 if [ "${1:-}" = "--check" ]; then
-    .venv/bin/python tools/docs_browser_check.py target/site
+    .venv/bin/python tools/docs_browser_check.py target/site --install
 fi

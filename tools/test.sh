@@ -32,5 +32,7 @@ fi
 cargo fmt --manifest-path fmi-import/Cargo.toml -- --check
 cargo clippy --manifest-path fmi-import/Cargo.toml --release --all-targets --quiet -- -D warnings
 cargo test --release --manifest-path fmi-import/Cargo.toml
+echo "== the documentation site, strict, and its main pages in headless chromium (tools/docs.sh)"
+tools/docs.sh --check
 echo "== fmpy suite"
 .venv/bin/python -m pytest fmpy-tests -q -rs
