@@ -28,7 +28,7 @@ class BuildWithRust(build_py):
             raise SystemExit("rocking: building from the sdist needs Rust (cargo on PATH, rustup.rs); "
                              "or install a platform wheel")
         bundle = Path(self.build_lib).resolve() / "rocking" / "_bundled"
-        subprocess.check_call(["cargo", "xtask", "bundle", str(bundle)])
+        subprocess.check_call(["cargo", "run", "--release", "--package", "xtask", "--", "bundle", str(bundle)])
 
 
 class Platform(Distribution):

@@ -263,17 +263,21 @@ const MINGW_GCC: &str = "x86_64-w64-mingw32-gcc";
 /// The linux64 library linked against glibc 2.17 by cargo-zigbuild, or
 /// `Err(why not)` when cargo-zigbuild is missing.
 fn build_linux64(model: &Model) -> Res<Result<PathBuf, String>> {
-    let cmd = match linux64_cargo()? {
-        Ok(cmd) => cmd,
-        Err(why) => return Ok(Err(why)),
-    };
-    Ok(Ok(build_platform(
-        cmd,
-        model,
-        LINUX64_TARGET,
-        "linux64",
-        ".so",
-    )?))
+    build_with(linux64_cargo()?, model, LINUX64_TARGET, "linux64", ".so")
+}
+
+/// [`build_platform`] with the platform's cargo, or `Err(why not)` when there is none.
+fn build_with(
+    cargo: Result<Command, String>,
+    model: &Model,
+    target: &str,
+    platform: &str,
+    extension: &str,
+) -> Res<Result<PathBuf, String>> {
+    match cargo {
+        Ok(cmd) => Ok(Ok(build_platform(cmd, model, target, platform, extension)?)),
+        Err(why) => Ok(Err(why)),
+    }
 }
 
 /// `cargo zigbuild` of .venv (or PATH) with its zig, or `Err(why not)`.
@@ -342,17 +346,7 @@ fn shipped_profile(cmd: &mut Command) {
 
 /// The win64 DLL, or `Err(why not)` when the Rust target or mingw-w64 is missing.
 fn build_win64(model: &Model) -> Res<Result<PathBuf, String>> {
-    let cmd = match win64_cargo()? {
-        Ok(cmd) => cmd,
-        Err(why) => return Ok(Err(why)),
-    };
-    Ok(Ok(build_platform(
-        cmd,
-        model,
-        WIN64_TARGET,
-        "win64",
-        ".dll",
-    )?))
+    build_with(win64_cargo()?, model, WIN64_TARGET, "win64", ".dll")
 }
 
 /// cargo set up to link for win64 with mingw-w64, or `Err(why not)` when the

@@ -136,17 +136,7 @@ pub fn bundle(args: &[String]) -> Res<()> {
         package(model)?;
     }
     let mut cmd = crate::cargo();
-    cmd.current_dir(root()).args([
-        "build",
-        "--release",
-        "--package",
-        "fmu-stepper",
-        "--lib",
-        "--package",
-        "corner",
-        "--bin",
-        "rocking-corner",
-    ]);
+    helpers_build(&mut cmd);
     let release = target_dir().join("release");
     let status = cmd.status().map_err(|e| format!("cargo build: {e}"))?;
     if !status.success() {
@@ -163,9 +153,9 @@ pub fn bundle(args: &[String]) -> Res<()> {
     stage_bundle(Path::new(dir), &helpers, &git_commit(), "native")
 }
 
-/// Builds fmu-stepper's library and rocking-corner for the platform in its
-/// own target dir; returns their paths.
-fn build_helpers(mut cmd: Command, platform: &Platform) -> Res<(PathBuf, PathBuf)> {
+/// `cargo build` of the helpers a wheel carries: the stepping loop's library
+/// and rocking-corner.
+fn helpers_build(cmd: &mut Command) {
     cmd.current_dir(root()).args([
         "build",
         "--release",
@@ -176,10 +166,14 @@ fn build_helpers(mut cmd: Command, platform: &Platform) -> Res<(PathBuf, PathBuf
         "corner",
         "--bin",
         "rocking-corner",
-        "--target",
-        platform.target,
-        "--target-dir",
     ]);
+}
+
+/// Builds fmu-stepper's library and rocking-corner for the platform in its
+/// own target dir; returns their paths.
+fn build_helpers(mut cmd: Command, platform: &Platform) -> Res<(PathBuf, PathBuf)> {
+    helpers_build(&mut cmd);
+    cmd.args(["--target", platform.target, "--target-dir"]);
     cmd.arg(target_dir().join("platforms").join(platform.name));
     shipped_profile(&mut cmd);
     let messages = all_messages(cmd)?;
