@@ -8,6 +8,7 @@ the DOM: every image's natural width (0: not shown), every equation of the page
 (arithmatex) against MathJax's rendered ones, and whether MathJax itself loaded
 from the site. chromium prints that DOM (--dump-dom); a missing image, an
 unrendered equation, or a main page without its equations (code or TeX) fails.
+Every page with a plot is rendered besides the main pages.
 Without chromium (and without --install, which installs Debian's with apt), it
 says so and exits 0.
 """
@@ -86,7 +87,10 @@ def main():
         print("docs browser check: skipped: chromium is not installed (--install installs Debian's with apt)")
         return 0
     only = next((a.split("=", 1)[1] for a in sys.argv if a.startswith("--pages=")), None)
-    pages = [p for p in PAGES if only is None or p[0] in only.split(",")]
+    # the main pages, and every other page that has a plot
+    pages = PAGES + [(p.name, 1, False) for p in sorted(site.glob("*.html"))
+                     if "<img" in p.read_text() and p.name not in {name for name, _, _ in PAGES}]
+    pages = [p for p in pages if only is None or p[0] in only.split(",")]
     failures = []
     with tempfile.TemporaryDirectory() as tmp:
         copy = Path(tmp) / "site"
