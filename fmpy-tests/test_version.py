@@ -25,8 +25,7 @@ def test_version_names_package_fmu_guid_and_commit(fmu_path):
     assert match.group(1).removesuffix("-dirty") == expected, out
 
 
-def test_version_says_unknown_commit_outside_git(tmp_path, monkeypatch):
-    """No bundle and no git answer: the commit is "unknown", never an error."""
+def test_version_says_unknown_commit_outside_git(tmp_path):
+    """A folder git knows nothing of: the commit is "unknown", never an error."""
     from rocking import paths
-    monkeypatch.setattr(paths, "BUNDLE", None)
     assert paths._git_commit(tmp_path) == "unknown"
