@@ -4,7 +4,7 @@
 //! - Equation of motion (docs/model.md §3), `phi = |theta|`, `s = sgn theta`:
 //!   `I(phi) theta'' + (1/2) s I'(phi) omega² = -s W hW(phi) - m ag hg(phi)`
 //!   (`shiftingPivot`; `costa` without the `omega²` term; rigid law: `af = 0`,
-//!   `I = IO`). See [`eom`].
+//!   `I = IO`). See `eom`.
 //! - Sign of the ground input: `ag` is the ground acceleration along `+x`, the
 //!   direction of the `theta > 0` toe. A positive `ag` pushes the body back,
 //!   onto its `-x` toe: from rest, `ag < -g tan(alpha)` lifts it toward

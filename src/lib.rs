@@ -16,6 +16,24 @@
 //!
 //! Sign convention: `theta > 0` rotates the body about its `+x` toe; every
 //! function of the rotation that is even in theta takes `phi = |theta|`.
+//!
+//! # Example
+//!
+//! The default body (a 0.5 m x 1 m x 2.5 m masonry prism on an elastic
+//! bed): it overturns past `thetaOv`, which the bed's flexibility brings
+//! below the rigid body's slenderness `alpha`; short of it the restoring
+//! moment `MR = W hW` holds it back.
+//!
+//! ```
+//! use rocking::Params;
+//!
+//! let model = Params::default().build().expect("the defaults are valid");
+//! let alpha = model.body.alpha; // rad, atan(B/H) of the prism
+//! assert!((alpha - (0.5f64 / 2.5).atan()).abs() < 1e-12);
+//! assert!(model.theta_ov > 0.0 && model.theta_ov <= alpha);
+//! let (mr, _dmr_dphi) = model.restoring_moment(0.5 * model.theta_ov); // N m, N m/rad
+//! assert!(mr > 0.0);
+//! ```
 
 pub mod body;
 pub mod dynamics;

@@ -12,6 +12,11 @@ cargo fmt --all -- --check
 cargo clippy --workspace --all-targets --quiet -- -D warnings
 echo "== Rust tests"
 cargo test --workspace --release
+echo "== the library crates as another FMU author gets them: rustdoc without warnings, and"
+echo "   cargo publish --dry-run (packaged, then built from the package; 33 s cold, a few s warm)"
+crates="-p rocking -p model-description -p fmi2-export -p corner"
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --quiet $crates
+cargo publish --dry-run --allow-dirty --quiet $crates
 echo "== valgrind memcheck of an instance's whole life through the C API"
 tools/memcheck.sh
 echo "== package the FMU (linux64 against glibc 2.17, win64) and its FMI cross-check artefacts"
@@ -27,5 +32,7 @@ fi
 cargo fmt --manifest-path fmi-import/Cargo.toml -- --check
 cargo clippy --manifest-path fmi-import/Cargo.toml --release --all-targets --quiet -- -D warnings
 cargo test --release --manifest-path fmi-import/Cargo.toml
+echo "== the documentation site, strict, and its main pages in headless chromium (tools/docs.sh)"
+tools/docs.sh --check
 echo "== fmpy suite"
 .venv/bin/python -m pytest fmpy-tests -q -rs

@@ -4,7 +4,7 @@
 //! The model is the kinematic (upper-bound) limit analysis of Colombo, Savalle,
 //! Mehrotra, Funari and Lourenço (2022), re-derived where the paper's text is
 //! incomplete; `docs/corner.md` states it in full, with every reconstruction
-//! ([A1]..[A7]) and its effect. Two single-leaf running-bond walls, WX along +x
+//! (\[A1\]..\[A7\]) and its effect. Two single-leaf running-bond walls, WX along +x
 //! and WY along +y, meet at a right angle at the origin (outer vertex, table
 //! level). A macroblock is described by seven lengths ([`Geometry`]); the load
 //! multiplier of one load direction comes from the virtual-work balance
@@ -18,6 +18,21 @@
 //!
 //! No FMI here: [`RockingBody::fmu_parameters`] only names the RockingBlock FMU
 //! parameters the body maps to.
+//!
+//! # Example
+//!
+//! The paper's specimen loaded along +y (`alpha = pi/2`): the combined
+//! multiplier `cos^2 lambda_X + sin^2 lambda_Y` is then `lambda_Y` alone.
+//!
+//! ```
+//! use corner::{corner_multiplier, CornerModel};
+//!
+//! let model = CornerModel::paper(1, 0.3).expect("the paper's specimen");
+//! let result = corner_multiplier(&model, std::f64::consts::FRAC_PI_2).expect("an orientation in 0..pi/2");
+//! let grid = &result.grid; // the joint-aligned optimum
+//! assert!(grid.lambda_alpha > 0.0);
+//! assert!((grid.lambda_alpha - grid.lambda_y).abs() <= 1e-12 * grid.lambda_y);
+//! ```
 
 mod body;
 mod error;

@@ -1,4 +1,4 @@
-//! The model's options: one switch per reconstruction of `docs/corner.md` ([A3]..[A6],
+//! The model's options: one switch per reconstruction of `docs/corner.md` (\[A3\]..\[A6\],
 //! the joints of Fmax), and the named presets.
 
 use serde::{Deserialize, Serialize};
@@ -13,7 +13,7 @@ pub enum Preset {
     Literal,
 }
 
-/// [A3] Which line bounds the in-plane wedge in the flexural mechanism (m = 1).
+/// \[A3\] Which line bounds the in-plane wedge in the flexural mechanism (m = 1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum InPlaneWedge {
@@ -23,7 +23,7 @@ pub enum InPlaneWedge {
     Outer,
 }
 
-/// [A4] How the corner column `[0,t] x [0,t]` is counted.
+/// \[A4\] How the corner column `[0,t] x [0,t]` is counted.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum CornerColumn {
@@ -33,7 +33,7 @@ pub enum CornerColumn {
     Once,
 }
 
-/// [A5] Lever of the frictional resultant along a crack.
+/// \[A5\] Lever of the frictional resultant along a crack.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum FrictionLever {
@@ -43,7 +43,7 @@ pub enum FrictionLever {
     Third,
 }
 
-/// [A6] The friction weight `1 - alpha_c/alpha_b` (angles, as printed) or `1 - tan/tan`.
+/// \[A6\] The friction weight `1 - alpha_c/alpha_b` (angles, as printed) or `1 - tan/tan`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum CrackRatio {

@@ -71,7 +71,7 @@ impl Specimen {
         f64::from(self.blocks_y) * self.l
     }
 
-    /// `tan(alpha_b) = v/h`: the natural stepped crack of running bond, one half block per course [A2].
+    /// `tan(alpha_b) = v/h`: the natural stepped crack of running bond, one half block per course \[A2\].
     pub fn tan_alpha_b(&self) -> f64 {
         self.v() / self.h
     }

@@ -20,6 +20,86 @@
 //!
 //! Instances share nothing (no global mutable state), so any number of them
 //! can run in any threads.
+//!
+//! # Example
+//!
+//! A gain `y = k u` as an FMU's binary: the model implements [`Slave`], a
+//! `modelDescription.xml` table (the `model-description` crate) declares its
+//! variables, and [`export_fmi2!`] writes every `fmi2*` C function.
+//!
+//! ```
+//! use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
+//! use fmi2_export::model_description::{
+//!     common, Causality, DefaultExperiment, Initial, ModelDescription, Type, Variability, Variable,
+//! };
+//! use fmi2_export::{export_fmi2, EventLog, Inputs, Setup, Slave, StepEnd, Values};
+//!
+//! static GAIN: ModelDescription = ModelDescription {
+//!     model_name: "Gain",
+//!     description: "y = k u",
+//!     author: common::AUTHOR,
+//!     version: "0.1.0",
+//!     copyright: common::COPYRIGHT,
+//!     license: common::LICENSE,
+//!     generation_tool: common::GENERATION_TOOL,
+//!     co_simulation: common::co_simulation("Gain"),
+//!     model_exchange: None,
+//!     units: &[],
+//!     types: &[],
+//!     log_categories: &[],
+//!     default_experiment: DefaultExperiment { start_time: 0.0, stop_time: 1.0, tolerance: 1e-6, step_size: 1e-3 },
+//!     variables: &[
+//!         Variable { name: "u", vr: 0, description: "input", causality: Causality::Input,
+//!                    ty: Type::Real { unit: None, display_unit: None, start: Some(0.0), min: None, max: None },
+//!                    ..Variable::DEFAULT },
+//!         Variable { name: "k", vr: 1, description: "gain", causality: Causality::Parameter, variability: Variability::Fixed,
+//!                    initial: Some(Initial::Exact),
+//!                    ty: Type::Real { unit: None, display_unit: None, start: Some(2.0), min: None, max: None },
+//!                    ..Variable::DEFAULT },
+//!         Variable { name: "y", vr: 2, description: "output k u", causality: Causality::Output, depends_on: &["u", "k"],
+//!                    ..Variable::DEFAULT },
+//!     ],
+//!     documentation: "",
+//! };
+//!
+//! struct Gain { k: f64 }
+//!
+//! impl Slave for Gain {
+//!     type State = (); // no state: the output follows the input
+//!     fn description() -> &'static ModelDescription { &GAIN }
+//!     // a real FMU embeds the GUID its build script generated with the XML
+//!     fn guid() -> &'static str { "{gain}" }
+//!     fn new(values: Values<'_>, _setup: &Setup) -> Result<Self, String> {
+//!         Ok(Gain { k: values.real(1) })
+//!     }
+//!     fn get_real(&mut self, vr: u32, inputs: Inputs<'_>) -> Result<f64, String> {
+//!         match vr {
+//!             2 => Ok(self.k * inputs.real(0)),
+//!             _ => Err(format!("no computed Real with value reference {vr}")),
+//!         }
+//!     }
+//!     fn output_derivative(&mut self, vr: u32, order: i32, inputs: Inputs<'_>) -> Result<f64, String> {
+//!         match (vr, order) {
+//!             (2, 1) => Ok(self.k * inputs.derivative(0)),
+//!             _ => Err(format!("no derivative of order {order} of value reference {vr}")),
+//!         }
+//!     }
+//!     fn do_step(&mut self, _t: f64, _h: f64, _inputs: Inputs<'_>, _log: &mut EventLog)
+//!         -> Result<StepEnd, String> {
+//!         Ok(StepEnd::Completed)
+//!     }
+//!     fn state(&self) {}
+//!     fn set_state(&mut self, _state: ()) {}
+//!     fn write_state(_state: &(), _w: &mut ByteWriter) {}
+//!     fn read_state(_r: &mut ByteReader<'_>) -> Result<(), ReadError> { Ok(()) }
+//! }
+//!
+//! export_fmi2!(Gain);
+//!
+//! // the exported C functions, as a host finds them in the library
+//! let version = unsafe { std::ffi::CStr::from_ptr(fmi2GetVersion()) };
+//! assert_eq!(version.to_str(), Ok("2.0"));
+//! ```
 
 pub mod bytes;
 pub mod fail;

@@ -1,6 +1,6 @@
 //! `fmi2Get*` and `fmi2Set*`: which variables are stored, which may be set
 //! in which state, and the input and output derivatives. The three numeric
-//! getters are one generic function over [`Readable`].
+//! getters are one generic function over `Readable`.
 
 use std::ffi::CString;
 

@@ -2,9 +2,9 @@
 //! (docs/model-exchange.md). The host integrates `(theta, omega)` with
 //! [`Simulator::derivatives`], watches [`Simulator::event_indicators`] for sign
 //! changes and, at each one, calls [`Simulator::event_update`]; this module
-//! only evaluates. The equation of motion is the one [`Eom`] gives the
+//! only evaluates. The equation of motion is the one `Eom` gives the
 //! co-simulation integrator, the impact map and the rest criteria are the
-//! co-simulation's ([`Simulator::comes_to_rest`], [`Simulator::settles`]).
+//! co-simulation's (`Simulator::comes_to_rest`, `Simulator::settles`).
 //!
 //! Event indicators (a state event where one changes sign), in this order:
 //!

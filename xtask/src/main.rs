@@ -30,6 +30,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
 
+mod wheel;
+
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, DateTime, ZipWriter};
 
@@ -80,6 +82,8 @@ fn main() {
         Some("rocking-block") => package(&ROCKING_BLOCK).map(|_| ()),
         Some("shear-frame") => package(&SHEAR_FRAME).map(|_| ()),
         Some("crosscheck") => crosscheck(),
+        Some("wheel") => wheel::wheels(&args[1..]),
+        Some("bundle") => wheel::bundle(&args[1..]),
         Some("-h") | Some("--help") | None => {
             usage();
             Ok(())
@@ -106,7 +110,12 @@ fn usage() {
          shear-frame    only target/fmu/ShearFrame.fmu\n  \
          crosscheck     the FMUs, then RockingBlock's FMI cross-check artefacts (FMU, input,\n                 \
          reference results from the engine run directly, options, README) under\n                 \
-         target/cross-check/fmus/2.0/cs/{{linux64,win64}}/..."
+         target/cross-check/fmus/2.0/cs/{{linux64,win64}}/...\n  \
+         wheel          the Python package's wheels (manylinux2014 x86_64, win_amd64) carrying\n                 \
+         both FMUs, the stepping loop, rocking-corner and sample records, and its sdist,\n                 \
+         in target/wheels (--reuse-fmus: take target/fmu/*.fmu as they are)\n  \
+         bundle DIR     the FMUs, the stepping loop and rocking-corner for this machine, and the\n                 \
+         sample records into DIR (a wheel's rocking/_bundled: setup.py, from the sdist)"
     );
 }
 
@@ -147,7 +156,19 @@ fn package_dir(id: &str) -> Option<PathBuf> {
 
 /// Runs a cargo build (`--message-format=json-render-diagnostics`) and
 /// returns its JSON messages about the model's package.
-fn cargo_messages(mut cmd: Command, model: &Model) -> Res<Vec<serde_json::Value>> {
+fn cargo_messages(cmd: Command, model: &Model) -> Res<Vec<serde_json::Value>> {
+    let fmu_dir = root().join(model.package);
+    Ok(all_messages(cmd)?
+        .into_iter()
+        .filter(|v| {
+            package_dir(v["package_id"].as_str().unwrap_or("")).is_some_and(|d| d == fmu_dir)
+        })
+        .collect())
+}
+
+/// Runs a cargo build (`--message-format=json-render-diagnostics`) and
+/// returns all its JSON messages.
+fn all_messages(mut cmd: Command) -> Res<Vec<serde_json::Value>> {
     let output = cmd
         .current_dir(root())
         .arg("--message-format=json-render-diagnostics")
@@ -162,13 +183,9 @@ fn cargo_messages(mut cmd: Command, model: &Model) -> Res<Vec<serde_json::Value>
             output.status
         ));
     }
-    let fmu_dir = root().join(model.package);
     Ok(String::from_utf8_lossy(&output.stdout)
         .lines()
         .filter_map(|line| serde_json::from_str::<serde_json::Value>(line).ok())
-        .filter(|v| {
-            package_dir(v["package_id"].as_str().unwrap_or("")).is_some_and(|d| d == fmu_dir)
-        })
         .collect())
 }
 
@@ -246,6 +263,25 @@ const MINGW_GCC: &str = "x86_64-w64-mingw32-gcc";
 /// The linux64 library linked against glibc 2.17 by cargo-zigbuild, or
 /// `Err(why not)` when cargo-zigbuild is missing.
 fn build_linux64(model: &Model) -> Res<Result<PathBuf, String>> {
+    build_with(linux64_cargo()?, model, LINUX64_TARGET, "linux64", ".so")
+}
+
+/// [`build_platform`] with the platform's cargo, or `Err(why not)` when there is none.
+fn build_with(
+    cargo: Result<Command, String>,
+    model: &Model,
+    target: &str,
+    platform: &str,
+    extension: &str,
+) -> Res<Result<PathBuf, String>> {
+    match cargo {
+        Ok(cmd) => Ok(Ok(build_platform(cmd, model, target, platform, extension)?)),
+        Err(why) => Ok(Err(why)),
+    }
+}
+
+/// `cargo zigbuild` of .venv (or PATH) with its zig, or `Err(why not)`.
+fn linux64_cargo() -> Res<Result<Command, String>> {
     let venv_bin = root().join(".venv/bin");
     let zigbuild = [venv_bin.join("cargo-zigbuild"), "cargo-zigbuild".into()]
         .into_iter()
@@ -269,13 +305,7 @@ fn build_linux64(model: &Model) -> Res<Result<PathBuf, String>> {
         "PATH",
         env::join_paths(paths).map_err(|e| format!("PATH: {e}"))?,
     );
-    Ok(Ok(build_platform(
-        cmd,
-        model,
-        LINUX64_TARGET,
-        "linux64",
-        ".so",
-    )?))
+    Ok(Ok(cmd))
 }
 
 /// Runs `cmd` (cargo or cargo zigbuild) to build the FMU's cdylib for
@@ -299,19 +329,29 @@ fn build_platform(
         "--target-dir",
     ]);
     cmd.arg(target_dir().join("platforms").join(platform));
-    // The shipped binary carries its symbols but no debug information: a
-    // fifth of the size, and compressing the 5.5 MB of DWARF was 3.1 of the
-    // packaging's 3.3 s. The native build of target/release keeps it (the
-    // profile's `debug = 1`) for profilers and debuggers.
-    cmd.env("CARGO_PROFILE_RELEASE_DEBUG", "0")
-        .env("CARGO_PROFILE_RELEASE_STRIP", "debuginfo");
+    shipped_profile(&mut cmd);
     let messages = cargo_messages(cmd, model)?;
     cdylib(&messages, model, extension)
         .ok_or_else(|| format!("cargo reported no {} {extension} for {target}", model.lib))
 }
 
+/// The shipped binary carries its symbols but no debug information: a
+/// fifth of the size, and compressing the 5.5 MB of DWARF was 3.1 of the
+/// packaging's 3.3 s. The native build of target/release keeps it (the
+/// profile's `debug = 1`) for profilers and debuggers.
+fn shipped_profile(cmd: &mut Command) {
+    cmd.env("CARGO_PROFILE_RELEASE_DEBUG", "0")
+        .env("CARGO_PROFILE_RELEASE_STRIP", "debuginfo");
+}
+
 /// The win64 DLL, or `Err(why not)` when the Rust target or mingw-w64 is missing.
 fn build_win64(model: &Model) -> Res<Result<PathBuf, String>> {
+    build_with(win64_cargo()?, model, WIN64_TARGET, "win64", ".dll")
+}
+
+/// cargo set up to link for win64 with mingw-w64, or `Err(why not)` when the
+/// Rust target or mingw-w64 is missing.
+fn win64_cargo() -> Res<Result<Command, String>> {
     let sysroot = Command::new(env::var("RUSTC").unwrap_or_else(|_| "rustc".into()))
         .args(["--print", "sysroot"])
         .output()
@@ -335,13 +375,7 @@ fn build_win64(model: &Model) -> Res<Result<PathBuf, String>> {
         "CARGO_TARGET_X86_64_PC_WINDOWS_GNU_RUSTFLAGS",
         "-C link-arg=-Wl,--no-insert-timestamp",
     );
-    Ok(Ok(build_platform(
-        cmd,
-        model,
-        WIN64_TARGET,
-        "win64",
-        ".dll",
-    )?))
+    Ok(Ok(cmd))
 }
 
 fn read(p: &Path) -> Res<Vec<u8>> {

@@ -11,7 +11,7 @@ from .common import CLIError
 def corner_binary():
     """target/release/rocking-corner of the repository, else rocking-corner on PATH, else None."""
     if paths.REPO is not None:
-        local = paths.target_dir() / "release" / "rocking-corner"
+        local = paths.target_dir() / "release" / ("rocking-corner" + paths.EXE)
         if local.is_file() and os.access(local, os.X_OK):
             return str(local)
     return shutil.which("rocking-corner")

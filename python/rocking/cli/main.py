@@ -25,10 +25,43 @@ def build_parser(modules=None):
                      "interface (an FMI 2.0 FMU), from the command line.",
                      epilog="`rocking COMMAND --help` for each command. Errors: one line on stderr, exit status 2.")
     parser.add_argument("--debug", action="store_true", help="show the traceback of an error instead of one line")
+    parser.add_argument("--version", action=_Version, help="the package version, the FMU's GUID and the commit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for module in (commands() if modules is None else modules).values():
         module.register(sub, common)
     return parser
+
+
+def version_text():
+    """`rocking VERSION, RockingBlock.fmu GUID {...} (PATH), commit SHA`: what --version prints."""
+    from importlib.metadata import PackageNotFoundError, version
+    from zipfile import BadZipFile, ZipFile
+    from xml.etree import ElementTree
+
+    from .. import paths
+    try:
+        package = version("rocking")
+    except PackageNotFoundError:
+        package = "unknown"
+    try:
+        fmu = paths.default_fmu()
+        with ZipFile(fmu) as archive:
+            guid = ElementTree.fromstring(archive.read("modelDescription.xml")).get("guid")
+        fmu_text = f"RockingBlock.fmu GUID {guid} ({fmu})"
+    except (OSError, KeyError, BadZipFile, ElementTree.ParseError) as exc:
+        fmu_text = f"RockingBlock.fmu not found ({_one_line(exc)})"
+    return f"{PROG} {package}, {fmu_text}, commit {paths.build_info()['commit']}"
+
+
+class _Version(argparse.Action):
+    """--version: computed when asked (it opens the FMU and may ask git), then exit 0."""
+
+    def __init__(self, option_strings, dest, **kwargs):
+        super().__init__(option_strings, dest, nargs=0, default=argparse.SUPPRESS, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(version_text())
+        parser.exit(0)
 
 
 def _one_line(exc):

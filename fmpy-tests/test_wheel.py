@@ -1,0 +1,204 @@
+"""The platform wheels of `cargo xtask wheel` (issue 24): installable without the clone.
+
+The Linux wheel is installed into a new venv in a temporary folder outside the
+clone, with no Rust toolchain on PATH; a simulate, a corner and a two-case
+sweep run there, from the wheel's own FMU, stepping loop, rocking-corner and
+sample records. The second host of each answer is the clone itself: the same
+commands through the editable install and target/release give the same
+numbers. The Windows wheel is checked by its contents and tags (it is not run
+here): PE binaries for x86-64, the FMUs' win64 folders, RECORD's hashes
+recomputed. The packaging checks `twine check` and `auditwheel show` run on
+both.
+
+The FMUs are the ones the test command's `cargo xtask crosscheck` step wrote
+(`--reuse-fmus`); the helpers' cross builds are incremental (7 s warm).
+"""
+
+import base64
+import hashlib
+import io
+import json
+import os
+import shutil
+import subprocess
+import sys
+import sysconfig
+import zipfile
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from test_cli import REPO, ok
+
+WHEELS = Path(os.environ.get("CARGO_TARGET_DIR", REPO / "target"))
+WHEELS = (WHEELS if WHEELS.is_absolute() else REPO / WHEELS) / "wheels"
+VENV_BIN = Path(sys.executable).parent
+
+
+@pytest.fixture(scope="module")
+def wheels():
+    """{tag: path} of the wheels `cargo xtask wheel --reuse-fmus` writes, and the sdist."""
+    proc = subprocess.run(["cargo", "xtask", "wheel", "--reuse-fmus"], cwd=REPO, capture_output=True,
+                          text=True, timeout=900)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    found = {p.name.split("-")[-1].removesuffix(".whl"): p for p in WHEELS.glob("rocking-*.whl")}
+    found["sdist"] = next(WHEELS.glob("rocking-*.tar.gz"))
+    return found
+
+
+def _members(wheel):
+    with zipfile.ZipFile(wheel) as z:
+        return {i.filename: z.read(i) for i in z.infolist()}
+
+
+def _dist_info(files, name):
+    return next(v for k, v in files.items() if k.endswith(f".dist-info/{name}")).decode()
+
+
+def test_packaging_tools_accept_the_wheels(wheels):
+    twine = subprocess.run([VENV_BIN / "twine", "check", "--strict", wheels["manylinux2014_x86_64"],
+                            wheels["win_amd64"], wheels["sdist"]], capture_output=True, text=True)
+    assert twine.returncode == 0, twine.stdout + twine.stderr
+    audit = subprocess.run([VENV_BIN / "auditwheel", "show", wheels["manylinux2014_x86_64"]],
+                           capture_output=True, text=True)
+    assert audit.returncode == 0, audit.stderr
+    # the stepping loop and rocking-corner link glibc 2.17 at most: the manylinux2014 baseline
+    assert '"manylinux_2_17_x86_64"' in " ".join(audit.stdout.split()), audit.stdout
+    for tag in ("manylinux2014_x86_64", "win_amd64"):
+        meta = _dist_info(_members(wheels[tag]), "METADATA")
+        assert "License-Expression: MIT OR Apache-2.0" in meta
+        assert "License-File: LICENSE-APACHE" in meta and "Classifier: Topic :: Scientific/Engineering" in meta
+
+
+def test_record_hashes_every_member(wheels):
+    """RECORD lists every member with its sha256 and size, recomputed here."""
+    for tag in ("manylinux2014_x86_64", "win_amd64"):
+        files = _members(wheels[tag])
+        rows = [line.split(",") for line in _dist_info(files, "RECORD").splitlines()]
+        listed = {name for name, *_ in rows}
+        assert listed == set(files), listed ^ set(files)
+        for name, digest, size in rows:
+            if name.endswith("RECORD"):
+                continue
+            want = base64.urlsafe_b64encode(hashlib.sha256(files[name]).digest()).rstrip(b"=").decode()
+            assert digest == f"sha256={want}" and int(size) == len(files[name]), name
+
+
+def test_windows_wheel_contents_and_tags(wheels):
+    files = _members(wheels["win_amd64"])
+    wheel = _dist_info(files, "WHEEL")
+    assert "Tag: py3-none-win_amd64" in wheel and "Root-Is-Purelib: false" in wheel
+    bundle = "rocking/_bundled/"
+    for exe in ("target/release/fmu_stepper.dll", "target/release/rocking-corner.exe"):
+        data = files[bundle + exe]
+        pe = int.from_bytes(data[0x3C:0x40], "little")  # the PE header's offset (MS-DOS stub)
+        assert data[:2] == b"MZ" and data[pe:pe + 4] == b"PE\0\0", exe
+        assert int.from_bytes(data[pe + 4:pe + 6], "little") == 0x8664, f"{exe}: not x86-64"
+    _check_fmus_and_records(files, bundle)
+    assert not any(name.endswith((".so", ".so.1")) for name in files), "a Linux library in the Windows wheel"
+
+
+def _check_fmus_and_records(files, bundle):
+    for model in ("RockingBlock", "ShearFrame"):
+        with zipfile.ZipFile(io.BytesIO(files[f"{bundle}target/fmu/{model}.fmu"])) as fmu:
+            names = set(fmu.namelist())
+        assert {f"binaries/linux64/{model}.so", f"binaries/win64/{model}.dll", "modelDescription.xml"} <= names
+    for record in ("katnp-standin/KATNP_NS_standin.csv", "usgs-lomaprieta-1989/0111a.smc", "README.md"):
+        assert files[f"{bundle}data/ground-motions/{record}"] == (REPO / "data/ground-motions" / record).read_bytes()
+    assert "Provenance and terms" in files[f"{bundle}data/ground-motions/README.md"].decode()
+
+
+def test_linux_wheel_contents_and_tags(wheels):
+    files = _members(wheels["manylinux2014_x86_64"])
+    assert "Tag: py3-none-manylinux2014_x86_64" in _dist_info(files, "WHEEL")
+    for exe in ("target/release/libfmu_stepper.so", "target/release/rocking-corner"):
+        assert files["rocking/_bundled/" + exe][:4] == b"\x7fELF", exe
+    _check_fmus_and_records(files, "rocking/_bundled/")
+
+
+@pytest.fixture(scope="module")
+def installed(wheels, tmp_path_factory):
+    """A new venv outside the clone with the Linux wheel installed; (its bin folder, a work folder).
+
+    The wheel goes in with --no-deps; its dependencies are the pinned ones of
+    the test's own environment, seen through a .pth line (whose folder's own
+    .pth files, among them the editable `rocking`, Python does not run)."""
+    home = tmp_path_factory.mktemp("wheel-install")
+    assert REPO not in home.parents and not (home / ".git").exists()
+    venv = home / "venv"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", venv], check=True)
+    site = subprocess.run([venv / "bin" / "python", "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                          capture_output=True, text=True, check=True).stdout.strip()
+    Path(site, "dependencies.pth").write_text(sysconfig.get_paths()["purelib"] + "\n")
+    subprocess.run([sys.executable, "-m", "pip", "--python", venv / "bin" / "python", "install", "--quiet",
+                    "--no-deps", "--disable-pip-version-check", wheels["manylinux2014_x86_64"]], check=True)
+    work = home / "work"
+    work.mkdir()
+    return venv / "bin", work
+
+
+def run_installed(installed, *args):
+    """`rocking ARGS` of the new venv, from its work folder, with no Rust (cargo) on PATH."""
+    bin_dir, work = installed
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("CARGO", "RUSTUP", "VIRTUAL_ENV", "PYTHON"))}
+    env["PATH"] = f"{bin_dir}{os.pathsep}/usr/bin{os.pathsep}/bin"
+    assert shutil.which("cargo", path=env["PATH"]) is None
+    proc = subprocess.run([bin_dir / "rocking", *map(str, args)], cwd=work, env=env, capture_output=True,
+                          text=True, timeout=300)
+    assert proc.returncode == 0, f"rocking {' '.join(map(str, args))}: {proc.stderr}"
+    return proc
+
+
+def test_installed_wheel_uses_its_own_files(installed):
+    bin_dir, _ = installed
+    code = ("import rocking, json; from rocking import paths, stepper; "
+            "print(json.dumps([rocking.__file__, str(paths.REPO), stepper.library_path()]))")
+    out = subprocess.run([bin_dir / "python", "-c", code], cwd=installed[1], capture_output=True, text=True,
+                         check=True).stdout
+    module, repo, stepper = json.loads(out)
+    assert module.startswith(str(bin_dir.parent)) and repo.endswith("rocking/_bundled"), out
+    assert stepper.startswith(repo)
+    version = run_installed(installed, "--version").stdout
+    head = subprocess.run(["git", "-C", REPO, "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
+    assert f"{repo}/target/fmu/RockingBlock.fmu" in version and f"commit {head}" in version, version
+
+
+def test_installed_wheel_simulates_as_the_clone(installed, tmp_path):
+    record = "KATNP_NS_standin.csv"
+    bundled = (Path(installed[0]).parent / "lib").glob(f"python*/site-packages/rocking/_bundled/"
+                                                       f"data/ground-motions/katnp-standin/{record}")
+    run_installed(installed, "simulate", next(bundled), "--preset", "dharahara-F170-fm5", "--out", "sim")
+    ok("simulate", REPO / "data/ground-motions/katnp-standin" / record, "--preset", "dharahara-F170-fm5",
+       "--out", tmp_path / "sim")
+    wheel = json.loads((installed[1] / "sim" / "summary.json").read_text())
+    clone = json.loads((tmp_path / "sim" / "summary.json").read_text())
+    assert wheel.keys() == clone.keys()
+    assert wheel["fmu"] != clone["fmu"] and wheel["guid"] == clone["guid"]
+    for key in ("parameters", "rows", "peak_theta_rad", "t_peak_theta_s", "overturned", "t_overturn_s",
+                "impacts", "zeroCrossings", "regimes_reached"):
+        assert wheel[key] == clone[key], key
+    wheel_rows = pd.read_csv(installed[1] / "sim" / "timehistory.csv")
+    pd.testing.assert_frame_equal(wheel_rows, pd.read_csv(tmp_path / "sim" / "timehistory.csv"), check_exact=True)
+
+
+def test_installed_wheel_runs_corner_as_the_clone(installed):
+    args = ["--alpha", "1.570796", "--json"]
+    wheel = run_installed(installed, "corner", *args).stdout
+    clone = subprocess.run([REPO / "target" / "release" / "rocking-corner", *args], capture_output=True,
+                           text=True, check=True).stdout
+    assert json.loads(wheel) == json.loads(clone)
+
+
+def test_installed_wheel_sweeps_two_cases(installed):
+    (installed[1] / "cases.toml").write_text('[cases.rigid]\npreset = "dharahara-rigid"\n'
+                                             '[cases.soft]\npreset = "dharahara-F170-fm5"\n')
+    from rocking import paths  # the clone's
+    record = "usgs-lomaprieta-1989/0111a.smc"
+    bundled = next((Path(installed[0]).parent / "lib").glob("python*/site-packages/rocking/_bundled"))
+    run_installed(installed, "sweep", "cases.toml", "--records", bundled / "data/ground-motions" / record,
+                  "--scales", "1", "--out", "sweep.csv", "--workers", "2")
+    table = pd.read_csv(installed[1] / "sweep.csv")
+    assert sorted(table["case"]) == ["rigid", "soft"]
+    assert table["error"].isna().all(), table["error"].tolist()
+    assert (paths.data_dir() / record).read_bytes() == (bundled / "data/ground-motions" / record).read_bytes()

@@ -1,0 +1,271 @@
+//! `cargo xtask wheel`: the Python package `rocking` as platform wheels that
+//! need neither the clone nor Rust, and its sdist, in `target/wheels`.
+//!
+//! Each wheel carries, in `rocking/_bundled/` (laid out like a clone, which
+//! is how python/rocking/paths.py finds it): both FMUs (`target/fmu`), the
+//! native stepping loop and `rocking-corner` built for its platform
+//! (`target/release`), a sample of the shipped records with their provenance
+//! and terms (`data/ground-motions`), and `BUILD.json` (the commit). The
+//! helpers are built like the FMUs' binaries (`target/platforms/<platform>`):
+//! linux64 by cargo-zigbuild against glibc 2.17 (manylinux2014), win64 by
+//! mingw-w64. tools/wheel.py turns the staged folder and setuptools' pure
+//! wheel into the platform wheel.
+
+use std::env::consts::{DLL_PREFIX, DLL_SUFFIX, EXE_SUFFIX};
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use crate::{
+    all_messages, linux64_cargo, package, root, shipped_profile, target_dir, win64_cargo, Res,
+    LINUX64_TARGET, MODELS, WIN64_TARGET,
+};
+
+/// A wheel's platform: how its helpers are built and named.
+struct Platform {
+    /// The folder of its build under target/platforms (as the FMUs').
+    name: &'static str,
+    target: &'static str,
+    /// The wheel's platform tag.
+    tag: &'static str,
+    /// The stepping loop's file name (python/rocking/stepper.py looks for it).
+    stepper: &'static str,
+    /// The corner binary's file name.
+    corner: &'static str,
+    /// cargo set up for the platform, or why it cannot be.
+    cargo: fn() -> Res<Result<Command, String>>,
+}
+
+const PLATFORMS: [Platform; 2] = [
+    Platform {
+        name: "linux64",
+        target: LINUX64_TARGET,
+        tag: "manylinux2014_x86_64",
+        stepper: "libfmu_stepper.so",
+        corner: "rocking-corner",
+        cargo: linux64_cargo,
+    },
+    Platform {
+        name: "win64",
+        target: WIN64_TARGET,
+        tag: "win_amd64",
+        stepper: "fmu_stepper.dll",
+        corner: "rocking-corner.exe",
+        cargo: win64_cargo,
+    },
+];
+
+/// The sample of data/ground-motions a wheel carries: the records of the
+/// README's examples and the tests' smallest, with the README that states
+/// their provenance and terms.
+const RECORDS: [&str; 3] = ["README.md", "katnp-standin", "usgs-lomaprieta-1989"];
+
+/// `cargo xtask wheel [--reuse-fmus]`.
+pub fn wheels(args: &[String]) -> Res<()> {
+    let reuse = args.iter().any(|a| a == "--reuse-fmus");
+    if let Some(other) = args.iter().find(|a| *a != "--reuse-fmus") {
+        return Err(format!("wheel: unknown option {other:?}"));
+    }
+    let fmu_dir = target_dir().join("fmu");
+    for model in MODELS {
+        let fmu = fmu_dir.join(format!("{}.fmu", model.identifier));
+        if !(reuse && fmu.is_file()) {
+            package(model)?;
+        }
+    }
+    let out = target_dir().join("wheels");
+    fs::create_dir_all(&out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let commit = git_commit();
+    for platform in &PLATFORMS {
+        let cmd = (platform.cargo)()?.map_err(|why| format!("{}: {why}", platform.name))?;
+        let (stepper, corner) = build_helpers(cmd, platform)?;
+        let stage = target_dir().join("wheel").join(platform.name);
+        let bundle = stage.join("_bundled");
+        let helpers = [(platform.stepper, stepper), (platform.corner, corner)];
+        stage_bundle(&bundle, &helpers, &commit, platform.tag)?;
+        python(&[
+            "tools/wheel.py",
+            "--bundle",
+            &bundle.display().to_string(),
+            "--plat",
+            platform.tag,
+            "--out",
+            &out.display().to_string(),
+        ])?;
+    }
+    python(&[
+        "tools/wheel.py",
+        "--sdist",
+        "--out",
+        &out.display().to_string(),
+    ])
+}
+
+/// Fills a fresh `bundle` folder: the FMUs of target/fmu, the helpers
+/// (file name in the bundle, built file), the sample records, BUILD.json.
+fn stage_bundle(bundle: &Path, helpers: &[(&str, PathBuf)], commit: &str, tag: &str) -> Res<()> {
+    if bundle.exists() {
+        fs::remove_dir_all(bundle).map_err(|e| format!("{}: {e}", bundle.display()))?;
+    }
+    for model in MODELS {
+        let name = format!("{}.fmu", model.identifier);
+        let fmu = target_dir().join("fmu").join(&name);
+        copy(&fmu, &bundle.join("target/fmu").join(&name))?;
+    }
+    for (name, built) in helpers {
+        copy(built, &bundle.join("target/release").join(name))?;
+    }
+    for entry in RECORDS {
+        copy_tree(
+            &root().join("data/ground-motions").join(entry),
+            &bundle.join("data/ground-motions").join(entry),
+        )?;
+    }
+    let info = serde_json::json!({ "commit": commit, "platform": tag });
+    write(&bundle.join("BUILD.json"), info.to_string().as_bytes())
+}
+
+/// `cargo xtask bundle DIR`: the FMUs and the helpers built for this machine
+/// (target/release), staged into DIR: what setup.py puts into a wheel built
+/// from the sdist.
+pub fn bundle(args: &[String]) -> Res<()> {
+    let [dir] = args else {
+        return Err("usage: cargo xtask bundle DIR".into());
+    };
+    for model in MODELS {
+        package(model)?;
+    }
+    let mut cmd = crate::cargo();
+    helpers_build(&mut cmd);
+    let release = target_dir().join("release");
+    let status = cmd.status().map_err(|e| format!("cargo build: {e}"))?;
+    if !status.success() {
+        return Err(format!(
+            "cargo build of fmu-stepper and corner failed ({status})"
+        ));
+    }
+    let stepper = format!("{DLL_PREFIX}fmu_stepper{DLL_SUFFIX}");
+    let corner = format!("rocking-corner{EXE_SUFFIX}");
+    let helpers = [
+        (stepper.as_str(), release.join(&stepper)),
+        (corner.as_str(), release.join(&corner)),
+    ];
+    stage_bundle(Path::new(dir), &helpers, &git_commit(), "native")
+}
+
+/// `cargo build` of the helpers a wheel carries: the stepping loop's library
+/// and rocking-corner.
+fn helpers_build(cmd: &mut Command) {
+    cmd.current_dir(root()).args([
+        "build",
+        "--release",
+        "--package",
+        "fmu-stepper",
+        "--lib",
+        "--package",
+        "corner",
+        "--bin",
+        "rocking-corner",
+    ]);
+}
+
+/// Builds fmu-stepper's library and rocking-corner for the platform in its
+/// own target dir; returns their paths.
+fn build_helpers(mut cmd: Command, platform: &Platform) -> Res<(PathBuf, PathBuf)> {
+    helpers_build(&mut cmd);
+    cmd.args(["--target", platform.target, "--target-dir"]);
+    cmd.arg(target_dir().join("platforms").join(platform.name));
+    shipped_profile(&mut cmd);
+    let messages = all_messages(cmd)?;
+    let artifact = |target: &str, file: &str| {
+        messages
+            .iter()
+            .filter(|v| v["reason"] == "compiler-artifact" && v["target"]["name"] == target)
+            .flat_map(|v| v["filenames"].as_array().into_iter().flatten())
+            .filter_map(|f| f.as_str())
+            .find(|f| f.ends_with(file))
+            .map(PathBuf::from)
+            .ok_or_else(|| format!("cargo reported no {file} for {}", platform.target))
+    };
+    let stepper = artifact("fmu_stepper", platform.stepper)?;
+    let corner = artifact("rocking-corner", platform.corner)?;
+    Ok((stepper, corner))
+}
+
+/// HEAD of the clone, "-dirty" when tracked files differ from it; "unknown"
+/// without git (an sdist's build).
+fn git_commit() -> String {
+    let git = |args: &[&str]| Command::new("git").current_dir(root()).args(args).output();
+    match git(&["rev-parse", "HEAD"]) {
+        Ok(head) if head.status.success() => {
+            let dirty = git(&["status", "--porcelain", "--untracked-files=no"])
+                .is_ok_and(|s| !s.stdout.is_empty());
+            let sha = String::from_utf8_lossy(&head.stdout).trim().to_string();
+            if dirty {
+                format!("{sha}-dirty")
+            } else {
+                sha
+            }
+        }
+        _ => "unknown".into(),
+    }
+}
+
+/// Runs .venv's Python (else python3) in the workspace root.
+fn python(args: &[&str]) -> Res<()> {
+    let venv = root().join(".venv/bin/python");
+    let exe = if venv.is_file() {
+        venv
+    } else {
+        PathBuf::from("python3")
+    };
+    let status = Command::new(&exe)
+        .current_dir(root())
+        .args(args)
+        .status()
+        .map_err(|e| format!("cannot run {}: {e}", exe.display()))?;
+    if !status.success() {
+        return Err(format!(
+            "{} {} failed ({status})",
+            exe.display(),
+            args.join(" ")
+        ));
+    }
+    Ok(())
+}
+
+fn write(path: &Path, data: &[u8]) -> Res<()> {
+    if let Some(dir) = path.parent() {
+        fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    fs::write(path, data).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+fn copy(from: &Path, to: &Path) -> Res<()> {
+    if let Some(dir) = to.parent() {
+        fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    fs::copy(from, to)
+        .map(|_| ())
+        .map_err(|e| format!("{} -> {}: {e}", from.display(), to.display()))
+}
+
+/// Copies a file, or a folder's files (one level: the record folders are flat).
+fn copy_tree(from: &Path, to: &Path) -> Res<()> {
+    if from.is_file() {
+        return copy(from, to);
+    }
+    let entries = fs::read_dir(from).map_err(|e| format!("{}: {e}", from.display()))?;
+    for entry in entries {
+        let path = entry
+            .map_err(|e| format!("{}: {e}", from.display()))?
+            .path();
+        if path.is_file() {
+            copy(
+                &path,
+                &to.join(path.file_name().expect("a file has a name")),
+            )?;
+        }
+    }
+    Ok(())
+}
