@@ -114,7 +114,7 @@ def plot(path, columns):
     x = [a for a, _ in ORIENTATIONS]
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for name, ys in columns.items():
-        style = "ko-" if name == "experiment" else ("--" if name.startswith(("3DEC", "paper")) else "-")
+        style = "k-" if name == "experiment" else ("--" if name.startswith(("3DEC", "paper")) else "-")
         ax.plot(x, [float("nan") if y is None else y for y in ys], style, marker="o", ms=3, label=name)
     ax.set_xticks(x, [lab for _, lab in ORIENTATIONS])
     ax.set_xlabel("load orientation alpha")
