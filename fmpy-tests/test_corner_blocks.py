@@ -116,3 +116,16 @@ def test_end_conditions_order_the_multiplier():
     """Restraining more cannot lower the largest multiplier: free <= outOfPlane <= fixed."""
     lams = [lp.solve(_small_corner(e), math.pi / 4).lam for e in ("free", "outOfPlane", "fixed")]
     assert lams[0] <= lams[1] + 1e-9 and lams[1] <= lams[2] + 1e-9
+
+
+def test_cli_lp_and_its_errors(capsys):
+    from rocking.cli import main
+
+    assert main(["corner-blocks", "lp", "--courses", "3", "--blocks", "3", "--ends", "free", "--alpha", "0.785398"]) == 0
+    out = capsys.readouterr().out
+    lam = lp.solve(Assembly.from_specimen(Specimen(courses=3, blocks=3, ends="free")), 0.785398).lam
+    assert f"lambda {lam:.4f}" in out
+    assert main(["corner-blocks", "lp", "--alpha", "2"]) == 2
+    assert "invalid --alpha" in capsys.readouterr().err
+    assert main(["corner-blocks", "lp", "--ends", "clamped"]) == 2
+    assert "--ends" in capsys.readouterr().err

@@ -21,6 +21,7 @@ from scipy.optimize import linprog
 from scipy.sparse import coo_matrix
 
 from .assembly import Assembly, interfaces
+from .draw import corners_of
 
 LAMBDA_CAP = 100.0  # the LP's bound on lambda: reaching it means nothing can collapse
 
@@ -143,7 +144,6 @@ def _moving(assembly, velocity, tol):
     """Blocks whose fastest corner moves faster than tol times the fastest block's."""
     speed = np.zeros(len(assembly.blocks))
     for i, b in enumerate(assembly.blocks):
-        corners = np.array([[x, y, z] for x in (b.lo[0], b.hi[0]) for y in (b.lo[1], b.hi[1]) for z in (b.lo[2], b.hi[2])])
-        speed[i] = max(np.linalg.norm(point_velocity(velocity[i], b.centroid, p)) for p in corners)
+        speed[i] = max(np.linalg.norm(point_velocity(velocity[i], b.centroid, p)) for p in corners_of(b))
     top = speed.max()
     return [i for i in range(len(speed)) if top > 0 and speed[i] > tol * top]

@@ -50,8 +50,8 @@ def lp_case(specimen, alpha, facets=8):
 
 def la_cases(binary, k, alphas):
     """lambda_alpha of the macroblock analysis (`rocking-corner --json`, grid optimum)."""
-    out = subprocess.run([binary, "--alpha", *[f"{min(a, 1.5707963):.7f}" for a in alphas], "--k", str(k), "--no-refine", "--json"],
-                         capture_output=True, text=True, check=True).stdout
+    args = ["--alpha", *[f"{min(a, 1.5707963):.7f}" for a in alphas], "--k", str(k), "--no-refine", "--json"]
+    out = subprocess.run([binary, *args], capture_output=True, text=True, check=True).stdout
     rows = [json.loads(line) for line in out.splitlines() if line.strip()]
     return [r["lambda_alpha"] for r in rows]
 
