@@ -40,6 +40,7 @@ import numpy as np
 from .assembly import Assembly
 from .draw import corners_of
 
+CHECK = 0.05  # s: how often a hold looks for the collapse displacement
 _ALIVE = []  # solvers kept until os._exit: the engine's teardown corrupts the heap (see main)
 FACES = [[3, 2, 1, 0], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]]
 DOFS = ("Vx", "Vy", "Vz", "Rx", "Ry", "Rz")
@@ -195,8 +196,13 @@ def run(assembly: Assembly, alpha, protocol: Protocol, log=None):
     c0, f0 = c.copy(), f.copy()
     history, lam, collapsed = [], math.nan, False
     for lam in levels(protocol):
-        speed = advance(protocol.hold)
-        disp = _displacements(assembly, rot, c0, f0, c, f)
+        # in slices, so that a collapse ends the run before falling blocks overflow the
+        # engine's contact room (a 1 s hold did on the small corner)
+        for _ in range(max(1, int(round(protocol.hold / CHECK)))):
+            speed = advance(protocol.hold / max(1, int(round(protocol.hold / CHECK))))
+            disp = _displacements(assembly, rot, c0, f0, c, f)
+            if disp.max() > protocol.collapse:
+                break
         rested = speed < protocol.v_tol
         history.append((round(lam, 10), rested, speed, float(disp.max()), steps))
         if log:
@@ -228,7 +234,9 @@ def run_isolated(spec, alpha, protocol: Protocol, timeout=None):
     out = subprocess.run([sys.executable, "-m", "rocking.corner_blocks.dem"], input=job, capture_output=True,
                          text=True, timeout=timeout)
     if out.returncode != 0:
-        tail = " ".join(out.stderr.strip().splitlines()[-1:]) or f"exit status {out.returncode}"
+        lines = [" ".join(x.split()) for x in out.stderr.replace("\0", "").splitlines() if x.strip()]
+        errors = [x for x in lines if x.startswith("ERROR")]
+        tail = "; ".join(errors[-1:] + lines[-1:]) or f"exit status {out.returncode}"
         raise RuntimeError(f"the LMGC90 run failed: {tail}")
     return json.loads(out.stdout.strip().splitlines()[-1])
 
