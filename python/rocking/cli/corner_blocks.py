@@ -135,7 +135,7 @@ def _protocol_parser():
     p.add_argument("--hold", type=float, default=0.3, help="DEM: seconds per load level (default 0.3)")
     p.add_argument("--start", type=float, default=0.0, help="DEM: first lambda (default 0)")
     p.add_argument("--lam-max", type=float, default=1.5, help="DEM: last lambda (default 1.5)")
-    p.add_argument("--size-factor", type=int, default=0, help="DEM: the engine's contact room (default 8)")
+    p.add_argument("--size-factor", type=int, default=0, help="DEM: the engine's contact room (default 16; 8 for the 3 x 3 corner)")
     return p
 
 

@@ -104,11 +104,9 @@ def build(assembly: Assembly, protocol: Protocol, alpha):
 
 #: The room of the engine's polyhedron contact detection (PRPRx_LowSizeArrayPolyr). Its
 #: default 4 stops a corner of 3 courses x 3 blocks at the first step ("ERROR
-#: [PRPRx::STO_fill_this_array] ... you reach the allocated size", STOP 1); 8 runs it.
-#: The paper's corner needs 11 or more, and from 11 on (also 12, 16 and 32 on the small
-#: corner) the engine stops with "ERROR [PRPRx::get_verlet_tact_lawnb]: see type not
-#: found for 18", STOP 1: this version cannot run the paper's corner (docs/corner-blocks.md).
-SIZE_FACTOR = 8  # what the small corner needs; the engine's own default is 4
+#: [PRPRx::STO_fill_this_array] ... you reach the allocated size", STOP 1); 8 runs it;
+#: the paper's corner needs 11 or more and runs with 16 (docs/corner-blocks.md).
+SIZE_FACTOR = 16  # the engine's own default is 4
 
 
 def size_factor(factor):
