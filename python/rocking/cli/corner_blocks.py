@@ -87,7 +87,8 @@ def cmd_study(args, _params):
             raise CLIError(f"invalid --methods: lp and/or dem, got {m}")
     ends = tuple(args.study_ends.split(","))
     study.run(args.out, ends=ends, mu=args.mu, methods=methods, binary=corner_binary(),
-              dem_protocol=_protocol(args), log=lambda s: print(s, file=sys.stderr, flush=True))
+              dem_protocol=_protocol(args), log=lambda s: print(s, file=sys.stderr, flush=True),
+              courses=args.courses, blocks=args.blocks)
     print(Path(args.out, "table.md").read_text())
     return 0
 

@@ -48,37 +48,41 @@ def lp_case(specimen, alpha, facets=8):
             "status": r.status}
 
 
-def la_cases(binary, k, alphas):
+def la_cases(binary, k, alphas, courses=9, blocks=7):
     """lambda_alpha of the macroblock analysis (`rocking-corner --json`, grid optimum)."""
-    args = ["--alpha", *[f"{min(a, 1.5707963):.7f}" for a in alphas], "--k", str(k), "--no-refine", "--json"]
+    args = ["--alpha", *[f"{min(a, 1.5707963):.7f}" for a in alphas], "--k", str(k), "--no-refine", "--json",
+            "--courses", str(courses), "--blocks-x", str(blocks), "--blocks-y", str(blocks)]
     out = subprocess.run([binary, *args], capture_output=True, text=True, check=True).stdout
     rows = [json.loads(line) for line in out.splitlines() if line.strip()]
     return [r["lambda_alpha"] for r in rows]
 
 
 def run(out, ends=("fixed", "free", "outOfPlane"), mu=0.66, methods=("lp",), binary=None, dem_protocol=None,
-        log=print):
-    """Every case of the study into out/; returns the table's rows."""
+        log=print, courses=9, blocks=7):
+    """Every case of the study into out/ (the paper's columns only make sense for the
+    paper's 9 courses of 7 blocks); returns the table's columns."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     alphas = [a for a, _ in ORIENTATIONS]
     columns = dict(PAPER)
     if binary:
         for k in (0.3, 1.0):
-            columns[f"LA k={k:g}"] = cached(out, f"la_k{k:g}", lambda k=k: {"lam": la_cases(binary, k, alphas)})["lam"]
+            la = cached(out, f"la_k{k:g}", lambda k=k: {"lam": la_cases(binary, k, alphas, courses, blocks)})
+            columns[f"LA k={k:g}"] = la["lam"]
     results = {}
     todo = [(m, e, i) for m in methods for e in ends for i in range(len(alphas))]
     for n, (method, e, i) in enumerate(todo, 1):
         label = ORIENTATIONS[i][1]
-        spec = Specimen(ends=e, mu=mu)
-        name = f"{method}_{e}_mu{mu:g}_{i}"
+        geometry = {"courses": courses, "blocks": blocks}
+        spec = Specimen(ends=e, mu=mu, **geometry)
+        name = f"{method}_{e}_mu{mu:g}_{i}" + ("" if (courses, blocks) == (9, 7) else f"_{courses}x{blocks}")
         t0 = time.time()
         if method == "lp":
             r = cached(out, name, lambda: lp_case(spec, alphas[i]))
         else:
             from . import dem
-            r = cached(out, name, lambda: dem.run_isolated({"specimen": {"ends": e, "mu": mu}}, alphas[i],
-                                                              dem_protocol or dem.Protocol()))
+            job = {"specimen": {"ends": e, "mu": mu, **geometry}}
+            r = cached(out, name, lambda: dem.run_isolated(job, alphas[i], dem_protocol or dem.Protocol()))
         log(f"[{n}/{len(todo)}] {method} ends={e} alpha={label}: lambda {r['lam']:.4f} "
             f"({time.time() - t0:.1f} s, {r.get('cpu_s', 0):.1f} s CPU when computed)")
         results.setdefault(f"{method.upper()} {e}", [None] * len(alphas))[i] = r["lam"]
@@ -90,7 +94,8 @@ def run(out, ends=("fixed", "free", "outOfPlane"), mu=0.66, methods=("lp",), bin
         if key.startswith("_lp_"):
             e = key[4:]
             for i in (0, 2, 4):
-                mechanism_figure(out / f"mechanism_lp_{e}_{i}.png", Specimen(ends=e, mu=mu), rs[i],
+                spec = Specimen(ends=e, mu=mu, courses=courses, blocks=blocks)
+                mechanism_figure(out / f"mechanism_lp_{e}_{i}.png", spec, rs[i],
                                  f"LP, ends {e}, alpha {ORIENTATIONS[i][1]}")
     return columns
 
