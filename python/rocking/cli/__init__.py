@@ -7,6 +7,7 @@
     rocking info [--presets]
     rocking record FILE [--plot out.png]
     rocking corner ARGS...          (the Rust binary rocking-corner)
+    rocking corner-blocks lp|dem|draw|study ...   (the corner block by block)
     rocking cosim CASE.toml --out DIR   (a block on a floor of a shear frame, co-simulated)
 
 Errors are one line on stderr naming the file, the variable or the parameter,
@@ -30,6 +31,7 @@ COMMANDS = (
     "record",
     "ida",  # registers both `ida` and `msa`
     "corner",
+    "corner_blocks",  # `rocking corner-blocks`
     "cosim",
 )
 

@@ -1,0 +1,131 @@
+"""The corner block by block (docs/corner-blocks.md): the specimen's layout and the block
+limit analysis (an LP over contact forces) against closed forms, virtual work on its
+dual mechanism. The DEM's exact cases are in test_corner_blocks_dem.py."""
+
+import math
+
+import numpy as np
+import pytest
+
+from rocking.corner_blocks import lp
+from rocking.corner_blocks.assembly import Assembly, box, interfaces, on_table
+from rocking.corner_blocks.specimen import Specimen
+
+B, D, H = 0.1, 0.2, 0.3  # a block's x, y, z sizes (m)
+
+
+def test_layout_is_the_papers_corner():
+    s = Specimen()
+    blocks = s.layout()
+    assert len(blocks) == s.courses * 2 * s.blocks
+    volume = sum(b.volume for b in blocks)
+    # two walls of L x t x H sharing the corner column once
+    assert volume == pytest.approx((2 * s.length - s.t) * s.t * s.height, rel=1e-12)
+    for c in range(s.courses):  # no two blocks of a course overlap; every wall ends at L
+        course = [b for b in blocks if b.course == c]
+        for i, a in enumerate(course):
+            for b in course[i + 1:]:
+                overlap = np.minimum(a.hi, b.hi) - np.maximum(a.lo, b.lo)
+                assert min(overlap) <= 1e-12
+        assert max(b.hi[0] for b in course) == pytest.approx(s.length)
+        assert max(b.hi[1] for b in course) == pytest.approx(s.length)
+    # the bond: the corner block of a course runs through in alternate walls
+    through = [next(b.wall for b in blocks if b.course == c and b.lo[:2] == (0.0, 0.0)) for c in range(4)]
+    assert through == ["WX", "WY", "WX", "WY"]
+
+
+def test_bad_option_names_itself():
+    with pytest.raises(ValueError, match="invalid ends"):
+        Specimen(ends="clamped")
+    with pytest.raises(ValueError, match="invalid t"):
+        Specimen(t=-1)
+
+
+def test_interfaces_of_a_stack():
+    a = on_table([box((0, 0, 0), (B, D, H)), box((0, 0, H), (B, D, 2 * H))])
+    faces = interfaces(a)
+    assert len(faces) == 2
+    assert all(f.normal[2] == 1.0 for f in faces)
+
+
+@pytest.mark.parametrize("alpha, lever", [(0.0, B), (math.pi / 2, D)])
+def test_single_block_rocks_at_b_over_h(alpha, lever):
+    r = lp.solve(on_table([box((0, 0, 0), (B, D, H))], mu=2.0), alpha)
+    assert r.lam == pytest.approx(lever / H, rel=1e-6)
+
+
+def test_single_block_slides_at_mu():
+    r = lp.solve(on_table([box((0, 0, 0), (B, D, H))], mu=0.2), 0.0)
+    assert r.lam == pytest.approx(0.2, rel=1e-6)
+
+
+def test_pyramid_is_the_circumscribed_polygon():
+    """Along a vertex of the 8-facet pyramid the sliding multiplier is mu / cos(pi/8)."""
+    r = lp.solve(on_table([box((0, 0, 0), (B, D, H))], mu=0.1), math.pi / 8)
+    assert r.lam == pytest.approx(0.1 / math.cos(math.pi / 8), rel=1e-6)
+
+
+def test_two_block_stack():
+    """A wide base block and a stocky top block, centred: the stack overturns as one about
+    the base's toe, (W1 + W2) b1/2 = lambda (W1 h1/2 + W2 (h1 + h2/2)), which is below the
+    top block's own b2/h2."""
+    b1, h1, b2, h2 = 0.2, 0.1, 0.15, 0.1
+    a = on_table([box((0, 0, 0), (b1, D, h1)), box(((b1 - b2) / 2, 0, h1), ((b1 + b2) / 2, D, h1 + h2))], mu=2.0)
+    w1, w2 = b1 * h1, b2 * h2
+    closed = (w1 + w2) * b1 / 2 / (w1 * h1 / 2 + w2 * (h1 + h2 / 2))
+    assert closed < b2 / h2
+    assert lp.solve(a, 0.0).lam == pytest.approx(closed, rel=1e-6)
+
+
+def running_bond_wall(t, l, h, courses, blocks):
+    """A straight wall along x, flush ends: `blocks` full blocks in even courses, a half
+    block at each end of the odd ones."""
+    out = []
+    for c in range(courses):
+        joints = [i * l for i in range(blocks + 1)] if c % 2 == 0 else \
+            [0.0] + [l / 2 + i * l for i in range(blocks)] + [blocks * l]
+        out += [box((x0, 0, c * h), (x1, t, (c + 1) * h), c, i) for i, (x0, x1) in enumerate(zip(joints, joints[1:]))]
+    return out
+
+
+@pytest.mark.parametrize("courses", [2, 4])
+def test_dry_stack_wall_overturns_at_t_over_h(courses):
+    """Running bond, 3 blocks long, loaded out of plane: the whole wall about its toe."""
+    s = Specimen()
+    a = on_table(running_bond_wall(s.t, s.l, s.h, courses, 3))
+    r = lp.solve(a, math.pi / 2)
+    assert r.lam == pytest.approx(s.t / (courses * s.h), rel=1e-2)
+
+
+def _small_corner(ends):
+    return Assembly.from_specimen(Specimen(courses=4, blocks=3, ends=ends))
+
+
+@pytest.mark.parametrize("ends", ["fixed", "free", "outOfPlane"])
+def test_dual_mechanism_satisfies_virtual_work(ends):
+    """The dual's velocities: the weights' power equals -lambda times the load's (no
+    dissipation with associative friction and no cohesion), no contact closes."""
+    r = lp.solve(_small_corner(ends), 3 * math.pi / 8)
+    assert 0 < r.lam < lp.LAMBDA_CAP
+    assert r.power_dead == pytest.approx(-r.lam, rel=1e-6)
+    assert r.opening_min >= -1e-7 * np.abs(r.velocity).max()
+    assert r.moving
+
+
+def test_end_conditions_order_the_multiplier():
+    """Restraining more cannot lower the largest multiplier: free <= outOfPlane <= fixed."""
+    lams = [lp.solve(_small_corner(e), math.pi / 4).lam for e in ("free", "outOfPlane", "fixed")]
+    assert lams[0] <= lams[1] + 1e-9 and lams[1] <= lams[2] + 1e-9
+
+
+def test_cli_lp_and_its_errors(capsys):
+    from rocking.cli import main
+
+    assert main(["corner-blocks", "lp", "--courses", "3", "--blocks", "3", "--ends", "free", "--alpha", "0.785398"]) == 0
+    out = capsys.readouterr().out
+    lam = lp.solve(Assembly.from_specimen(Specimen(courses=3, blocks=3, ends="free")), 0.785398).lam
+    assert f"lambda {lam:.4f}" in out
+    assert main(["corner-blocks", "lp", "--alpha", "2"]) == 2
+    assert "invalid --alpha" in capsys.readouterr().err
+    assert main(["corner-blocks", "lp", "--ends", "clamped"]) == 2
+    assert "--ends" in capsys.readouterr().err

@@ -1,0 +1,145 @@
+"""`rocking corner-blocks lp|dem|draw|study`: the corner block by block
+(docs/corner-blocks.md). `rocking corner` stays the macroblock analysis (the Rust binary)."""
+
+import json
+import math
+import sys
+from pathlib import Path
+
+from .common import CLIError
+
+
+def _specimen(args):
+    from ..corner_blocks.specimen import Specimen
+    return Specimen(courses=args.courses, blocks=args.blocks, mu=args.mu, ends=args.ends)
+
+
+def _alphas(args):
+    for a in args.alpha:
+        if not 0.0 <= a <= math.pi / 2 + 1e-9:
+            raise CLIError(f"invalid --alpha: must be in [0, pi/2] rad, got {a}")
+    return args.alpha
+
+
+def cmd_lp(args, _params):
+    from ..corner_blocks import draw, lp
+    from ..corner_blocks.assembly import Assembly
+    a = Assembly.from_specimen(_specimen(args))
+    rows = []
+    for alpha in _alphas(args):
+        r = lp.solve(a, alpha, facets=args.facets)
+        labels = [a.blocks[i].label() for i in r.moving]
+        rows.append({"alpha": alpha, "lambda": r.lam, "moving": labels, "power_dead": r.power_dead})
+        print(f"alpha {alpha:.6f}  lambda {r.lam:.4f}  moving {len(labels)} blocks"
+              + ("" if args.json else f": {' '.join(labels)}"))
+        if args.plot:
+            out = Path(args.plot)
+            name = out.with_name(f"{out.stem}_{alpha:.4f}{out.suffix or '.png'}")
+            draw.figure(a.blocks, name, draw.mechanism_corners(a.blocks, r.velocity, 0.04), r.moving,
+                        title=f"LP, ends {args.ends}, alpha {alpha:.4f}", fixed=a.fixed)
+            print(f"wrote {name}")
+    if args.json:
+        print(json.dumps(rows))
+    return 0
+
+
+def _protocol(args):
+    from ..corner_blocks.dem import SIZE_FACTOR, Protocol
+    return Protocol(step=args.step, collapse=args.collapse, hold=args.hold, start=args.start,
+                    lam_max=args.lam_max, size_factor=args.size_factor or SIZE_FACTOR)
+
+
+def cmd_dem(args, _params):
+    from ..corner_blocks import dem, draw
+    from ..corner_blocks.assembly import Assembly
+    spec = {"specimen": {"courses": args.courses, "blocks": args.blocks, "mu": args.mu, "ends": args.ends}}
+    a = Assembly.from_specimen(_specimen(args))
+    for alpha in _alphas(args):
+        r = dem.run_isolated(spec, alpha, _protocol(args))
+        labels = [a.blocks[i].label() for i in r["moving"]]
+        print(f"alpha {alpha:.6f}  lambda {r['lam']:.4f}  ({r['steps']} steps, {r['cpu_s']:.1f} s CPU)  "
+              f"moving {len(labels)} blocks: {' '.join(labels)}")
+        if args.plot:
+            import numpy as np
+            out = Path(args.plot)
+            name = out.with_name(f"{out.stem}_{alpha:.4f}{out.suffix or '.png'}")
+            draw.figure(a.blocks, name, [np.array(c) for c in r["corners"]], r["moving"],
+                        title=f"DEM, ends {args.ends}, alpha {alpha:.4f}", fixed=a.fixed)
+            print(f"wrote {name}")
+    return 0
+
+
+def cmd_draw(args, _params):
+    from ..corner_blocks import draw
+    s = _specimen(args)
+    draw.figure(s.layout(), args.out, title=f"{s.courses} courses, {s.blocks} blocks per wall, ends {s.ends}",
+                fixed=[s.fixed(b) for b in s.layout()])
+    print(f"wrote {args.out}")
+    return 0
+
+
+def cmd_study(args, _params):
+    from ..corner_blocks import study
+    from .corner import corner_binary
+    methods = tuple(args.methods.split(","))
+    for m in methods:
+        if m not in ("lp", "dem"):
+            raise CLIError(f"invalid --methods: lp and/or dem, got {m}")
+    ends = tuple(args.study_ends.split(","))
+    study.run(args.out, ends=ends, mu=args.mu, methods=methods, binary=corner_binary(),
+              dem_protocol=_protocol(args), log=lambda s: print(s, file=sys.stderr, flush=True),
+              courses=args.courses, blocks=args.blocks)
+    print(Path(args.out, "table.md").read_text())
+    return 0
+
+
+def register(sub, common):
+    p = sub.add_parser("corner-blocks", parents=[common],
+                       help="the corner block by block: block limit analysis (LP), DEM tilting test, drawings")
+    acts = p.add_subparsers(dest="action", metavar="ACTION", required=True)
+    spec = _specimen_parser()
+    lp = acts.add_parser("lp", parents=[common, spec], help="the block LP's multiplier and mechanism")
+    lp.add_argument("--facets", type=int, default=8, help="planes of the friction pyramid (default 8)")
+    lp.add_argument("--json", action="store_true")
+    lp.add_argument("--plot", help="PNG of the mechanism, one per alpha (suffixed)")
+    lp.set_defaults(func=cmd_lp)
+    dem = acts.add_parser("dem", parents=[common, spec, _protocol_parser()], help="the LMGC90 tilting test")
+    dem.add_argument("--plot", help="PNG of the blocks after collapse, one per alpha (suffixed)")
+    dem.set_defaults(func=cmd_dem)
+    dr = acts.add_parser("draw", parents=[common, spec], help="a PNG of the specimen")
+    dr.add_argument("--out", required=True)
+    dr.set_defaults(func=cmd_draw)
+    st = acts.add_parser("study", parents=[common, spec, _protocol_parser()],
+                         help="the five orientations beside the paper's tables (cached, resumable)")
+    st.add_argument("--out", required=True, help="directory: one JSON per case, table.md, PNGs")
+    st.add_argument("--methods", default="lp", help="lp,dem (default lp)")
+    st.add_argument("--study-ends", default="fixed,free,outOfPlane")
+    st.set_defaults(func=cmd_study)
+
+
+def _specimen_parser():
+    from ..corner_blocks.specimen import ENDS
+    p = argparse_parent()
+    p.add_argument("--alpha", type=float, nargs="+", default=[math.pi / 4, math.pi / 2],
+                   help="load orientations (rad), docs/corner.md's convention (default pi/4 pi/2)")
+    p.add_argument("--ends", choices=ENDS, default="fixed", help="the walls' free ends (default fixed)")
+    p.add_argument("--mu", type=float, default=0.66, help="joint friction (default 0.66)")
+    p.add_argument("--courses", type=int, default=9)
+    p.add_argument("--blocks", type=int, default=7, help="full blocks per wall (default 7)")
+    return p
+
+
+def _protocol_parser():
+    p = argparse_parent()
+    p.add_argument("--step", type=float, default=0.005, help="DEM: lambda step (default 0.005)")
+    p.add_argument("--collapse", type=float, default=0.005, help="DEM: collapse displacement, m (default 0.005)")
+    p.add_argument("--hold", type=float, default=0.3, help="DEM: seconds per load level (default 0.3)")
+    p.add_argument("--start", type=float, default=0.0, help="DEM: first lambda (default 0)")
+    p.add_argument("--lam-max", type=float, default=1.5, help="DEM: last lambda (default 1.5)")
+    p.add_argument("--size-factor", type=int, default=0, help="DEM: the engine's contact room (default 16; 8 for the 3 x 3 corner)")
+    return p
+
+
+def argparse_parent():
+    from .common import _Parser
+    return _Parser(add_help=False)
