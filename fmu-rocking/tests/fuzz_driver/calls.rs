@@ -295,7 +295,10 @@ impl Driver {
             assert_ne!(x.to_bits(), SENTINEL, "fmi2GetReal: vr {r} not written");
             let v = VARIABLES.iter().find(|v| v.vr == r).expect("a Real vr");
             let finite = match v.causality {
-                Causality::Output => x.is_finite(),
+                // frictionDemand is +inf while Fz <= 0 (docs/model.md §5)
+                Causality::Output => {
+                    x.is_finite() || (r == vr::FRICTION_DEMAND && x == f64::INFINITY)
+                }
                 // thetaC is +inf without crushing
                 Causality::CalculatedParameter => {
                     x.is_finite() || (r == vr::THETA_C && x == f64::INFINITY)
