@@ -22,7 +22,7 @@ from .katnp import DATA_DIR, STANDIN_PATH, katnp, katnp_standin
 from .nptsdt import read_npts_dt
 from .peer import read_peer_at2
 from .orientation import HORIZONTAL, VERTICAL
-from .recordset import components, set_key, vertical_of
+from .recordset import components, set_key, vertical_of, with_vertical
 from .record import PLAUSIBLE_PGA_G, GroundMotionFormatError, GroundMotionWarning, Record
 from .smc import read_smc
 from .units import G, canonical_unit, to_m_s2
@@ -32,5 +32,5 @@ __all__ = [
     "GroundMotionWarning", "READERS", "Record", "STANDIN_PATH",
     "canonical_unit", "detect_format", "katnp", "katnp_standin", "read", "read_all",
     "read_csmip_v2", "read_csv", "read_geonet_v2a", "read_npts_dt", "read_peer_at2",
-    "read_smc", "to_m_s2", "components", "set_key", "vertical_of",
+    "read_smc", "to_m_s2", "components", "set_key", "vertical_of", "with_vertical",
 ]

@@ -53,6 +53,16 @@ def components(path, units=None, fmt=None):
     return found
 
 
+def with_vertical(record, units=None, fmt=None):
+    """Copy of `record` whose `av_record` is its set's vertical component; ValueError when
+    the set has none (one line naming the file)."""
+    import dataclasses
+    vertical = vertical_of(record, units=units, fmt=fmt)
+    if vertical is None:
+        raise ValueError(f"{record.source} [{record.component}]: no vertical component in its record set")
+    return dataclasses.replace(record, av_record=vertical)
+
+
 def vertical_of(record, units=None, fmt=None):
     """The vertical component of `record`'s set (same station and event), by orientation;
     None when the set has none. Raises ValueError when the set has several."""
