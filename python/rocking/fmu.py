@@ -150,7 +150,8 @@ def terminal_message(messages):
     """The FMU's message about the out-of-range condition that ended a run, or None."""
     for message in reversed(messages):
         if any(c in message for c in TERMINAL_CONDITIONS) and " av = " in message:
-            return message.split(": ", 1)[-1] if message.startswith("[") else message
+            text = message.split(": ", 1)[-1] if message.startswith("[") else message
+            return re.sub(r"^fmi2\w+: ", "", text)
     return None
 
 
