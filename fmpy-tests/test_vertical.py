@@ -240,3 +240,47 @@ def test_sweep_vertical_case_runs_with_the_records_vertical(fmu):
     assert bare["peak_theta_over_alpha"] == fmu.simulate(body, record=rec, scale=6.0,
                                                          stop_time=6.0).peak_theta_over_alpha
     assert "no vertical component" in df[(df.case == "hv") & (df.record == "csv")].iloc[0]["error"]
+
+
+def _cosim_case(tmp_path, vertical):
+    case = tmp_path / "case.toml"
+    case.write_text(f"""
+[frame]
+masses = [1e4, 1e4]
+stiffnesses = [4e6, 4e6]
+[block]
+interface = "rigid"
+[ground]
+record = "{DATA / 'csmip-coalinga-1983' / 'ce36456p_CE36456.V2'}"
+scale = 0.05
+vertical = {vertical}
+[coupling]
+floor = 2
+step = 0.01
+stop_time = 4.0
+""")
+    return case
+
+
+def test_cosim_block_gets_the_grounds_av(tmp_path):
+    """A rigid block at rest on the roof (ag far below its uplift level): its support force
+    is Fz = m (g + av(t)) with av the record's vertical, scaled alike, at every step."""
+    out = tmp_path / "out"
+    proc = rocking("cosim", _cosim_case(tmp_path, "true"), "--out", out)
+    assert proc.returncode == 0, proc.stderr
+    s = json.loads((out / "summary.json").read_text())
+    assert s["ground"]["vertical"]["component"] == "UP"
+    up = next(r for r in gm.read_all(DATA / "csmip-coalinga-1983" / "ce36456p_CE36456.V2") if r.vertical)
+    table = pd.read_csv(out / "timehistory.csv")
+    m = 2250.0  # the FMU's default prism: 0.5 x 1 x 2.5 m at 1800 kg/m3
+    av = 0.05 * np.interp(table["time"], up.time, up.acc, right=0.0)
+    assert np.abs(table["theta"]).max() == 0.0
+    np.testing.assert_allclose(table["Fz"], m * (9.81 + av), rtol=1e-12)
+
+
+def test_cosim_vertical_on_a_sine_is_refused_in_one_line(tmp_path):
+    case = tmp_path / "sine.toml"
+    case.write_text("[frame]\nmasses = [1e4]\nstiffnesses = [4e6]\n[ground]\namplitude = 1.0\nfrequency = 2.0\n"
+                    "vertical = true\n[coupling]\nfloor = 1\n")
+    proc = rocking("cosim", case, "--out", tmp_path / "o")
+    assert proc.returncode == 2 and "vertical" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1

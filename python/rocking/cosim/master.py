@@ -221,6 +221,9 @@ class _Loop:
         self.r_u = frame.refs([f"u[{i}]" for i in range(1, n + 1)])
         self.r_bag = block.refs(["ag"])
         self.r_bav = block.refs(["av"]) if vertical is not None else None
+        # the FMU gives output derivatives only without av (docs/model.md §7.4): with av the
+        # block's force reaches the frame constant over a step
+        self.force_rates = extrapolate and vertical is None
         self.r_bf = block.refs(["Fx", "Fz"])
         self.r_th = block.refs(["theta", "omega"])
         self.rows, self.steps, self.rejected = [], 0, 0
@@ -230,7 +233,7 @@ class _Loop:
     def _block_force(self):
         """The force on the floor, -(Fx, Fz), and its rate (0 unless extrapolating)."""
         f = self.block.get(self.r_bf)
-        d = self.block.get_der(self.r_bf) if self.extrapolate else [0.0, 0.0]
+        d = self.block.get_der(self.r_bf) if self.force_rates else [0.0, 0.0]
         return [-f[0], -f[1]], [-d[0], -d[1]]
 
     def _floor_acc(self):
