@@ -284,3 +284,18 @@ def test_cosim_vertical_on_a_sine_is_refused_in_one_line(tmp_path):
                     "vertical = true\n[coupling]\nfloor = 1\n")
     proc = rocking("cosim", case, "--out", tmp_path / "o")
     assert proc.returncode == 2 and "vertical" in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
+
+
+def test_msa_study_key_vertical_takes_each_records_vertical(tmp_path):
+    study = tmp_path / "study.toml"
+    body = '[bodies.block]\nshape = "solidRectangle"\nB = 0.3\nH = 1.5\ninterface = "rigid"\n'
+    study.write_text(f'records = ["{DATA / "usgs-lomaprieta-1989" / "0111a.smc"}"]\nstripes = "0.2"\nim = "PGA"\n'
+                     f'vertical = true\ntail = 0.5\n{body}')
+    proc = rocking("msa", study, "--out", tmp_path / "o", "--workers", 1, "--boot", 0)
+    assert proc.returncode == 0, proc.stderr
+    s = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert list(s["vertical"].values()) == [f"{DATA / 'usgs-lomaprieta-1989' / '0111b.smc'} [up]"]
+    study.write_text(f'records = ["{KATNP}"]\nstripes = "0.2"\nvertical = true\n{body}')
+    proc = rocking("msa", study, "--out", tmp_path / "k", "--workers", 1, "--boot", 0)
+    assert proc.returncode == 2 and "no vertical component" in proc.stderr
+    assert len(proc.stderr.strip().splitlines()) == 1

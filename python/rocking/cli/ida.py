@@ -517,7 +517,9 @@ def write_outputs(out, study, df, result, args, opts):
         options.update(stripes=list(study.stripes))
     summary = dict(method=study.method, im=im.name, im_unit=im.unit, records=list(study.suite),
                    stations={n: station_of(n) for n in study.suite}, synthetic_records=stand_in, options=options,
-                   runs=int(len(df)), failed_runs=int(len(failed)), bodies=bodies_json)
+                   runs=int(len(df)), failed_runs=int(len(failed)), bodies=bodies_json,
+                   vertical={n: f"{r.av_record.source} [{r.av_record.component}]"
+                             for n, r in study.suite.items() if r.av_record is not None} or None)
     jsonfile.write(out / "summary.json", summary)
     lines.append(f"wrote {out / 'runs'}/, {out / 'summary.json'}, {out / 'fragility.png'}"
                  + (", ida-*.png" if study.method == "ida" else ""))
