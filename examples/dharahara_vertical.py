@@ -40,8 +40,9 @@ REPO = Path(__file__).resolve().parents[1]
 DATA = REPO / "data" / "ground-motions"
 RTOL = 1e-11  # as the main study
 VH = 0.6  # the pulse's vertical-to-horizontal ratio
+SPURIOUS_T = 1e-9  # s: an "overturning" before this is the FMU defect described in `paired`
 # The runs drawn: (record label, scale, case)
-DRAWN = (("3366146_DFHS_HN_20.090 [090]", 3.0, "rigid"), ("pulse +0.6", 1.0, "F170_fm5"))
+DRAWN = (("3366146_DFHS_HN_20.090 [090]", 3.0, "rigid"), ("3366146_DFHS_HN_20.090 [090]", 3.0, "I2_elastic"))
 
 
 def log(msg):
@@ -72,14 +73,13 @@ def pulse_records():
     return out
 
 
-def run(records, scales, workers, fmu, keep):
+def run(records, scales, workers, fmu):
     """Every case without and with av under every record and scale: one row per run."""
     cases = dharahara_cases()
     grid = {**cases, **{f"{c}+av": {**p, "vertical": True} for c, p in cases.items()}}
     t0 = time.perf_counter()
     df = run_grid(grid, records=records, scales=scales, workers=workers, fmu=fmu, rtol=RTOL,
-                  outputs=("thetaOverAlpha", "theta"), progress=lambda d, t, r: d % 100 == 0 and log(f"  {d}/{t}"),
-                  histories=lambda c, r, s: (r, s, c.removesuffix("+av")) in keep)
+                  outputs=("thetaOverAlpha",), progress=lambda d, t, r: d % 100 == 0 and log(f"  {d}/{t}"))
     log(f"  {len(df)} runs in {time.perf_counter() - t0:.1f} s")
     df["vertical"] = df["case"].str.endswith("+av")
     df["case"] = df["case"].str.removesuffix("+av")
@@ -92,9 +92,17 @@ def paired(df):
     h = df[~df["vertical"]].set_index(["record", "scale", "case"])[cols]
     v = df[df["vertical"]].set_index(["record", "scale", "case"])[cols]
     p = h.join(v, lsuffix="_h", rsuffix="_v").reset_index()
+    # no outcome: an FMU error, or the spurious overturning at t ~ 1e-22 s that the FMU reports
+    # for a flexible body when ag starts from 0 with a slope and av is not 0 (a defect of the
+    # FMU at this commit, reported; the runs are left out rather than counted)
+    p["failed"] = (p["error_h"].notna() | p["error_v"].notna()
+                   | (p["t_overturn_v"] < SPURIOUS_T) | (p["t_overturn_h"] < SPURIOUS_T))
+    p["terminal_v"] = p["terminal_v"].where(p["terminal_v"].notna(), None)
+    for side in ("h", "v"):
+        p[f"overturned_{side}"] = (p[f"overturned_{side}"] == True) & ~p["failed"]  # noqa: E712 - NaN: failed
     info = [case_info(c) for c in p["case"]]
     p["family"] = [family(g, fm) for g, _, fm in info]
-    p["reversed"] = (p["overturned_h"] != p["overturned_v"]) & p["terminal_v"].isna()
+    p["reversed"] = (p["overturned_h"] != p["overturned_v"]) & p["terminal_v"].isna() & ~p["failed"]
     p["dt_overturn"] = p["t_overturn_v"] - p["t_overturn_h"]
     p["peak_ratio"] = p["peak_theta_over_alpha_v"] / p["peak_theta_over_alpha_h"]
     return p
@@ -113,17 +121,18 @@ def summary(p):
         both = g[g["overturned_h"] & g["overturned_v"]]
         fm5 = both[both["family"].str.endswith("fm = 5 MPa")]
         elastic = g[g["family"].str.endswith("no crushing") & ~g["overturned_h"] & ~g["overturned_v"]
-                    & g["terminal_v"].isna()]
+                    & g["terminal_v"].isna() & ~g["failed"]]
         rigid = g[g["case"] == "rigid"].iloc[0]
         rows.append({
             "record": rec, "scale": scale,
             "overturned without / with av": f"{int(g['overturned_h'].sum())} / {int(g['overturned_v'].sum())}",
             "outcome reversed": ", ".join(g.loc[g["reversed"], "case"]) or "none",
             "terminal (regime 5)": _terminal(g),
+            "left out (FMU defect)": int(g["failed"].sum()),
             "dt_overturn fm = 5 MPa (s)": _range(fm5["dt_overturn"], "{:+.3f}"),
             "peak change, elastic standing (%)": _range(100 * (elastic["peak_ratio"] - 1), "{:+.1f}"),
-            "rigid peak ratio": (f"{rigid['peak_ratio']:.2f}" if rigid["terminal_v"] is None
-                                 or not isinstance(rigid["terminal_v"], str) else "regime 5"),
+            "rigid peak ratio": ("regime 5" if isinstance(rigid["terminal_v"], str)
+                                 else "error" if rigid["failed"] else f"{rigid['peak_ratio']:.2f}"),
         })
     return pd.DataFrame(rows)
 
@@ -144,16 +153,17 @@ def _range(values, fmt):
     return fmt.format(lo) if lo == hi else f"{fmt.format(lo)} to {fmt.format(hi)}"
 
 
-def plot(df, out):
+def plot(records, fmu, out):
+    """theta / alpha of the DRAWN runs, without and with av (run again here, histories kept)."""
+    cases = dharahara_cases()
     fig, axes = plt.subplots(len(DRAWN), 1, figsize=(10, 3.3 * len(DRAWN)))
     for ax, (rec, scale, case) in zip(axes, DRAWN):
-        for vertical, color, label in ((False, "0.35", "without av"), (True, "C3", "with av")):
-            row = df[(df["record"] == rec) & (df["scale"] == scale) & (df["case"] == case)
-                     & (df["vertical"] == vertical)].iloc[0]
-            h = row["history"]
-            end = (f"overturned {row['t_overturn']:.2f} s" if row["overturned"] else
-                   (row["terminal"] or "").split(":")[0] or f"stands, peak {row['peak_theta_over_alpha']:.2f} alpha")
-            ax.plot(h["time"], h["thetaOverAlpha"], lw=0.8, color=color, label=f"{label}: {end}")
+        for vertical, color, label in ((None, "0.35", "without av"), (records[rec].av_record, "C3", "with av")):
+            r = fmu.simulate(cases[case], record=dataclasses.replace(records[rec], av_record=None), vertical=vertical,
+                             scale=scale, rtol=RTOL, outputs=("thetaOverAlpha",))
+            end = (f"overturned {r.t_overturn:.2f} s" if r.overturned else
+                   (r.terminal or "").split(":")[0] or f"stands, peak {r.peak_theta_over_alpha:.2f} alpha")
+            ax.plot(r.result["time"], r.result["thetaOverAlpha"], lw=0.8, color=color, label=f"{label}: {end}")
         ax.axhline(0, color="0.7", lw=0.5)
         ax.set_ylabel("theta / alpha")
         ax.set_ylim(-1.15, 1.15)
@@ -172,19 +182,27 @@ def main(argv=None):
     ap.add_argument("--workers", type=int, default=2, help="worker processes (default 2)")
     ap.add_argument("--scales", default="1,3", help="factors on the shipped records, ag and av alike (default 1,3)")
     ap.add_argument("--fmu", default=None, help="the FMU (default target/fmu/RockingBlock.fmu)")
+    ap.add_argument("--tables-only", action="store_true",
+                    help="the tables again from DIR/dharahara_vertical.csv, and the plot (4 runs)")
     args = ap.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     scales = [float(s) for s in args.scales.split(",")]
-    keep = {(r, s, c) for r, s, c in DRAWN}
     with RockingFMU(args.fmu) as fmu:
         shipped = shipped_records()
+        plot(shipped, fmu, out / "dharahara_vertical_theta.png")
+        if args.tables_only:
+            return tables(pd.read_csv(out / "dharahara_vertical.csv"), out)
         log(f"shipped records with a vertical component: {', '.join(shipped)}")
-        df1 = run(shipped, scales, args.workers, fmu, keep)
-        df2 = run(pulse_records(), [1.0], args.workers, fmu, keep)
+        df1 = run(shipped, scales, args.workers, fmu)
+        df2 = run(pulse_records(), [1.0], args.workers, fmu)
     df = pd.concat([df1, df2], ignore_index=True)
-    plot(df, out / "dharahara_vertical_theta.png")
-    df.drop(columns=["history"]).to_csv(out / "dharahara_vertical.csv", index=False)
+    df.to_csv(out / "dharahara_vertical.csv", index=False)
+    return tables(df, out)
+
+
+def tables(df, out):
+    """dharahara_vertical.md from the runs, printed too."""
     p = paired(df)
     table = summary(p)
     changed = p[p["reversed"]][["record", "scale", "case", "t_overturn_h", "t_overturn_v",
@@ -193,7 +211,8 @@ def main(argv=None):
             + "\n\n## Outcome reversed by av\n\n" + _md_table(changed) + "\n")
     (out / "dharahara_vertical.md").write_text(text)
     print(text)
-    log(f"wrote {out / 'dharahara_vertical.csv'}, {out / 'dharahara_vertical.md'}, "
+    p.to_csv(out / "dharahara_vertical_paired.csv", index=False)
+    log(f"wrote {out / 'dharahara_vertical.csv'}, {out / 'dharahara_vertical_paired.csv'}, {out / 'dharahara_vertical.md'}, "
         f"{out / 'dharahara_vertical_theta.png'}")
     return 0
 
