@@ -298,7 +298,8 @@ def horizontal_record(path, component=None, units=None, fmt=None):
         choose = (f"choose a horizontal one: --component {' or '.join(others)}" if others
                   else "the file holds no horizontal component")
         raise CLIError(f"{path} [{rec.component}]: a vertical component, and ag is the horizontal ground "
-                       f"acceleration (give the vertical as --vertical); {choose}")
+                       f"acceleration (a vertical component goes to the input av: simulate --vertical, "
+                       f"vertical = true in cases and studies); {choose}")
     return rec, fmt
 
 
