@@ -26,7 +26,8 @@ def regime_names(fmu):
     v = fmu.variables.get("regime")
     if v is None:
         return {}
-    return {int(k): name.strip() for k, name in re.findall(r"(\d+)\s+([^,;]+)", v.description or "")}
+    return {int(k): name.split(" (")[0].strip()  # "5 out of the model's range (liftOff, ...": its name
+            for k, name in re.findall(r"(\d+)\s+([^,;]+)", v.description or "")}
 
 
 def gather_parameters(fmu, args, params_given):
