@@ -142,7 +142,7 @@ def cmd_simulate(args, params_given):
         "parameters": params,
         "ignored_parameters": ignored,
         "calculated": run.calculated,
-        "stop_time_s": float(t[-1]) if run.overturned else (stop_time or float(t[-1])),
+        "stop_time_s": float(t[-1]) if run.overturned or run.terminal else (stop_time or float(t[-1])),
         "tail_s": args.tail,
         "rows": int(len(t)),
         "peak_theta_rad": float(abs(theta[k_peak])),
