@@ -365,6 +365,15 @@ class RockingFMU:
         else:
             t_in = a_in = None
             dt = None
+        if vertical is None and av is None and record is not None:
+            vertical = record.av_record  # the record's own vertical companion, if it carries one
+        if vertical is not None:
+            av = (vertical.time, vertical.acc)
+        if av is not None and t_in is None:  # av alone: its samples set the steps and the end
+            av = tuple(np.asarray(x, dtype=float) for x in av)
+            dt = float(av[0][1] - av[0][0])
+            if stop_time is None:
+                stop_time = float(av[0][-1])
         if stop_time is None:
             stop_time = float(t_in[-1]) if t_in is not None else 10.0
         if output_interval is None:
@@ -373,10 +382,6 @@ class RockingFMU:
         grid, every, rows = communication_grid(stop_time, dt if dt is not None else output_interval,
                                                output_interval)
         acc, slope = _input_line(grid, t_in, a_in, scale)
-        if vertical is None and av is None and record is not None:
-            vertical = record.av_record  # the record's own vertical companion, if it carries one
-        if vertical is not None:
-            av = (vertical.time, vertical.acc)
         vertical_input = None
         if av is not None:
             v_acc, v_slope = _input_line(grid, *(np.asarray(x, dtype=float) for x in av), scale)
