@@ -9,8 +9,8 @@ in parallel processes, one FMU extraction shared by all of them.
 One row per run, in grid order (cases outer, then records, then scales)
 whatever the number of workers: case, the parameters, record, scale,
 overturned, t_overturn, peak_theta_over_alpha, impacts, zero_crossings, t_end,
-alpha, thetaOv
-(the FMU's calculated parameters), wall_s, cpu_s (this run's wall and CPU time
+alpha, thetaOv (the FMU's calculated parameters), terminal (regime 5's message
+when a vertical input ended the run, else None), wall_s, cpu_s (this run's wall and CPU time
 in its process), error (empty when the run succeeded)
 (and history, the recorded outputs, with `histories=True`).
 """
