@@ -299,3 +299,12 @@ def test_msa_study_key_vertical_takes_each_records_vertical(tmp_path):
     proc = rocking("msa", study, "--out", tmp_path / "k", "--workers", 1, "--boot", 0)
     assert proc.returncode == 2 and "no vertical component" in proc.stderr
     assert len(proc.stderr.strip().splitlines()) == 1
+
+
+def test_restraint_items_use_only_eRestraint(fmu_path):
+    """Regression: restraint's description says "sgn(theta)"; read as the items' parameter list
+    it made theta (the initial condition) 'unused' whenever restraint = none."""
+    from rocking.cli.common import parameters_of_items
+    with RockingFMU(fmu_path) as f:
+        uses = parameters_of_items(f)["restraint"]
+    assert uses == {"none": set(), "oneSided": {"eRestraint"}}

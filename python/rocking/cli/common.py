@@ -164,9 +164,11 @@ def parameters_of_items(fmu):
         uses = {}
         for k, (_, end, item) in enumerate(spots):
             segment = text[end:spots[k + 1][0] if k + 1 < len(spots) else len(text)]
-            inner = re.search(r"\(([^)]*)\)", segment)
+            # a parenthesis after a blank: "sgn(theta)" in restraint's is a formula, not a list;
+            # an enumeration named in one ("(restitution eRestraint)") is a word, not a use
+            inner = re.search(r"(?:^|\s)\(([^)]*)\)", segment)
             words = set(re.findall(r"[A-Za-z]\w*", inner.group(1))) if inner else set()
-            uses.setdefault(item, set()).update(words & names - {enum})
+            uses.setdefault(item, set()).update(words & names - set(fmu.enumerations))
         out[enum] = uses
     return out
 
