@@ -420,7 +420,7 @@ def test_sweep_leaves_vertical_components_out(fmu_path, tmp_path):
 def test_simulate_refuses_a_vertical_component(fmu_path, tmp_path):
     v2a = DATA / "geonet-kaikoura-2016" / "20161113_110259_WTMC_20.V2A"
     line = fails("simulate", v2a, "--component", "Up", "--out", tmp_path)
-    assert "[Up]" in line and "vertical input av is not supported yet" in line and "N28W or S62W" in line
+    assert "[Up]" in line and "input av: simulate --vertical" in line and "N28W or S62W" in line
     line = fails("simulate", SMC_A.parent / "0111b.smc", "--out", tmp_path)
     assert "vertical" in line and "no horizontal component" in line
     assert not (tmp_path / "summary.json").exists()

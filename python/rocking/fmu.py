@@ -121,6 +121,40 @@ def output_rows(times, outputs):
     return keep
 
 
+def _input_line(grid, t_in, a_in, scale):
+    """(values, slopes) on `grid` of `scale` x the record (t_in, a_in), zero after its end
+    (the ground at rest) and everywhere without one; slopes of the linear interpolation."""
+    if t_in is not None:
+        acc = scale * np.interp(grid, t_in, a_in, right=0.0)
+    else:
+        acc = np.zeros(len(grid))
+    slope = np.zeros(len(grid))
+    if len(grid) > 1:
+        slope[:-1] = np.diff(acc) / np.diff(grid)
+    return acc, slope
+
+
+def _set_input(set_real, set_der, component, line, k):
+    """Set input `line` = (value reference, values, slopes) at grid index k; the worse status."""
+    vr, val, order = (c_uint32 * 1)(line[0]), (c_double * 1)(line[1][k]), (c_int * 1)(1)
+    status = set_real(component, vr, 1, val)
+    val[0] = line[2][k]
+    return max(status, set_der(component, vr, 1, order, val))
+
+
+#: The FMU's names of the out-of-range conditions that end a run under av (regime 5).
+TERMINAL_CONDITIONS = ("liftOff", "baseCrushing", "restUnstable")
+
+
+def terminal_message(messages):
+    """The FMU's message about the out-of-range condition that ended a run, or None."""
+    for message in reversed(messages):
+        if any(c in message for c in TERMINAL_CONDITIONS) and " av = " in message:
+            text = message.split(": ", 1)[-1] if message.startswith("[") else message
+            return re.sub(r"^fmi2\w+: ", "", text)
+    return None
+
+
 class FMUError(RuntimeError):
     """An FMI call failed; the message leads with what the FMU logged, e.g. "kn = -1000000000:
     must be finite and > 0 (the FMU refused it in fmi2ExitInitializationMode)".
@@ -177,6 +211,10 @@ class Run:
                            after the joint opened)
     zero_crossings         zero crossings of theta at the end of the run (every
                            crossing, also in full contact)
+    terminal               when the vertical input took the body out of the model's range
+                           (regime 5: liftOff, baseCrushing, restUnstable; docs/model.md §6.5):
+                           the FMU's message ("liftOff at t = ...: av = ..."), else None; the
+                           run ends there and is not an overturning
     calculated             the calculated parameters (alpha, thetaOv, ...)
     wall                   wall time of the run, s
     messages               what the FMU logged ("[STATUS] category: message")
@@ -192,6 +230,7 @@ class Run:
     calculated: dict
     wall: float
     messages: list = field(default_factory=list)
+    terminal: str = None
 
 
 class RockingFMU:
@@ -294,13 +333,17 @@ class RockingFMU:
                 raise TypeError(f"{name}: cannot set a {v.type}")
 
     def simulate(self, params, record=None, scale=1.0, stop_time=None, output_interval=None,
-                 rtol=None, outputs=DEFAULT_OUTPUTS, ag=None, loop="auto"):
+                 rtol=None, outputs=DEFAULT_OUTPUTS, ag=None, loop="auto", vertical=None, av=None):
         """Run one case and return a `Run`.
 
         params           parameter and start values by name (docs/model.md §5)
         record           a groundmotion Record (acc in m/s²) or None (no ground motion)
         scale            factor applied to the record's acceleration
         ag               instead of `record`: (time, acc) arrays in s and m/s², equally spaced
+        vertical         a groundmotion Record of the vertical ground acceleration (m/s², up),
+                         the FMU's input `av`, scaled by the same `scale`; zero after its end;
+                         default: `record.av_record` (None: av = 0)
+        av               instead of `vertical`: (time, acc) arrays in s and m/s²
         stop_time        default: the record's last sample (10 s without a record);
                          after the record ends the ground is at rest
         output_interval  s, > 0; default: the record's dt (0.01 s without one). Rows at 0,
@@ -322,6 +365,15 @@ class RockingFMU:
         else:
             t_in = a_in = None
             dt = None
+        if vertical is None and av is None and record is not None:
+            vertical = record.av_record  # the record's own vertical companion, if it carries one
+        if vertical is not None:
+            av = (vertical.time, vertical.acc)
+        if av is not None and t_in is None:  # av alone: its samples set the steps and the end
+            av = tuple(np.asarray(x, dtype=float) for x in av)
+            dt = float(av[0][1] - av[0][0])
+            if stop_time is None:
+                stop_time = float(av[0][-1])
         if stop_time is None:
             stop_time = float(t_in[-1]) if t_in is not None else 10.0
         if output_interval is None:
@@ -329,13 +381,11 @@ class RockingFMU:
         check_times(stop_time, output_interval)
         grid, every, rows = communication_grid(stop_time, dt if dt is not None else output_interval,
                                                output_interval)
-        if t_in is not None:
-            acc = scale * np.interp(grid, t_in, a_in, right=0.0)  # ground at rest after the record
-        else:
-            acc = np.zeros(len(grid))
-        slope = np.zeros(len(grid))
-        if len(grid) > 1:
-            slope[:-1] = np.diff(acc) / np.diff(grid)
+        acc, slope = _input_line(grid, t_in, a_in, scale)
+        vertical_input = None
+        if av is not None:
+            v_acc, v_slope = _input_line(grid, *(np.asarray(x, dtype=float) for x in av), scale)
+            vertical_input = (self.variables["av"].valueReference, v_acc, v_slope)
 
         reals = [o for o in outputs if self.variables[o].type == "Real"]
         ints = [o for o in outputs if self.variables[o].type in ("Integer", "Enumeration")]
@@ -350,11 +400,14 @@ class RockingFMU:
         val = (c_double * 1)()
         if loop not in ("auto", "native", "python"):
             raise ValueError(f"loop = {loop!r}: not one of 'auto', 'native', 'python'")
-        native = loop == "native" or (loop == "auto" and stepper.library() is not None)
+        if vertical_input is not None and loop == "native":
+            raise ValueError("loop='native' takes one input (ag): with av, use loop='python' or 'auto'")
+        # fmu-stepper's C ABI carries one input (ag): runs with av take the Python loop
+        native = vertical_input is None and (loop == "native" or (loop == "auto" and stepper.library() is not None))
         if native and stepper.library() is None:
             raise FileNotFoundError(f"loop='native': {stepper.library_path()} not built "
                                     "(cargo build --release -p fmu-stepper, or cargo xtask fmu)")
-        inputs = (acc, slope) if t_in is not None else (None, None)
+        inputs = (acc, slope) if t_in is not None or vertical_input is not None else (None, None)
 
         start_values = self.start_values(params)  # unknown names: KeyError before the FMU
         slave = self._library()
@@ -368,15 +421,21 @@ class RockingFMU:
             slave.enterInitializationMode()
             val[0] = acc[0]
             slave.fmi2SetReal(component, vr_ag, 1, val)
+            if vertical_input is not None:
+                val[0] = vertical_input[1][0]
+                slave.fmi2SetReal(component, (c_uint32 * 1)(vertical_input[0]), 1, val)
             slave.exitInitializationMode()
             vr_c = (c_uint32 * len(calc))(*[self.variables[n].valueReference for n in calc])
             buf_c = (c_double * len(calc))()
             slave.fmi2GetReal(component, vr_c, len(calc), buf_c)
             calculated = dict(zip(calc, list(buf_c)))
 
-            loop_fn = self._native_loop if native else self._python_loop
-            times, rows_r, rows_i, rows_b, overturned = loop_fn(
-                slave, component, grid, *inputs, vr_ag[0], vr_r, vr_i, vr_b, every)
+            if native:
+                times, rows_r, rows_i, rows_b, overturned = self._native_loop(
+                    slave, component, grid, *inputs, vr_ag[0], vr_r, vr_i, vr_b, every)
+            else:
+                times, rows_r, rows_i, rows_b, overturned = self._python_loop(
+                    slave, component, grid, *inputs, vr_ag[0], vr_r, vr_i, vr_b, every, vertical_input)
             final = {}
             for name in ("impacts", "zeroCrossings", "overturned"):
                 v = self.variables[name]
@@ -402,7 +461,8 @@ class RockingFMU:
             result[n] = rows_i[:, j]
         for j, n in enumerate(bools):
             result[n] = rows_b[:, j]
-        overturned = overturned or bool(final["overturned"])
+        terminal = None if final["overturned"] else terminal_message(_MESSAGES) if overturned else None
+        overturned = (overturned and terminal is None) or bool(final["overturned"])
         if rows is not None:  # the output grid is not the communication grid: its rows only
             result = result[output_rows(result["time"], rows)]
         keep = ["time"] + list(outputs)
@@ -418,6 +478,7 @@ class RockingFMU:
             calculated=calculated,
             wall=_time.perf_counter() - t_start,
             messages=list(_MESSAGES),
+            terminal=terminal,
         )
 
     @staticmethod
@@ -431,12 +492,13 @@ class RockingFMU:
         return times, reals, ints.astype(np.int64), bools.astype(bool), bool(out.terminated)
 
     @staticmethod
-    def _python_loop(slave, component, grid, acc, slope, vr_ag, vr_r, vr_i, vr_b, every):
+    def _python_loop(slave, component, grid, acc, slope, vr_ag, vr_r, vr_i, vr_b, every, vertical=None):
         """The stepping loop in Python: the reference for the native one (same calls, same order).
 
         Returns (times, reals, integers, booleans, terminated): the rows sampled at grid[0],
         after every `every` steps and after the last, and at fmi2LastSuccessfulTime when the
-        FMU discarded a step and terminated (overturned)."""
+        FMU discarded a step and terminated (overturned, or out of range under av).
+        vertical: None, or (value reference of av, its values and slopes on the grid)."""
         raw = slave._functions  # the ctypes functions: no per-call wrapper in the loop
         get_real, get_int, get_bool = raw["fmi2GetReal"], raw["fmi2GetInteger"], raw["fmi2GetBoolean"]
         set_real, set_der, do_step = raw["fmi2SetReal"], raw["fmi2SetRealInputDerivatives"], raw["fmi2DoStep"]
@@ -479,6 +541,10 @@ class RockingFMU:
                 status = max(status, set_der(component, vr_in, 1, order, val))
                 if status > 1:
                     raise FMICallException("fmi2SetReal/fmi2SetRealInputDerivatives", status)
+            if vertical is not None:
+                status = _set_input(set_real, set_der, component, vertical, k)
+                if status > 1:
+                    raise FMICallException("fmi2SetReal/fmi2SetRealInputDerivatives (av)", status)
             status = do_step(component, t, grid[k + 1] - t, 1)
             if status > 1:
                 if status == fmi2Discard and slave.getBooleanStatus(fmi2Terminated):

@@ -9,12 +9,13 @@ in parallel processes, one FMU extraction shared by all of them.
 One row per run, in grid order (cases outer, then records, then scales)
 whatever the number of workers: case, the parameters, record, scale,
 overturned, t_overturn, peak_theta_over_alpha, impacts, zero_crossings, t_end,
-alpha, thetaOv
-(the FMU's calculated parameters), wall_s, cpu_s (this run's wall and CPU time
+alpha, thetaOv (the FMU's calculated parameters), terminal (regime 5's message
+when a vertical input ended the run, else None), wall_s, cpu_s (this run's wall and CPU time
 in its process), error (empty when the run succeeded)
 (and history, the recorded outputs, with `histories=True`).
 """
 
+import dataclasses
 import math
 import os
 import time as _time
@@ -37,9 +38,10 @@ def _run_task(task):
     """Run one grid point in this process; never raises (errors go in the row)."""
     index, case, params, rec_name, record, scale, opts, keep_history = task
     t0, c0 = _time.perf_counter(), _time.process_time()
-    row = {"case": case, "record": rec_name, "scale": scale}
+    row = {"case": case, "record": rec_name, "scale": scale, "terminal": None}
     history = None
     try:
+        params, record = with_av(params, record, rec_name)
         run = _WORKER_FMU.simulate(params, record=record, scale=scale,
                                    stop_time=opts["stop_time"], output_interval=opts["output_interval"],
                                    rtol=opts["rtol"], outputs=opts["outputs"])
@@ -47,7 +49,7 @@ def _run_task(task):
                    peak_theta_over_alpha=run.peak_theta_over_alpha, impacts=run.impacts,
                    zero_crossings=run.zero_crossings,
                    t_end=run.t_end, alpha=run.calculated.get("alpha", math.nan),
-                   thetaOv=run.calculated.get("thetaOv", math.nan), error="")
+                   thetaOv=run.calculated.get("thetaOv", math.nan), error="", terminal=run.terminal)
         if keep_history:
             history = run.result
     except Exception as exc:  # noqa: BLE001 - reported in the row
@@ -57,6 +59,20 @@ def _run_task(task):
     row["wall_s"] = _time.perf_counter() - t0
     row["cpu_s"] = _time.process_time() - c0
     return index, row, history
+
+
+def with_av(params, record, rec_name=""):
+    """(params without the case key `vertical`, the record to run): with `vertical = True` the
+    record with its vertical companion (`Record.av_record`, the FMU's av), else without one."""
+    params = dict(params)
+    if not params.pop("vertical", False):
+        if record is not None and record.av_record is not None:
+            record = dataclasses.replace(record, av_record=None)
+        return params, record
+    if record is None or record.av_record is None:
+        raise ValueError(f"vertical = true: record {rec_name or getattr(record, 'source', '')} has no vertical "
+                         "component (attach one: groundmotion.with_vertical)")
+    return params, record
 
 
 def _named(items, what):
@@ -79,6 +95,8 @@ def run_grid(cases, records=(None,), scales=(1.0,), workers=None, fmu=None, *, s
     cases            {name: params} or a list of params dicts (named case0, case1, ...);
                      params as for `RockingFMU.simulate` (enumerations by name or value)
     records          groundmotion Records, or {name: Record}; None for no ground motion
+                     (a case with the key `vertical = True` runs each record with its
+                     `av_record` as the FMU's av, scaled alike; terminal: regime 5's message)
     scales           factors applied to each record's acceleration
     workers          processes (default: os.cpu_count(), at most the number of runs);
                      1 runs in this process, without a pool
@@ -142,6 +160,6 @@ def run_grid(cases, records=(None,), scales=(1.0,), workers=None, fmu=None, *, s
     columns = (["case"] + param_names + ["record", "scale", "overturned", "t_overturn",
                                          "peak_theta_over_alpha", "impacts", "zero_crossings",
                                          "t_end", "alpha",
-                                         "thetaOv", "wall_s", "cpu_s", "error"]
+                                         "thetaOv", "terminal", "wall_s", "cpu_s", "error"]
                + (["history"] if histories else []))
     return pd.DataFrame(rows, columns=columns)

@@ -164,9 +164,11 @@ def parameters_of_items(fmu):
         uses = {}
         for k, (_, end, item) in enumerate(spots):
             segment = text[end:spots[k + 1][0] if k + 1 < len(spots) else len(text)]
-            inner = re.search(r"\(([^)]*)\)", segment)
+            # a parenthesis after a blank: "sgn(theta)" in restraint's is a formula, not a list;
+            # an enumeration named in one ("(restitution eRestraint)") is a word, not a use
+            inner = re.search(r"(?:^|\s)\(([^)]*)\)", segment)
             words = set(re.findall(r"[A-Za-z]\w*", inner.group(1))) if inner else set()
-            uses.setdefault(item, set()).update(words & names - {enum})
+            uses.setdefault(item, set()).update(words & names - set(fmu.enumerations))
         out[enum] = uses
     return out
 
@@ -298,8 +300,43 @@ def horizontal_record(path, component=None, units=None, fmt=None):
         choose = (f"choose a horizontal one: --component {' or '.join(others)}" if others
                   else "the file holds no horizontal component")
         raise CLIError(f"{path} [{rec.component}]: a vertical component, and ag is the horizontal ground "
-                       f"acceleration (vertical input av is not supported yet); {choose}")
+                       f"acceleration (a vertical component goes to the input av: simulate --vertical, "
+                       f"vertical = true in cases and studies); {choose}")
     return rec, fmt
+
+
+def vertical_record(spec, rec, units=None, fmt=None):
+    """(Record, format name) of the vertical ground acceleration `av` that --vertical names.
+
+    spec "auto": the vertical component of `rec`'s record set (same station and event, the
+    file or its sibling files), by the orientation its header gives; "FILE[:COMPONENT]": that
+    file's component, by default its vertical one (its only one for a one-component file).
+    A component the file calls horizontal is refused, and so is "auto" without a vertical."""
+    from .. import groundmotion as gm
+    if spec == "auto":
+        if rec is None:
+            raise CLIError("--vertical auto: finds the vertical component of the RECORD's set: give a RECORD")
+        try:
+            found = gm.vertical_of(rec, units=units)
+        except ValueError as exc:
+            raise CLIError(f"--vertical auto: {exc}") from None
+        if found is None:
+            labels = ", ".join(r.component or "(unlabelled)" for r in gm.components(rec.source, units=units))
+            raise CLIError(f"--vertical auto: {rec.source} has no vertical component in its record set "
+                           f"({labels}); give one as --vertical FILE[:COMPONENT]")
+        return found, gm.detect_format(found.source)
+    path, component = spec, None
+    if not Path(spec).exists() and ":" in spec:
+        path, component = spec.rsplit(":", 1)
+    if component is None:
+        records, _ = read_components(path, units, fmt) if Path(path).is_file() else ([], None)
+        verticals = [r.component for r in records if r.vertical]
+        component = verticals[0] if verticals else None
+    vert, vfmt = read_record(path, component, units, fmt)
+    if not vert.vertical and str(vert.component).strip():
+        raise CLIError(f"--vertical {spec}: {path} [{vert.component}] is a horizontal component by its "
+                       "header; av is the vertical ground acceleration")
+    return vert, vfmt
 
 
 def record_facts(rec):

@@ -1,8 +1,17 @@
-"""`rocking corner ARGS...`: the arguments forwarded untouched to the Rust binary rocking-corner."""
+"""`rocking corner ARGS...`: the arguments forwarded untouched to the Rust binary rocking-corner.
 
+The body file the binary writes (`--body FILE`) is then made one-sided on the
+macroblock's collapse side (docs/corner.md §10): restraint = oneSided, side = 1
+(theta > 0 is the outward rotation) and eRestraint = the body's own Housner
+coefficient etaHousner, which the FMU calculates from it.
+"""
+
+import json
 import os
 import shutil
 import subprocess
+import sys
+from pathlib import Path
 
 from .. import paths
 from .common import CLIError
@@ -23,7 +32,42 @@ def forward(argv):
     if exe is None:
         raise CLIError("rocking-corner not found (target/release of the repository, PATH): "
                        "build it with `cargo build --release -p corner`")
-    return subprocess.call([exe, *argv])
+    status = subprocess.call([exe, *argv])
+    body = body_file(argv)
+    if status == 0 and body is not None and body.is_file():
+        one_sided(body)
+    return status
+
+
+#: The macroblock's collapse side: it rotates outwards only, theta > 0 (docs/corner.md §10).
+COLLAPSE_SIDE = 1
+
+
+def body_file(argv):
+    """The FILE of `--body FILE` / `--body=FILE` among argv, or None."""
+    for i, arg in enumerate(argv):
+        if arg == "--body" and i + 1 < len(argv):
+            return Path(argv[i + 1])
+        if arg.startswith("--body="):
+            return Path(arg.split("=", 1)[1])
+    return None
+
+
+def one_sided(path):
+    """Add restraint = oneSided, side = COLLAPSE_SIDE and eRestraint = etaHousner (the FMU's,
+    for this body) to the body file at `path`; a note on stderr when the FMU is missing."""
+    from ..fmu import RockingFMU
+    body = json.loads(Path(path).read_text())
+    try:
+        with RockingFMU() as fmu:
+            eta = fmu.calculated(body)["etaHousner"]
+    except (FileNotFoundError, OSError) as exc:
+        print(f"rocking corner: note: {path} left two-sided: no FMU to compute etaHousner ({exc})", file=sys.stderr)
+        return
+    body.update(restraint="oneSided", side=COLLAPSE_SIDE, eRestraint=eta)
+    Path(path).write_text(json.dumps(dict(sorted(body.items())), indent=2) + "\n")
+    print(f"rocking corner: {path}: one-sided on the collapse side (side = {COLLAPSE_SIDE}), "
+          f"eRestraint = etaHousner = {eta:.6g}", file=sys.stderr)
 
 
 def register(sub, common):

@@ -15,6 +15,8 @@ CASE.toml (or .json, the same tables):
     record = "../data/ground-motions/some.AT2"
     component = "090"        # optional
     scale = 1.0              # optional
+    vertical = true          # optional: the record set's vertical component as the block's av
+                             # (or "FILE[:COMPONENT]"), scaled alike; the frame has no vertical DOF
     # ... or a sine: amplitude = 4.0 (m/s2), frequency = 2.0 (Hz), cycles = 3
 
     [coupling]               # all optional but floor
@@ -115,8 +117,14 @@ def ground_from(table, case_path):
         rec, fmt = horizontal_record(path, table.get("component"))
         scale = float(table.get("scale", 1.0))
         facts = {"record": str(path), "format": fmt, "component": rec.component, "scale": scale,
-                 "dt_s": rec.dt, "pga_m_s2": rec.pga * scale}
-        return record_ground(rec.time, scale * rec.acc), float(rec.time[-1]), facts
+                 "dt_s": rec.dt, "pga_m_s2": rec.pga * scale, "vertical": None}
+        av = None
+        if table.get("vertical", False) is not False:
+            vert = _vertical(table["vertical"], rec, case_path)
+            av = record_ground(vert.time, scale * vert.acc)
+            facts["vertical"] = {"record": str(vert.source), "component": vert.component,
+                                 "pga_m_s2": vert.pga * abs(scale)}
+        return record_ground(rec.time, scale * rec.acc), float(rec.time[-1]), facts, av
     try:
         amp, freq = float(table["amplitude"]), float(table["frequency"])
     except KeyError as exc:
@@ -124,7 +132,21 @@ def ground_from(table, case_path):
                      f"(missing {exc.args[0]})") from exc
     cycles = table.get("cycles")
     end = (float(cycles) / freq + 2.0) if cycles is not None else 10.0
-    return sine_ground(amp, freq, cycles=cycles), end, {"sine": table}
+    if "vertical" in table:
+        raise _error(f"{case_path}: [ground] vertical: goes with a record (its set's vertical component)")
+    return sine_ground(amp, freq, cycles=cycles), end, {"sine": table}, None
+
+
+def _vertical(value, rec, case_path):
+    """The vertical Record that [ground] vertical names: true (the record set's), or "FILE[:C]"."""
+    from .common import vertical_record
+    if value is True:
+        return vertical_record("auto", rec)[0]
+    if isinstance(value, str):
+        path, _, comp = value.partition(":") if not (case_path.parent / value).exists() else (value, "", "")
+        path = Path(path) if Path(path).is_absolute() else case_path.parent / path
+        return vertical_record(f"{path}:{comp}" if comp else str(path), rec)[0]
+    raise _error(f"{case_path}: [ground] vertical: expected true or \"FILE[:COMPONENT]\", found {value!r}")
 
 
 def cmd_cosim(args, _params):
@@ -140,7 +162,7 @@ def cmd_cosim(args, _params):
     case = load_case(case_path)
     frame = frame_from(case["frame"], case_path)
     block = dict(case.get("block", {}))
-    ground, end, ground_facts = ground_from(case["ground"], case_path)
+    ground, end, ground_facts, av = ground_from(case["ground"], case_path)
     opts = dict(case["coupling"])
     opts.setdefault("stop_time", end)
     opts.setdefault("step", 1e-3)
@@ -152,10 +174,13 @@ def cmd_cosim(args, _params):
             raise _error(f"{f}: no such FMU (run `cargo xtask fmu`, or pass --frame-fmu/--block-fmu)")
     with CoupledFMUs(frame_fmu, block_fmu) as fmus:
         try:
-            res = fmus.run(frame, block, ground=ground, **opts)
+            res = fmus.run(frame, block, ground=ground, vertical=av, **opts)
         except TypeError as exc:
             raise _error(f"{case_path}: [coupling] {exc}") from exc
     check = None
+    if args.reference and av is not None:
+        raise _error(f"{case_path}: --reference: the reference solution has no vertical input; leave out "
+                     "[ground] vertical")
     if args.reference:
         from ..cosim.reference import Reference
         from ..cosim.study import errors

@@ -37,6 +37,7 @@ know: PEER AT2, CSMIP V2, GeoNet V2A, USGS SMC, npts-dt ASCII, CSV), or a study 
   beta_modelling = 0.25                   # FEMA P-58 modelling dispersion (SRSS with beta)
   hazard = "hazard.csv"                   # intensity, annual frequency of exceedance
   mce = 0.9                               # the MCE intensity: collapse margin ratio
+  vertical = true        # each record's matching vertical component as av, scaled alike
   [bodies.tower]
   preset = "dharahara-rigid"
   [bodies.block]
@@ -50,7 +51,7 @@ OPTIONS = {"records": "--records", "im": "--im", "stripes": "--stripes", "max_ru
            "tol": "--tol", "resolution": "--resolution", "grid": "--grid", "tail": "--tail", "rtol": "--rtol",
            "chunk": "--chunk", "beta_estimator": "--beta-estimator", "beta_modelling": "--beta-modelling",
            "damage_states": "--damage-states", "bootstrap": "--bootstrap", "hazard": "--hazard",
-           "mce": "--mce", "years": "--years"}
+           "mce": "--mce", "years": "--years", "vertical": "--vertical"}
 STUDY_KEYS = set(OPTIONS) | {"bodies"}
 
 
@@ -99,6 +100,9 @@ def register(sub, common):
         p.add_argument("--hazard", metavar="CSV", help="hazard curve: intensity, annual frequency of exceedance")
         p.add_argument("--mce", type=float, help="the MCE intensity, for the collapse margin ratio")
         p.add_argument("--years", type=float, help="years of the collapse probability (default 50)")
+        p.add_argument("--vertical", action="store_const", const=True, default=None,
+                       help="run each record with its set's vertical component as av (the FMU's input), "
+                            "scaled by the same factor as the horizontal one")
         p.add_argument("--out", required=True, metavar="DIR", help="output folder (resumed if it holds runs)")
         p.add_argument("--scheduler", metavar="ADDRESS", help="a running Dask scheduler, e.g. tcp://host:8786")
         p.add_argument("--workers", type=int, help="LocalCluster worker processes (default: one per core)")
@@ -154,6 +158,11 @@ def gather(args, fmu, source, data, base):
         suite = load_suite(sources)
     except (FileNotFoundError, ValueError) as exc:
         raise CLIError(str(exc)) from None
+    vertical, where = _pick(args, data, "vertical", source)
+    if vertical is not None and not isinstance(vertical, bool):
+        raise CLIError(f"{where}: expected true or false, found {vertical!r}")
+    if vertical:
+        suite = with_verticals(suite, where)
 
     bodies = {}
     for name, table in (data.get("bodies") or {}).items():
@@ -167,6 +176,16 @@ def gather(args, fmu, source, data, base):
     if not bodies:
         raise CLIError("no body: give --preset NAME, --params FILE or [bodies.NAME] tables in a study file")
     return bodies, suite
+
+
+def with_verticals(suite, where):
+    """{name: Record carrying its set's vertical component as av_record}; CLIError naming the
+    first record that has none (the IM stays the horizontal one's)."""
+    from .. import groundmotion as gm
+    try:
+        return {name: gm.with_vertical(rec) for name, rec in suite.items()}
+    except ValueError as exc:
+        raise CLIError(f"{where}: {exc}") from None
 
 
 def _source(args):
@@ -498,7 +517,9 @@ def write_outputs(out, study, df, result, args, opts):
         options.update(stripes=list(study.stripes))
     summary = dict(method=study.method, im=im.name, im_unit=im.unit, records=list(study.suite),
                    stations={n: station_of(n) for n in study.suite}, synthetic_records=stand_in, options=options,
-                   runs=int(len(df)), failed_runs=int(len(failed)), bodies=bodies_json)
+                   runs=int(len(df)), failed_runs=int(len(failed)), bodies=bodies_json,
+                   vertical={n: f"{r.av_record.source} [{r.av_record.component}]"
+                             for n, r in study.suite.items() if r.av_record is not None} or None)
     jsonfile.write(out / "summary.json", summary)
     lines.append(f"wrote {out / 'runs'}/, {out / 'summary.json'}, {out / 'fragility.png'}"
                  + (", ida-*.png" if study.method == "ida" else ""))

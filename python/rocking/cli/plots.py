@@ -70,7 +70,10 @@ def _title(s, rec, args):
         title += f" under {rec.name or Path(args.record).name}{comp} x {args.scale:g}"
         if s["record"]["synthetic_stand_in"]:
             title += " (synthetic stand-in)"
-    outcome = (f"overturned at {s['t_overturn_s']:.2f} s" if s["overturned"]
+    if s.get("vertical"):
+        title += f" with av {s['vertical']['component']}"
+    outcome = (f"out of range: {s['terminal'].split(':')[0]}" if s.get("terminal")
+               else f"overturned at {s['t_overturn_s']:.2f} s" if s["overturned"]
                else f"stands; peak |theta|/alpha = {s['peak_theta_over_alpha']:.3g}")
     return f"{title}\n{outcome}"
 
@@ -106,7 +109,11 @@ def plot_simulation(path, table, s, regimes, rec, args):
         ax.plot(t_rec, args.scale * rec.acc[:len(t_rec)] / G, lw=0.6, color="0.3")
     else:
         ax.plot(t, table["ag"] / G, lw=0.6, color="0.3")
-    ax.set_ylabel("ground acc. ag (g)")
+    if "av" in table:
+        axes[0].lines[-1].set_label("ag")
+        ax.plot(t, table["av"] / G, lw=0.6, color="C9", label="av (vertical, up)")
+        legend_above(ax)
+    ax.set_ylabel("ground acc. (g)" if "av" in table else "ground acc. ag (g)")
 
     theta_panel(axes[1], t, table["thetaOverAlpha"].to_numpy(), s["calculated"].get("alpha"),
                 s["calculated"].get("thetaOv"))

@@ -10,7 +10,7 @@ from pathlib import Path
 from .. import jsonfile
 from ..fmu import FMUError
 from .common import (FMU_HELP, CLIError, add_record_options, check_parameter, drop_unused, horizontal_record, open_fmu,
-                     read_params_file, record_facts, seconds, unit_of)
+                     read_params_file, record_facts, seconds, unit_of, vertical_record)
 from .plots import plot_simulation
 
 #: This subcommand also takes any FMU parameter as `--NAME VALUE` (see `common.split_parameters`).
@@ -26,7 +26,8 @@ def regime_names(fmu):
     v = fmu.variables.get("regime")
     if v is None:
         return {}
-    return {int(k): name.strip() for k, name in re.findall(r"(\d+)\s+([^,;]+)", v.description or "")}
+    return {int(k): name.split(" (")[0].strip()  # "5 out of the model's range (liftOff, ...": its name
+            for k, name in re.findall(r"(\d+)\s+([^,;]+)", v.description or "")}
 
 
 def gather_parameters(fmu, args, params_given):
@@ -94,13 +95,18 @@ def cmd_simulate(args, params_given):
         rec = fmt = None
         if args.record:
             rec, fmt = horizontal_record(args.record, args.component, args.units, args.fmt)
+        vert = vfmt = None
+        if args.vertical:
+            vert, vfmt = vertical_record(args.vertical, rec, args.units, args.fmt)
         columns = chosen_outputs(fmu, args.outputs)
-        outputs = list(dict.fromkeys([o for o in (*SIMULATE_OUTPUTS, "frictionDemand") if o in fmu.variables]
+        extra = ("frictionDemand", "apparentWeight") if vert is not None else ("frictionDemand",)
+        outputs = list(dict.fromkeys([o for o in (*SIMULATE_OUTPUTS, *extra) if o in fmu.variables]
                                      + columns))
         stop_time = stop_time_of(args, rec)
         try:
             run = fmu.simulate(params, record=rec, scale=args.scale, stop_time=stop_time,
-                               output_interval=args.output_interval, rtol=args.rtol, outputs=outputs)
+                               output_interval=args.output_interval, rtol=args.rtol, outputs=outputs,
+                               vertical=vert)
         except FMUError as exc:
             raise (exc.with_value(raw[exc.parameter]) if exc.parameter in raw else exc) from None
         regimes = regime_names(fmu)
@@ -111,12 +117,16 @@ def cmd_simulate(args, params_given):
     t = res["time"]
     ag = (args.scale * np.interp(t, rec.time, rec.acc, right=0.0)) if rec is not None else np.zeros(len(t))
     table = pd.DataFrame({"time": t, "ag": ag})
+    inputs = ["time", "ag"]
+    if vert is not None:  # the same --scale as ag
+        table["av"] = args.scale * np.interp(t, vert.time, vert.acc, right=0.0)
+        inputs.append("av")
     for name in outputs:
         column = res[name]
         table[name] = column.astype(int) if column.dtype == bool else column
     out.mkdir(parents=True, exist_ok=True)
     csv_path, json_path, png_path = out / "timehistory.csv", out / "summary.json", out / "plot.png"
-    table.to_csv(csv_path, index=False, columns=["time", "ag", *columns])
+    table.to_csv(csv_path, index=False, columns=[*inputs, *columns])
 
     theta = res["theta"]
     k_peak = int(np.argmax(np.abs(theta)))
@@ -127,11 +137,12 @@ def cmd_simulate(args, params_given):
             "path": str(args.record), "format": fmt, "name": rec.name, "component": rec.component,
             **record_facts(rec), "scale": args.scale, "scaled_pga_g": abs(args.scale) * rec.pga_g,
             "synthetic_stand_in": "stand-in" in rec.notes.lower()},
+        "vertical": None if vert is None else vertical_summary(args, vert, vfmt, res, run),
         "preset": args.preset,
         "parameters": params,
         "ignored_parameters": ignored,
         "calculated": run.calculated,
-        "stop_time_s": float(t[-1]) if run.overturned else (stop_time or float(t[-1])),
+        "stop_time_s": float(t[-1]) if run.overturned or run.terminal else (stop_time or float(t[-1])),
         "tail_s": args.tail,
         "rows": int(len(t)),
         "peak_theta_rad": float(abs(theta[k_peak])),
@@ -148,14 +159,25 @@ def cmd_simulate(args, params_given):
     if "regime" in outputs:
         reached = sorted({int(r) for r in res["regime"]})
         summary["regimes_reached"] = [regimes.get(r, str(r)) for r in reached]
-    summary["columns"] = ["time", "ag", *columns]
-    summary["units"] = {"time": "s", "ag": "m/s2", **units}
+    summary["terminal"] = run.terminal
+    summary["columns"] = [*inputs, *columns]
+    summary["units"] = {"time": "s", "ag": "m/s2", **({"av": "m/s2"} if vert is not None else {}), **units}
     summary["wall_s"] = run.wall
     summary["files"] = {"timehistory": csv_path.name, "plot": png_path.name}
     jsonfile.write(json_path, summary)
     plot_simulation(png_path, table, summary, regimes, rec, args)  # plots.py
     print(summary_text(summary, out))
     return 0
+
+
+def vertical_summary(args, vert, fmt, res, run):
+    """The vertical record (av, scaled by --scale like ag) and the least apparent weight N / W."""
+    weight = run.calculated.get("weight")
+    n_min = float(min(res["apparentWeight"])) if len(res) else float("nan")
+    return {"path": str(vert.source), "given_as": args.vertical, "format": fmt, "name": vert.name,
+            "component": vert.component, **record_facts(vert), "scale": args.scale,
+            "scaled_pga_g": abs(args.scale) * vert.pga_g,
+            "min_apparent_weight_over_W": n_min / weight if weight else None}
 
 
 def friction_summary(t, demand, mu):
@@ -185,12 +207,19 @@ def summary_text(s, out):
                      f"= {r['scaled_pga_g']:.3f} g" + ("  (SYNTHETIC STAND-IN)" if r["synthetic_stand_in"] else ""))
     else:
         lines.append("record      none (free rocking from the initial conditions)")
+    if s["vertical"]:
+        v = s["vertical"]
+        lines.append(f"vertical    {v['path']} [{v['component']}] as av, PGA = {v['pga_g']:.3f} g x {v['scale']:g} "
+                     f"= {v['scaled_pga_g']:.3f} g; least apparent weight N/W = "
+                     f"{v['min_apparent_weight_over_W']:.4g}")
     if s["preset"]:
         lines.append(f"preset      {s['preset']}")
     calc = s["calculated"]
     lines.append(f"body        alpha = {calc.get('alpha', math.nan):.5g} rad, "
                  f"thetaOv = {calc.get('thetaOv', math.nan):.5g} rad")
-    if s["overturned"]:
+    if s["terminal"]:
+        lines.append(f"result      OUT OF THE MODEL'S RANGE (regime 5): {s['terminal']}")
+    elif s["overturned"]:
         lines.append(f"result      OVERTURNED at t = {s['t_overturn_s']:.4f} s")
     else:
         lines.append(f"result      stands until t = {s['stop_time_s']:g} s")
@@ -226,7 +255,8 @@ def register(sub, common):
     p = sub.add_parser(
         "simulate", parents=[common], allow_abbrev=False,
         help="one run: time history CSV, summary, plot",
-        usage="rocking simulate [RECORD] [--scale S] [--component C] [--units U] [--fmt F]\n"
+        usage="rocking simulate [RECORD] [--scale S] [--component C] [--vertical FILE[:C]|auto]\n"
+              "                        [--units U] [--fmt F]\n"
               "                        [--preset NAME] [--params FILE] [--PARAM VALUE ...]\n"
               "                        [--fmu PATH] [--stop-time S | --tail S] [--output-interval S]\n"
               "                        [--outputs A,B,...] [--rtol R] --out DIR",
@@ -241,9 +271,14 @@ def register(sub, common):
         formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("record", nargs="?", metavar="RECORD",
                    help="ground-motion file (any format `rocking record` reads); none: free rocking")
-    p.add_argument("--scale", type=float, default=1.0, help="factor on the record's acceleration (default 1)")
+    p.add_argument("--scale", type=float, default=1.0,
+                   help="factor on the record's acceleration, ag and av alike (default 1)")
     p.add_argument("--component", help="the record's horizontal component, by label (e.g. N28W, 090) or "
                         "index; default the first horizontal one")
+    p.add_argument("--vertical", metavar="FILE[:COMPONENT] | auto",
+                   help="the vertical ground acceleration av (m/s2, up), scaled by the same --scale: a file's "
+                        "component (default its vertical one), or auto: the vertical component of RECORD's "
+                        "set (the file, or its sibling files of the same station and event)")
     add_record_options(p)
     p.add_argument("--preset", metavar="NAME", help="start from a named parameter set (see below)")
     p.add_argument("--params", metavar="FILE",

@@ -80,9 +80,14 @@ def _case_parameters(fmu, path, cname, defaults, table, presets_module):
             preset_values = presets_module.preset(str(preset_name))
         except KeyError as exc:
             raise CLIError(f"{path}: cases.{cname}.preset: {exc.args[0]}") from None
-    layers = ((f"{path}: defaults.{{}}", {k: v for k, v in defaults.items() if k != "preset"}),
+    vertical = table.get("vertical", defaults.get("vertical", False))
+    if not isinstance(vertical, bool):
+        raise CLIError(f"{path}: cases.{cname}.vertical: expected true or false (use each record's vertical "
+                       f"component as av), found {vertical!r}")
+    keys = ("preset", "vertical")
+    layers = ((f"{path}: defaults.{{}}", {k: v for k, v in defaults.items() if k not in keys}),
               (f"{path}: cases.{cname} (preset {preset_name}): {{}}", preset_values),
-              (f"{path}: cases.{cname}.{{}}", {k: v for k, v in table.items() if k != "preset"}))
+              (f"{path}: cases.{cname}.{{}}", {k: v for k, v in table.items() if k not in keys}))
     params = {}
     for where, values in layers:
         for name, value in values.items():
@@ -90,6 +95,8 @@ def _case_parameters(fmu, path, cname, defaults, table, presets_module):
     _, note = drop_unused(fmu, params)
     if note:
         print(f"sweep: note: cases.{cname}: {note}", file=sys.stderr)
+    if vertical:
+        params["vertical"] = True  # not an FMU parameter: run_grid gives the record's vertical as av
     return params
 
 
@@ -125,6 +132,20 @@ def collect_records(sources, component, units=None, fmt=None):
     return records, vertical
 
 
+def attach_verticals(records, units=None):
+    """{name: Record with its set's vertical as av_record}; a record without one says so on
+    stderr (its runs of the `vertical = true` cases fail with that message in the row)."""
+    from .. import groundmotion as gm
+    out = {}
+    for name, rec in records.items():
+        try:
+            out[name] = gm.with_vertical(rec, units=units)
+        except ValueError as exc:
+            print(f"sweep: {exc}", file=sys.stderr)
+            out[name] = rec
+    return out
+
+
 def cmd_sweep(args, _params):
     from tqdm import tqdm
 
@@ -137,6 +158,8 @@ def cmd_sweep(args, _params):
     with open_fmu(args.fmu) as fmu:
         cases = load_cases(args.cases, fmu)
         records, vertical = collect_records(args.records, args.component, args.units, args.fmt)
+        if any(p.get("vertical") for p in cases.values()):
+            records = attach_verticals(records, args.units)
         if vertical:
             print(f"sweep: {len(vertical)} vertical component(s) left out (ag is horizontal): "
                   f"{', '.join(vertical)}", file=sys.stderr)

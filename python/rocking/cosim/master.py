@@ -154,13 +154,16 @@ class CoupledFMUs:
         self.block.close()
 
     def run(self, frame, block, floor, ground, stop_time, step, scheme="jacobi",
-            inputs="extrapolate", coupling="two-way", reject=True, substeps=None, rtol=1e-10):
+            inputs="extrapolate", coupling="two-way", reject=True, substeps=None, rtol=1e-10, vertical=None):
         """Couple the block on floor `floor` (1-based) of the frame from t = 0 to
         `stop_time` with communication step `step`; returns a `CosimResult`.
 
         frame, block  parameter (and start) values by name of each FMU
         ground        ag(t), a vectorized callable (m/s2): sine_ground, record_ground
         rtol          the block's integrator tolerance (the frame's step is exact)
+        vertical      av(t), a vectorized callable (m/s2, up) or None: the ground's vertical
+                      acceleration, given to the block as its input av as it is (the shear
+                      frame has no vertical degree of freedom: its floors move with the ground)
         The defaults (Jacobi, extrapolated inputs, step rejection) are the most accurate
         combination measured in docs/cosimulation.md §4.
         """
@@ -177,7 +180,7 @@ class CoupledFMUs:
             raise ValueError("step and stop_time must be positive")
         wall = _time.perf_counter()
         loop = _Loop(self.frame, self.block, int(floor), n, ground, scheme, inputs == "extrapolate",
-                     coupling == "two-way", reject, None if substeps is None else int(substeps))
+                     coupling == "two-way", reject, None if substeps is None else int(substeps), vertical)
         try:
             self.frame.instantiate(frame, 0.0, stop_time)
             self.block.instantiate(block, 0.0, stop_time, rtol=rtol)
@@ -200,15 +203,16 @@ class CoupledFMUs:
             t_overturn=loop.t_overturn, frame_state=frame_state, steps=loop.steps,
             rejected=loop.rejected, wall=_time.perf_counter() - wall,
             options=dict(floor=floor, stop_time=stop_time, step=step, scheme=scheme, inputs=inputs,
-                         coupling=coupling, reject=reject, substeps=substeps, rtol=rtol),
+                         coupling=coupling, reject=reject, substeps=substeps, rtol=rtol,
+                         vertical=vertical is not None),
             messages=list(_fmu._MESSAGES))
 
 
 class _Loop:
     """The state of one coupled run between communication points."""
 
-    def __init__(self, frame, block, j, n, ground, scheme, extrapolate, two_way, reject, substeps):
-        self.frame, self.block, self.ground = frame, block, ground
+    def __init__(self, frame, block, j, n, ground, scheme, extrapolate, two_way, reject, substeps, vertical=None):
+        self.frame, self.block, self.ground, self.vertical = frame, block, ground, vertical
         self.gs, self.extrapolate, self.two_way = scheme == "gauss-seidel", extrapolate, two_way
         self.reject, self.substeps = reject, substeps
         self.r_ag = frame.refs(["ag"])
@@ -216,6 +220,10 @@ class _Loop:
         self.r_a = frame.refs([f"a[{j}]"])
         self.r_u = frame.refs([f"u[{i}]" for i in range(1, n + 1)])
         self.r_bag = block.refs(["ag"])
+        self.r_bav = block.refs(["av"]) if vertical is not None else None
+        # the FMU gives output derivatives only without av (docs/model.md §7.4): with av the
+        # block's force reaches the frame constant over a step
+        self.force_rates = extrapolate and vertical is None
         self.r_bf = block.refs(["Fx", "Fz"])
         self.r_th = block.refs(["theta", "omega"])
         self.rows, self.steps, self.rejected = [], 0, 0
@@ -225,7 +233,7 @@ class _Loop:
     def _block_force(self):
         """The force on the floor, -(Fx, Fz), and its rate (0 unless extrapolating)."""
         f = self.block.get(self.r_bf)
-        d = self.block.get_der(self.r_bf) if self.extrapolate else [0.0, 0.0]
+        d = self.block.get_der(self.r_bf) if self.force_rates else [0.0, 0.0]
         return [-f[0], -f[1]], [-d[0], -d[1]]
 
     def _floor_acc(self):
@@ -241,6 +249,8 @@ class _Loop:
         block/floor mass ratios below 1) until it settles."""
         g = float(self.ground(0.0))
         self.frame.set(self.r_ag, [g])
+        if self.vertical is not None:
+            self.block.set(self.r_bav, [float(self.vertical(0.0))])
         for _ in range(50):
             a, _ = self._floor_acc()
             self.block.set(self.r_bag, [a])
@@ -317,6 +327,9 @@ class _Loop:
             self.block.set(self.r_bag, [a0], [da] if self.extrapolate else None)
             self._set_frame_force(force, rate)
             self.frame.do_step(t, h)
+        if self.vertical is not None:  # the ground's av, straight to the block (no vertical DOF in the frame)
+            v0, v1 = (float(x) for x in self.vertical(np.array([t, t + h])))
+            self.block.set(self.r_bav, [v0], [(v1 - v0) / h])
         status = self.block.do_step(t, h)
         if status == fmi2Discard and self.block.status(fmi2Terminated, boolean=True):
             self._overturn(t, fstate, force, rate)

@@ -37,7 +37,12 @@ def _hash(obj):
 
 
 def record_id(name, record):
-    return f"{name}#{hashlib.sha1(record.acc.tobytes()).hexdigest()[:8]}"
+    """name#hash of the record's samples (and of its vertical av, when it carries one: a study
+    with `vertical = true` does not resume from the runs without it)."""
+    digest = hashlib.sha1(record.acc.tobytes())
+    if record.av_record is not None:
+        digest.update(b"av" + record.av_record.acc.tobytes())
+    return f"{name}#{digest.hexdigest()[:8]}"
 
 
 _COMPONENT = re.compile(r"([._-](000|090|180|270|360|H1|H2|HN1|HN2|HNE|HNN|HE|HN|NS|EW|N|E|L|T)"

@@ -9,7 +9,8 @@ Formats (one module each): CSMIP/CESMD V2 (`csmip`), GeoNet V2A (`geonet`),
 USGS SMC (`smc`), plain "npts dt" ASCII (`nptsdt`), PEER NGA AT2 (`peer`),
 `time,acc` CSV (`csvfile`). Accelerations are converted to m/s² with
 g = 9.80665 m/s². Each Record says whether it is the vertical component
-(`rec.orientation`, `rec.vertical`, from the file's header). Malformed files raise `GroundMotionFormatError` (a
+(`rec.orientation`, `rec.vertical`, from the file's header); `components(path)` gives
+the whole record set (sibling files too) and `vertical_of(rec)` its vertical. Malformed files raise `GroundMotionFormatError` (a
 ValueError) naming the file, the line and what was expected there.
 """
 
@@ -21,6 +22,7 @@ from .katnp import DATA_DIR, STANDIN_PATH, katnp, katnp_standin
 from .nptsdt import read_npts_dt
 from .peer import read_peer_at2
 from .orientation import HORIZONTAL, VERTICAL
+from .recordset import components, set_key, vertical_of, with_vertical
 from .record import PLAUSIBLE_PGA_G, GroundMotionFormatError, GroundMotionWarning, Record
 from .smc import read_smc
 from .units import G, canonical_unit, to_m_s2
@@ -30,5 +32,5 @@ __all__ = [
     "GroundMotionWarning", "READERS", "Record", "STANDIN_PATH",
     "canonical_unit", "detect_format", "katnp", "katnp_standin", "read", "read_all",
     "read_csmip_v2", "read_csv", "read_geonet_v2a", "read_npts_dt", "read_peer_at2",
-    "read_smc", "to_m_s2",
+    "read_smc", "to_m_s2", "components", "set_key", "vertical_of", "with_vertical",
 ]

@@ -48,6 +48,9 @@ class Record:
     source         path of the file read
     notes          free text: provenance, caveats (e.g. that a record is synthetic)
     orientation    "horizontal" or "vertical", from the file's header (see `orientation`)
+    av_record      the vertical component that goes with this horizontal one as the FMU's
+                   input av (a Record, e.g. `recordset.vertical_of(self)`), or None: no av;
+                   `scaled` scales it by the same factor
     """
 
     time: np.ndarray
@@ -59,6 +62,7 @@ class Record:
     source: str = ""
     notes: str = ""
     orientation: str = HORIZONTAL
+    av_record: "Record" = None
 
     def __post_init__(self):
         self.time = np.asarray(self.time, dtype=float)
@@ -123,7 +127,8 @@ class Record:
     def scaled(self, factor):
         """Copy with the acceleration multiplied by `factor` (PGA scales by |factor|)."""
         note = f"scaled by {factor:g}"
-        return dataclasses.replace(self, acc=self.acc * factor, notes=_join(self.notes, note))
+        av = None if self.av_record is None else self.av_record.scaled(factor)
+        return dataclasses.replace(self, acc=self.acc * factor, notes=_join(self.notes, note), av_record=av)
 
     def resampled(self, dt):
         """Copy sampled at step `dt` (s) by linear interpolation over [0, duration].
@@ -136,7 +141,8 @@ class Record:
         time = np.arange(n) * dt
         acc = np.interp(time, self.time, self.acc)
         note = f"resampled from dt = {self.dt:g} s to {dt:g} s (linear interpolation)"
-        return dataclasses.replace(self, time=time, acc=acc, dt=dt, notes=_join(self.notes, note))
+        av = None if self.av_record is None else self.av_record.resampled(dt)
+        return dataclasses.replace(self, time=time, acc=acc, dt=dt, notes=_join(self.notes, note), av_record=av)
 
     def to_csv(self, path):
         """Write `#` comment lines (name, component, source, notes), the header
