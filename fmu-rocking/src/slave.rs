@@ -20,8 +20,20 @@ use rocking::{Params, Regime};
 pub const MAX_GROUND_ACCELERATION: f64 = 1e100;
 
 /// Layout version of the serialized state (inside the generic envelope):
-/// 4 added the Model Exchange toe and last impact speed.
-const STATE_VERSION: u32 = 4;
+/// 4 added the Model Exchange toe and last impact speed, 5 the terminal
+/// condition and the last step's `av`.
+const STATE_VERSION: u32 = 5;
+
+/// Everything an FMU state holds (`fmi2GetFMUstate`, serialized): the
+/// motion, and what the next step needs besides it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Saved {
+    pub continuous: Continuous,
+    /// The input had left the model's range: the run is over.
+    pub terminal: Option<Terminal>,
+    /// `av` at the end of the last step (the next step's jump starts there).
+    pub av_end: Option<f64>,
+}
 
 pub struct RockingSlave {
     sim: Simulator,
@@ -37,8 +49,8 @@ pub struct RockingSlave {
     rates: Option<(u64, u64, OutputRates)>,
     /// The input left the model's range (docs/model.md §6.5): `regime` 5.
     terminal: Option<Terminal>,
-    /// `av` at the end of the last step (none before the first, or after
-    /// a state was set): a host that holds its inputs makes it jump.
+    /// `av` at the end of the last step (none before the first; an FMU
+    /// state keeps it): a host that holds its inputs makes it jump.
     av_end: Option<f64>,
     sliding: SlidingCheck,
 }
@@ -158,7 +170,7 @@ impl RockingSlave {
 }
 
 impl Slave for RockingSlave {
-    type State = Continuous;
+    type State = Saved;
 
     fn description() -> &'static ModelDescription {
         &ROCKING_BLOCK
@@ -424,18 +436,22 @@ impl Slave for RockingSlave {
         Ok(StepEnd::Completed)
     }
 
-    fn state(&self) -> Continuous {
-        self.continuous()
+    fn state(&self) -> Saved {
+        Saved {
+            continuous: self.continuous(),
+            terminal: self.terminal,
+            av_end: self.av_end,
+        }
     }
 
-    fn set_state(&mut self, c: Continuous) {
-        // a state saved before the input left the range is in it
-        self.terminal = None;
-        self.av_end = None;
-        self.store(c);
+    fn set_state(&mut self, saved: Saved) {
+        self.terminal = saved.terminal;
+        self.av_end = saved.av_end;
+        self.store(saved.continuous);
     }
 
-    fn write_state(c: &Continuous, w: &mut ByteWriter) {
+    fn write_state(saved: &Saved, w: &mut ByteWriter) {
+        let c = &saved.continuous;
         let s = &c.state;
         // Destructured: a new field in State breaks the build here, not the format.
         let State {
@@ -467,9 +483,23 @@ impl Slave for RockingSlave {
         w.u32(switch_count);
         w.f64(c.side);
         w.f64(c.left_with);
+        w.bool(saved.terminal.is_some());
+        if let Some(Terminal { t, condition, av }) = saved.terminal {
+            w.f64(t);
+            w.u8(match condition {
+                OutOfRange::LiftOff => 0,
+                OutOfRange::BaseCrushing => 1,
+                OutOfRange::RestUnstable => 2,
+            });
+            w.f64(av);
+        }
+        w.bool(saved.av_end.is_some());
+        if let Some(av) = saved.av_end {
+            w.f64(av);
+        }
     }
 
-    fn read_state(r: &mut ByteReader<'_>) -> Result<Continuous, ReadError> {
+    fn read_state(r: &mut ByteReader<'_>) -> Result<Saved, ReadError> {
         let v = r.u32("state version")?;
         if v != STATE_VERSION {
             return Err(format!(
@@ -511,10 +541,28 @@ impl Slave for RockingSlave {
         if !(s.h.is_finite() && s.h >= 0.0 && s.a.is_finite() && s.a >= 0.0) {
             return Err(format!("step h = {}, contact a = {}: invalid", s.h, s.a));
         }
-        Ok(Continuous {
-            state: s,
-            side,
-            left_with,
+        let terminal = if r.bool("terminal")? {
+            Some(read_terminal(r)?)
+        } else {
+            None
+        };
+        let av_end = if r.bool("av_end set")? {
+            let av = r.f64("av_end")?;
+            if !av.is_finite() {
+                return Err(format!("av_end = {av} is not finite"));
+            }
+            Some(av)
+        } else {
+            None
+        };
+        Ok(Saved {
+            continuous: Continuous {
+                state: s,
+                side,
+                left_with,
+            },
+            terminal,
+            av_end,
         })
     }
 
@@ -555,4 +603,21 @@ impl Slave for RockingSlave {
     fn nominals(&self, x: &mut [f64]) -> Result<(), String> {
         self.me_nominals(x)
     }
+}
+
+/// The terminal condition of a serialized state (see `write_state`).
+fn read_terminal(r: &mut ByteReader<'_>) -> Result<Terminal, ReadError> {
+    let t = r.f64("terminal t")?;
+    let code = r.u8("terminal condition")?;
+    let av = r.f64("terminal av")?;
+    let condition = match code {
+        0 => OutOfRange::LiftOff,
+        1 => OutOfRange::BaseCrushing,
+        2 => OutOfRange::RestUnstable,
+        _ => return Err(format!("terminal condition {code}: must be 0, 1 or 2")),
+    };
+    if !(t.is_finite() && av.is_finite()) {
+        return Err(format!("terminal at t = {t}, av = {av}: not finite"));
+    }
+    Ok(Terminal { t, condition, av })
 }

@@ -197,14 +197,16 @@ fn declared_dependencies_cover_the_real_ones() {
     }
 }
 
-/// The serialized state carries both counts, the opened flag and the Model
-/// Exchange fields; a state
-/// claiming more impacts than zero crossings is refused (every impact is a
-/// crossing).
+/// The serialized state carries both counts, the opened flag, the Model
+/// Exchange fields, the terminal condition and the last step's `av` (each
+/// read back equal to what was written); a state claiming more impacts than
+/// zero crossings is refused (every impact is a crossing).
 #[test]
 fn serialized_state_keeps_both_counts_and_refuses_more_impacts_than_crossings() {
     use fmi2_export::bytes::{ByteReader, ByteWriter};
     use fmi2_export::Slave;
+    use fmu_rocking::slave::Saved;
+    use rocking::dynamics::{OutOfRange, Terminal};
     let model = Params::default().build().unwrap();
     let sim = rocking::dynamics::Simulator::new(model, 1e-9);
     let mut c = sim.continuous(0.01, 0.0, 0.0);
@@ -214,14 +216,39 @@ fn serialized_state_keeps_both_counts_and_refuses_more_impacts_than_crossings() 
     // the Model Exchange toe and last impact speed too
     c.side = -1.0;
     c.left_with = 0.25;
-    let mut w = ByteWriter::new();
-    RockingSlave::write_state(&c, &mut w);
-    let back = RockingSlave::read_state(&mut ByteReader::new(&w.buf)).unwrap();
-    assert_eq!(back, c);
+    let round_trip = |s: &Saved| {
+        let mut w = ByteWriter::new();
+        RockingSlave::write_state(s, &mut w);
+        RockingSlave::read_state(&mut ByteReader::new(&w.buf))
+    };
+    let none = Saved {
+        continuous: c,
+        terminal: None,
+        av_end: None,
+    };
+    assert_eq!(round_trip(&none).unwrap(), none);
+    for condition in [
+        OutOfRange::LiftOff,
+        OutOfRange::BaseCrushing,
+        OutOfRange::RestUnstable,
+    ] {
+        let ended = Saved {
+            continuous: c,
+            terminal: Some(Terminal {
+                t: 1.25,
+                condition,
+                av: -9.81,
+            }),
+            av_end: Some(-3.5),
+        };
+        assert_eq!(round_trip(&ended).unwrap(), ended);
+    }
     c.state.impacts = 8;
-    let mut w = ByteWriter::new();
-    RockingSlave::write_state(&c, &mut w);
-    let e = RockingSlave::read_state(&mut ByteReader::new(&w.buf)).unwrap_err();
+    let e = round_trip(&Saved {
+        continuous: c,
+        ..none
+    })
+    .unwrap_err();
     assert!(
         e.contains("impacts = 8") && e.contains("zero crossings = 7"),
         "{e}"

@@ -83,3 +83,48 @@ fn bad_one_sided_parameters_are_errors_naming_the_variable() {
         assert!(h.logged(word), "{what}: {:?}", h.errors());
     }
 }
+
+/// A rocking state saved between two steps of a zero-order-hold host (no
+/// input derivative: `av` jumps between steps) and set into a second
+/// instance: the next step, across the jump of `av`, is bit for bit the
+/// uninterrupted instance's (the state keeps the last step's `av`, from
+/// which the jump `omega+ = omega- sqrt(I-/I+)` is taken). And a state saved
+/// after `liftOff` is still over: the next step is refused, `regime` 5.
+#[test]
+fn fmu_state_keeps_the_last_av_and_the_terminal_condition() {
+    let a = Host::new();
+    assert_eq!(a.set_real("theta", 0.004), fmi2OK);
+    a.init();
+    assert_eq!(a.set_real("av", 2.0), fmi2OK);
+    assert_eq!(a.do_step(0.0, 0.01), fmi2OK, "{:?}", a.messages());
+    let bytes = a.serialize(a.get_state());
+    let b = Host::new();
+    assert_eq!(b.set_real("theta", 0.004), fmi2OK);
+    b.init();
+    assert_eq!(b.set_state(b.deserialize(&bytes)), fmi2OK);
+    for h in [&a, &b] {
+        assert_eq!(h.set_real("av", -3.0), fmi2OK);
+        assert_eq!(h.do_step(0.01, 0.01), fmi2OK, "{:?}", h.messages());
+    }
+    for name in ["theta", "omega"] {
+        assert_eq!(
+            a.real(name).to_bits(),
+            b.real(name).to_bits(),
+            "{name}: {} uninterrupted, {} from the saved state",
+            a.real(name),
+            b.real(name)
+        );
+    }
+
+    // liftOff at the end of the first step, then the state saved
+    let c = Host::new();
+    c.init();
+    assert_eq!(c.set_real("av", -20.0), fmi2OK);
+    assert_eq!(c.do_step(0.0, 0.1), fmi2Discard, "{:?}", c.messages());
+    let ended = c.serialize(c.get_state());
+    let d = Host::new();
+    d.init();
+    assert_eq!(d.set_state(d.deserialize(&ended)), fmi2OK);
+    assert_eq!(d.integer("regime"), 5);
+    assert_ne!(d.do_step(0.1, 0.1), fmi2OK);
+}

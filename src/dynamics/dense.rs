@@ -90,6 +90,10 @@ pub(crate) enum Hit {
     /// `|theta|` reaches the `k`-th kink level of the right-hand side (a
     /// regime threshold): the step is cut there, nothing else happens.
     Kink(usize),
+    /// A moving threshold under a vertical input (docs/model.md §6.4: the
+    /// heel closing or the toe starting to crush at `N(t)`): cut there like
+    /// a kink, at the level of `|theta|` found on the step.
+    MovingKink,
 }
 
 /// Pieces the step is sampled in to find the turning points of `theta`.

@@ -34,6 +34,7 @@ impl StepCx<'_, '_> {
             Hit::Impact => 0.0,
             Hit::Overturn => self.side * self.ov_level,
             Hit::Kink(i) => self.side * self.call.sim.kinks.as_slice()[i],
+            Hit::MovingKink => self.side * self.kink_level,
         }
     }
 
@@ -82,7 +83,7 @@ impl StepCx<'_, '_> {
         let t_ev = t_ev + shift;
         self.st.t = t_ev;
         match hit {
-            Hit::Kink(_) => {
+            Hit::Kink(_) | Hit::MovingKink => {
                 self.on_kink(level, omega);
                 Flow::Next
             }
@@ -217,7 +218,7 @@ impl StepCx<'_, '_> {
         let direction = match hit {
             Hit::Impact => moving < 0.0,
             Hit::Overturn => moving > 0.0,
-            Hit::Kink(_) => true,
+            Hit::Kink(_) | Hit::MovingKink => true,
         };
         let t = tr.t;
         let status = if t + dt <= t || !direction {

@@ -245,6 +245,12 @@ pub(super) struct StepCx<'c, 'm> {
     /// or under a vertical input (flexible laws) the root of `hW(phi, N(t))`
     /// found on the step (docs/model.md §6.4).
     pub(super) ov_level: f64,
+    /// `|theta|` of the moving kink being located (docs/model.md §6.4), rad.
+    pub(super) kink_level: f64,
+    /// The margins of [`moving_kink`](Self::moving_kink) at the end of the
+    /// last step looked at, keyed by its `(t, theta)`: the next step's start
+    /// if that step was taken.
+    margins_end: (f64, f64, [f64; 2]),
 }
 
 /// One attempted step from the context's state.
@@ -310,6 +316,8 @@ impl<'c, 'm> StepCx<'c, 'm> {
             rejected: false,
             jac: None,
             ov_level: sim.model.theta_ov,
+            kink_level: f64::NAN,
+            margins_end: (f64::NAN, f64::NAN, [0.0; 2]),
         }
     }
 
@@ -356,6 +364,75 @@ impl<'c, 'm> StepCx<'c, 'm> {
         Some(hi)
     }
 
+    /// The event functions of docs/model.md §6.4 at `tau` of the step `tr`
+    /// (interpolated by `herm`): the heel's and the toe's margins
+    /// `1 - Nbed/N` at `(|theta(tau)|, N(t + tau h))`.
+    fn margins_on_step(&self, tr: &Trial, herm: &Hermite, tau: f64) -> [f64; 2] {
+        let phi = herm.theta(tau).abs();
+        let n = self.call.eom.apparent_weight(tr.t + tau * tr.hh);
+        self.call.sim.model.interface.bed_margins(phi, n)
+    }
+
+    /// Under moving thresholds, the first zero on the step `tr` of the
+    /// joint-opening or crushing-onset function (docs/model.md §6.4), as a
+    /// fraction of the step, located by bisection on the interpolant; sets
+    /// [`kink_level`](Self::kink_level). A function within `1e-10` of its
+    /// zero at the step start is the kink the step starts on.
+    fn moving_kink(&mut self, tr: &Trial, herm: &Hermite) -> Option<f64> {
+        let (t, theta, cached) = self.margins_end;
+        let m0 = if t == tr.t && theta == tr.y0[0] {
+            cached
+        } else {
+            self.margins_on_step(tr, herm, 0.0)
+        };
+        let m1 = self.margins_on_step(tr, herm, 1.0);
+        self.margins_end = (tr.t_new, tr.out.y[0], m1);
+        let tau = (0..2)
+            .filter(|&i| m0[i].abs() > 1e-10 && (m0[i] > 0.0) != (m1[i] > 0.0))
+            .map(|i| self.margin_zero(tr, herm, i, m0[i], m1[i]))
+            .fold(f64::INFINITY, f64::min);
+        if tau > 1.0 {
+            return None;
+        }
+        self.kink_level = herm.theta(tau).abs();
+        Some(tau)
+    }
+
+    /// The zero of the `i`-th margin on the step, bracketed by `f0` at 0 and
+    /// `f1` at 1 of opposite signs: the end of the bracket past the zero, to
+    /// `1e-12` of the step (Illinois regula falsi: the margin is smooth in
+    /// `tau` between kinks of `w`, so a few evaluations).
+    fn margin_zero(&self, tr: &Trial, herm: &Hermite, i: usize, mut f0: f64, mut f1: f64) -> f64 {
+        let (mut lo, mut hi) = (0.0, 1.0);
+        let mut last = 0;
+        for _ in 0..60 {
+            if hi - lo <= 1e-12 {
+                break;
+            }
+            let mut x = (lo * f1 - hi * f0) / (f1 - f0);
+            if !(x > lo && x < hi) {
+                x = 0.5 * (lo + hi);
+            }
+            let fx = self.margins_on_step(tr, herm, x)[i];
+            if (fx > 0.0) == (f0 > 0.0) {
+                lo = x;
+                f0 = fx;
+                if last == -1 {
+                    f1 *= 0.5;
+                }
+                last = -1;
+            } else {
+                hi = x;
+                f1 = fx;
+                if last == 1 {
+                    f0 *= 0.5;
+                }
+                last = 1;
+            }
+        }
+        hi
+    }
+
     /// The loop: attempt, reject or accept, then take the step or the event
     /// found on its dense output.
     fn steps<P: Pair>(mut self) -> Stop {
@@ -393,7 +470,14 @@ impl<'c, 'm> StepCx<'c, 'm> {
             let found = match first_event(&herm, self.side, theta_ov, kinks) {
                 None if moving => self
                     .moving_overturn(&tr, &herm)
-                    .map(|tau| (Hit::Overturn, tau)),
+                    .map(|tau| (Hit::Overturn, tau))
+                    .or_else(|| {
+                        // not in the stiff mode, as the fixed kinks
+                        (!self.st.stiff)
+                            .then(|| self.moving_kink(&tr, &herm))
+                            .flatten()
+                            .map(|tau| (Hit::MovingKink, tau))
+                    }),
                 f => f,
             };
             match found {
@@ -518,6 +602,17 @@ impl<'c, 'm> StepCx<'c, 'm> {
                 self.h,
                 tr.min_step,
             );
+        }
+        if self.moving_thresholds() && !self.st.stiff && tr.out.err.is_finite() {
+            // cut just past a moving kink the step ran across
+            let herm = Hermite::new(
+                tr.hh,
+                [tr.y0[0], tr.y0[1], self.a0],
+                [tr.out.y[0], tr.out.y[1], tr.out.accel],
+            );
+            if let Some(tau) = self.moving_kink(tr, &herm) {
+                self.h = self.h.min(1.01 * tau * tr.hh).max(tr.min_step);
+            }
         }
         self.rejected = true;
     }
