@@ -521,3 +521,43 @@ fn moving_kinks_are_events_like_the_fixed_ones_under_reduced_gravity() {
         );
     }
 }
+
+/// A flexible body at rest, set moving by a ramp of `ag` from 0, under a
+/// tiny constant `av`: the rotation grows from 0 through values where
+/// `hW(phi, N)` is lost in rounding, which must not read as overturning
+/// (`hW <= 0` only past `thetaOv(N)`, the first root).
+#[test]
+fn a_tiny_rotation_under_av_is_not_overturning() {
+    let dharahara = Params {
+        shape: rocking::model::ShapeKind::HollowCircle,
+        ro: 3.99,
+        ri: 2.12,
+        mass_model: rocking::model::MassKind::Lumped,
+        w: 24003940.0,
+        hg: 30.202496990460777,
+        ic: 756496606.9897003,
+        kn: 1.7e8,
+        fm: 5e6,
+        ..Params::default()
+    };
+    for (m, av) in [Params::default(), dharahara]
+        .into_iter()
+        .flat_map(|p| [1e-6, -1e-6, 0.1 * G].map(|av| (p.build().unwrap(), av)))
+    {
+        let sim = Simulator::new(m, 1e-9);
+        let mut st = sim.initial_state(0.0, 0.0);
+        let mut t = 0.0;
+        for _ in 0..100 {
+            let ag = GroundInput { ag: t, dag: 1.0 };
+            t += 0.01;
+            sim.advance_vertical(&mut st, t, ag, VerticalInput { av, dav: 0.0 });
+            assert!(!st.overturned, "av {av}: overturned at t = {}", st.t);
+        }
+        let n = m.body.weight + m.body.mass * av;
+        assert!(
+            st.theta.abs() < m.theta_ov_at(n),
+            "av {av}: theta {}",
+            st.theta
+        );
+    }
+}
