@@ -545,19 +545,79 @@ fn a_tiny_rotation_under_av_is_not_overturning() {
         .flat_map(|p| [1e-6, -1e-6, 0.1 * G].map(|av| (p.build().unwrap(), av)))
     {
         let sim = Simulator::new(m, 1e-9);
-        let mut st = sim.initial_state(0.0, 0.0);
-        let mut t = 0.0;
-        for _ in 0..100 {
-            let ag = GroundInput { ag: t, dag: 1.0 };
-            t += 0.01;
-            sim.advance_vertical(&mut st, t, ag, VerticalInput { av, dav: 0.0 });
-            assert!(!st.overturned, "av {av}: overturned at t = {}", st.t);
+        // a ramp of 1 m/s3, and the start of the KATNP stand-in record
+        // (-0.0, then a slope of -1.15e-6 m/s3)
+        for slope in [1.0, -1.147071e-6] {
+            let mut st = sim.initial_state(0.0, 0.0);
+            let mut t = 0.0;
+            for _ in 0..100 {
+                let ag = GroundInput {
+                    ag: if t == 0.0 { -0.0 } else { slope * t },
+                    dag: slope,
+                };
+                t += 0.01;
+                sim.advance_vertical(&mut st, t, ag, VerticalInput { av, dav: 0.0 });
+                assert!(
+                    !st.overturned,
+                    "av {av}, slope {slope}: overturned at t = {}",
+                    st.t
+                );
+            }
+            let n = m.body.weight + m.body.mass * av;
+            assert!(
+                st.theta.abs() < m.theta_ov_at(n),
+                "av {av}: theta {}",
+                st.theta
+            );
         }
-        let n = m.body.weight + m.body.mass * av;
-        assert!(
-            st.theta.abs() < m.theta_ov_at(n),
-            "av {av}: theta {}",
-            st.theta
-        );
+    }
+}
+
+/// Model Exchange's event indicators keep their signs when `av` leaves 0
+/// (a host then sees no event that did not happen): at rotations below
+/// `thetaJo`, between the thresholds and past `thetaC`, on a crushing
+/// rectangle and a crushing hollow circle, the indicators under
+/// `av = +-1e-9 m/s2` have the signs of those under `av = 0`.
+#[test]
+fn event_indicators_keep_their_signs_as_av_leaves_zero() {
+    let ring = Params {
+        shape: rocking::model::ShapeKind::HollowCircle,
+        ro: 3.99,
+        ri: 2.12,
+        mass_model: rocking::model::MassKind::Lumped,
+        w: 24003940.0,
+        hg: 30.202496990460777,
+        ic: 756496606.9897003,
+        kn: 1.7e8,
+        fm: 5e6,
+        ..Params::default()
+    };
+    let block = Params {
+        kn: 1e8,
+        fm: 2e6,
+        ..Params::default()
+    };
+    for p in [block, ring] {
+        let m = p.build().unwrap();
+        let sim = Simulator::new(m, 1e-9);
+        let (jo, c) = (m.interface.theta_jo(), m.interface.theta_c());
+        let ov = m.theta_ov;
+        let c = c.min(ov);
+        let phis = [0.5 * jo, 0.5 * (jo + c), 0.5 * (c + ov)];
+        for phi in phis.into_iter().filter(|phi| *phi < 0.99 * ov) {
+            let state = sim.continuous(phi, 0.01, 0.0);
+            let at = |av: f64| sim.event_indicators_vertical(&state, 0.0, av);
+            let z0 = at(0.0);
+            for av in [1e-9, -1e-9] {
+                let z = at(av);
+                for (k, (a, b)) in z0.iter().zip(&z).enumerate() {
+                    assert_eq!(
+                        a.signum(),
+                        b.signum(),
+                        "phi {phi}, av {av}: indicator {k} is {a} at av = 0, {b} under av"
+                    );
+                }
+            }
+        }
     }
 }

@@ -151,18 +151,26 @@ impl Simulator {
             return z;
         }
         z[0] = c.side * st.theta;
-        if av != 0.0 && !self.is_rigid() {
-            // the thresholds move with N (docs/model.md §6.4): joint opening
-            // and crushing onset from the bed resultant (the corners of a
-            // hollow section's width are left to the host's error control)
+        let moving = (av != 0.0 && !self.is_rigid()).then(|| {
             let n = self.model.body.weight + self.model.body.mass * av;
-            let [heel, toe] = self.model.interface.bed_margins(phi, n);
-            z[3] = heel;
-            z[4] = toe;
-            return z;
-        }
-        for (zi, level) in z[3..].iter_mut().zip(self.kinks.as_slice()) {
-            *zi = phi - level;
+            self.model.interface.bed_margins(phi, n)
+        });
+        let (jo, cr) = (
+            self.model.interface.theta_jo(),
+            self.model.interface.theta_c(),
+        );
+        for (zi, &level) in z[3..].iter_mut().zip(self.kinks.as_slice()) {
+            *zi = match moving {
+                // the thresholds move with N (docs/model.md §6.4): joint
+                // opening and crushing onset from the bed resultant, signed
+                // as `phi - level` is (negative while the joint is closed,
+                // positive once the toe crushes), so that `av` leaving 0
+                // flips no indicator; the corners of a hollow section's
+                // width stay at their levels at N = W
+                Some([heel, _]) if level == jo => -heel,
+                Some([_, toe]) if level == cr => toe,
+                _ => phi - level,
+            };
         }
         z
     }

@@ -348,6 +348,14 @@ impl<'c, 'm> StepCx<'c, 'm> {
         if self.hw_on_step(tr, herm, 1.0) > 0.0 {
             return None;
         }
+        // hW(phi, N) has its first root at thetaOv(N): a sign found below
+        // that is rounding in the lever of a rotation too small to carry
+        // it (a body leaving rest at 1e-75 rad), not overturning.
+        let phi_end = tr.out.y[0].abs();
+        let n_end = self.call.eom.apparent_weight(tr.t + tr.hh);
+        if phi_end < (1.0 - 1e-6) * self.call.sim.model.theta_ov_at(n_end) {
+            return None;
+        }
         let (mut lo, mut hi) = (0.0, 1.0);
         for _ in 0..60 {
             let mid = 0.5 * (lo + hi);
