@@ -159,8 +159,11 @@ impl Stored {
     }
 
     pub(crate) fn valid(&self) -> bool {
-        // maxSteps >= 1 (docs/model.md §5)
-        self.int[vr::MAX_STEPS as usize] >= 1 && self.params().is_some_and(|p| p.build().is_ok())
+        // maxSteps >= 1, mu >= 0 and not NaN (docs/model.md §5)
+        let mu = self.real[vr::MU as usize];
+        self.int[vr::MAX_STEPS as usize] >= 1
+            && mu >= 0.0
+            && self.params().is_some_and(|p| p.build().is_ok())
     }
 }
 
