@@ -219,13 +219,13 @@ fn the_fmi_crate_reads_the_model_description() {
     assert_eq!(cs.can_serialize_fmu_state, Some(true));
     assert_eq!(cs.can_handle_variable_communication_step_size, Some(true));
     // Model Exchange in the same archive (docs/model-exchange.md): the same
-    // binary, and the 9 event indicators that page lists
+    // binary, and the 10 event indicators that page lists
     let me = md
         .model_exchange
         .as_ref()
         .expect("a Model Exchange interface");
     assert_eq!(me.model_identifier, "RockingBlock");
-    assert_eq!(md.number_of_event_indicators, Some(9));
+    assert_eq!(md.number_of_event_indicators, Some(10));
     let names: Vec<&str> = md.get_model_variables().map(|v| v.name.as_str()).collect();
     for n in ["ag", "theta", "omega", "impacts", "overturned", "Fx", "Fz"] {
         assert!(names.contains(&n), "{n} missing");
