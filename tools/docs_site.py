@@ -75,7 +75,8 @@ def cli_reference():
     parts = ["# Command reference", "",
              "Generated from the `rocking` command's own `--help` when the site is built.", "",
              "```text", _help_of([]).rstrip(), "```"]
-    for command in COMMANDS:
+    for module in COMMANDS:
+        command = module.replace("_", "-")  # the module corner_blocks registers `corner-blocks`
         parts += ["", f"## rocking {command}", ""]
         if command == "corner":
             exe = corner_binary()
