@@ -144,10 +144,13 @@ def test_model_structure_dependencies(model_description):
     index = {v.name: i for i, v in enumerate(md.modelVariables)}
     outputs = {u.variable.name: {d.name for d in u.dependencies} for u in md.outputs}
     assert set(outputs) == {v.name for v in md.modelVariables if v.causality == "output"}
-    # direct feedthrough of ag only where the equation of motion enters
-    assert outputs["Fx"] == outputs["Fz"] == outputs["angularAcceleration"] == {"ag"}
-    for n in ("theta", "omega", "af", "contactLength", "MR", "regime", "impacts", "zeroCrossings",
-              "overturned"):
+    # direct feedthrough of ag only where the equation of motion enters, of av (the apparent
+    # weight N = m (g + av), docs/model.md §6) also where the contact at N does
+    assert (outputs["Fx"] == outputs["Fz"] == outputs["angularAcceleration"] == outputs["frictionDemand"]
+            == {"ag", "av"})
+    for n in ("af", "contactLength", "MR", "regime", "apparentWeight"):
+        assert outputs[n] == {"av"}, n
+    for n in ("theta", "omega", "impacts", "zeroCrossings", "overturned"):
         assert outputs[n] == set(), n
     initial = {u.variable.name: {d.name for d in u.dependencies} for u in md.initialUnknowns}
     assert set(CALCULATED) <= set(initial)
