@@ -86,9 +86,13 @@ def cmd_study(args, _params):
         if m not in ("lp", "dem"):
             raise CLIError(f"invalid --methods: lp and/or dem, got {m}")
     ends = tuple(args.study_ends.split(","))
+    if args.start_fraction is not None and not 0.0 < args.start_fraction < 1.0:
+        raise CLIError(f"invalid --start-fraction: must be in (0, 1), got {args.start_fraction}")
+    if args.workers < 1:
+        raise CLIError(f"invalid --workers: must be at least 1, got {args.workers}")
     study.run(args.out, ends=ends, mu=args.mu, methods=methods, binary=corner_binary(),
               dem_protocol=_protocol(args), log=lambda s: print(s, file=sys.stderr, flush=True),
-              courses=args.courses, blocks=args.blocks)
+              courses=args.courses, blocks=args.blocks, start_fraction=args.start_fraction, workers=args.workers)
     print(Path(args.out, "table.md").read_text())
     return 0
 
@@ -114,6 +118,10 @@ def register(sub, common):
     st.add_argument("--out", required=True, help="directory: one JSON per case, table.md, PNGs")
     st.add_argument("--methods", default="lp", help="lp,dem (default lp)")
     st.add_argument("--study-ends", default="fixed,free,outOfPlane")
+    st.add_argument("--start-fraction", type=float, default=None,
+                    help="DEM: start each test at this fraction of the case's LP multiplier (its upper bound), "
+                         "instead of --start; a test that collapses at its first level is redone from half of it")
+    st.add_argument("--workers", type=int, default=1, help="DEM cases at once, on a Dask LocalCluster (default 1)")
     st.set_defaults(func=cmd_study)
 
 

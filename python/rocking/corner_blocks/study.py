@@ -9,6 +9,7 @@ import math
 import subprocess
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 
 from . import draw, lp
@@ -58,36 +59,70 @@ def la_cases(binary, k, alphas, courses=9, blocks=7):
 
 
 def run(out, ends=("fixed", "free", "outOfPlane"), mu=0.66, methods=("lp",), binary=None, dem_protocol=None,
-        log=print, courses=9, blocks=7):
+        log=print, courses=9, blocks=7, start_fraction=None, workers=1):
     """Every case of the study into out/ (the paper's columns only make sense for the
-    paper's 9 courses of 7 blocks); returns the table's columns."""
+    paper's 9 courses of 7 blocks); returns the table's columns. DEM cases run on a Dask
+    LocalCluster of `workers` processes; with start_fraction, each DEM test starts at that
+    fraction of the same case's LP multiplier (an upper bound of it, see dem_start)."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     alphas = [a for a, _ in ORIENTATIONS]
-    columns = dict(PAPER)
+    columns = dict(PAPER) if (courses, blocks) == (9, 7) else {}
     if binary:
         for k in (0.3, 1.0):
             la = cached(out, f"la_k{k:g}", lambda k=k: {"lam": la_cases(binary, k, alphas, courses, blocks)})
             columns[f"LA k={k:g}"] = la["lam"]
-    results = {}
+    geometry = {"courses": courses, "blocks": blocks}
+    suffix = "" if (courses, blocks) == (9, 7) else f"_{courses}x{blocks}"
     todo = [(m, e, i) for m in methods for e in ends for i in range(len(alphas))]
-    for n, (method, e, i) in enumerate(todo, 1):
+    results = {}
+
+    def record(n, method, e, i, r, seconds):
         label = ORIENTATIONS[i][1]
-        geometry = {"courses": courses, "blocks": blocks}
-        spec = Specimen(ends=e, mu=mu, **geometry)
-        name = f"{method}_{e}_mu{mu:g}_{i}" + ("" if (courses, blocks) == (9, 7) else f"_{courses}x{blocks}")
-        t0 = time.time()
-        if method == "lp":
-            r = cached(out, name, lambda: lp_case(spec, alphas[i]))
-        else:
-            from . import dem
-            job = {"specimen": {"ends": e, "mu": mu, **geometry}}
-            r = cached(out, name, lambda: dem.run_isolated(job, alphas[i], dem_protocol or dem.Protocol()))
-        log(f"[{n}/{len(todo)}] {method} ends={e} alpha={label}: lambda {r['lam']:.4f} "
-            f"({time.time() - t0:.1f} s, {r.get('cpu_s', 0):.1f} s CPU when computed)")
-        results.setdefault(f"{method.upper()} {e}", [None] * len(alphas))[i] = r["lam"]
+        lam = r.get("lam")
+        shown = f"lambda {lam:.4f}" if lam is not None and not math.isnan(lam) else f"no lambda ({r.get('skipped', 'not collapsed')})"
+        log(f"[{n}/{len(todo)}] {method} ends={e} alpha={label}: {shown} "
+            f"({seconds:.1f} s, {r.get('cpu_s', 0):.1f} s CPU when computed)")
+        results.setdefault(f"{method.upper()} {e}", [None] * len(alphas))[i] = lam
         results.setdefault(f"_{method}_{e}", [None] * len(alphas))[i] = r
-    columns.update({k: v for k, v in results.items() if not k.startswith("_")})
+
+    lp_of = {}
+    for e in ends:
+        for i in range(len(alphas)):
+            if "lp" in methods or (start_fraction and "dem" in methods):
+                spec = Specimen(ends=e, mu=mu, **geometry)
+                lp_of[e, i] = cached(out, f"lp_{e}_mu{mu:g}_{i}{suffix}", lambda spec=spec, i=i: lp_case(spec, alphas[i]))
+    n = 0
+    for method, e, i in todo:
+        if method == "lp":
+            n += 1
+            record(n, method, e, i, lp_of[e, i], 0.0)
+    dem_cases = [(e, i) for m, e, i in todo if m == "dem"]
+    if dem_cases:
+        protocol = dem_protocol or _default_protocol()
+        jobs = {}
+        for e, i in dem_cases:
+            name = f"dem_{e}_mu{mu:g}_{i}{suffix}"
+            path = out / f"{name}.json"
+            if path.is_file():
+                n += 1
+                record(n, "dem", e, i, json.loads(path.read_text()), 0.0)
+                continue
+            if not dem_supports(e, alphas[i]):
+                r = {"lam": None, "skipped": "outOfPlane ends only at alpha = 0 or pi/2 in the DEM"}
+                path.write_text(json.dumps(r))
+                n += 1
+                record(n, "dem", e, i, r, 0.0)
+                continue
+            start = dem_start(protocol, lp_of[e, i]["lam"], start_fraction) if start_fraction else protocol.start
+            jobs[name] = (e, i, {"specimen": {"ends": e, "mu": mu, **geometry}}, replace(protocol, start=start))
+        for name, (e, i, spec, proto), r, seconds in run_dem_jobs(jobs, alphas, workers):
+            (out / f"{name}.json").write_text(json.dumps(r))
+            n += 1
+            record(n, "dem", e, i, r, seconds)
+    for m in methods:  # the table's columns in the order of methods and ends, not of completion
+        for e in ends:
+            columns[f"{m.upper()} {e}"] = results[f"{m.upper()} {e}"]
     write_table(out / "table.md", columns)
     plot(out / "lambda_alpha.png", columns)
     for key, rs in results.items():
@@ -98,6 +133,56 @@ def run(out, ends=("fixed", "free", "outOfPlane"), mu=0.66, methods=("lp",), bin
                 mechanism_figure(out / f"mechanism_lp_{e}_{i}.png", spec, rs[i],
                                  f"LP, ends {e}, alpha {ORIENTATIONS[i][1]}")
     return columns
+
+
+def _default_protocol():
+    from .dem import Protocol
+    return Protocol()
+
+
+def dem_supports(ends, alpha):
+    """The DEM turns the assembly to load it along -x, and holds outOfPlane ends by rollers
+    along a global axis: only where the walls stay on the axes."""
+    return ends != "outOfPlane" or min(abs(alpha), abs(alpha - math.pi / 2)) < 1e-9
+
+
+def dem_start(protocol, lam_lp, fraction):
+    """The first load level: `fraction` of the LP's multiplier, which bounds the DEM's from
+    above (associative friction), rounded down to the step so the levels stay on the grid
+    of a run from 0."""
+    return math.floor(fraction * lam_lp / protocol.step + 1e-9) * protocol.step
+
+
+def dem_case(spec, alpha, protocol):
+    """One DEM test; one that collapses at its first level is redone from half that level
+    (the load reached in one time step from 0 is a blow, not a tilt), and says so."""
+    from . import dem
+    r = dem.run_isolated(spec, alpha, protocol)
+    if r["collapsed"] and len(r["history"]) == 1 and protocol.start > 0:
+        lower = math.floor(0.5 * protocol.start / protocol.step + 1e-9) * protocol.step
+        r = dem.run_isolated(spec, alpha, replace(protocol, start=lower))
+        r["restarted_from"] = protocol.start
+    return r
+
+
+def run_dem_jobs(jobs, alphas, workers):
+    """Yields (name, job, result, wall seconds) as each DEM case ends, on a Dask LocalCluster
+    (each case is one LMGC90 process of its own, so a worker needs one thread)."""
+    if not jobs:
+        return
+    import dask
+    from distributed import Client, LocalCluster, as_completed
+
+    from ..fragility.cluster import QUIET
+
+    with dask.config.set(QUIET), LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                              dashboard_address=None) as cluster, Client(cluster) as client:
+        t0 = time.time()
+        futures = {client.submit(dem_case, spec, alphas[i], proto, key=f"dem-{name}", pure=False): name
+                   for name, (e, i, spec, proto) in jobs.items()}
+        for future in as_completed(futures):
+            name = futures[future]
+            yield name, jobs[name], future.result(), time.time() - t0
 
 
 def write_table(path, columns):
