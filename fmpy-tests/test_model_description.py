@@ -188,6 +188,18 @@ def test_documentation_lists_every_variable(fmu_path, model_description):
         assert f'<tr id="{v.name}">' in html, v.name
 
 
+def test_documentation_names_the_interfaces_and_platforms_the_archive_has(fmu_path, model_description):
+    with zipfile.ZipFile(fmu_path) as z:
+        html = z.read("documentation/index.html").decode()
+        platforms = sorted({n.split("/")[1] for n in z.namelist() if n.startswith("binaries/")})
+    using = html[html.index("<h2>Using the FMU</h2>"):][:600]
+    assert ("Co-Simulation" in using) == (model_description.coSimulation is not None)
+    assert ("Model Exchange" in using) == (model_description.modelExchange is not None)
+    assert "only" not in using.split("</li>")[0]
+    for platform in platforms:
+        assert platform in using, platform
+
+
 def test_read_with_schema_validation(fmu_path):
     md = read_model_description(fmu_path, validate=True, validate_variable_names=True, validate_model_structure=True)
     assert md.modelName == "RockingBlock"
