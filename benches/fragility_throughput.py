@@ -100,30 +100,36 @@ def main():
     with RockingFMU(fmu_path) as fmu:
         tasks = st.tasks(fmu, cluster.fmu_digest(fmu_path))
         n, wall, cpu = serial(st, fmu, tasks[::args.sample])
-        rows = [("in-process, no Dask", 1, n, wall, cpu, 1.0, 0.0, 0.0, cpu)]
+    rows = [("in-process, no Dask", 1, n, wall, cpu, 1.0, 0.0, 0.0, cpu, cpu / n)]
     for n in (int(w) for w in args.workers.split(",")):
-        rows.append((f"LocalCluster, {n} worker(s)", n, *on_cluster(n, fmu_path, tasks)))
+        # the loop again just before each cluster: the load drifts by 10-15 % in minutes
+        with RockingFMU(fmu_path) as fmu:
+            m, _, loop_cpu = serial(st, fmu, tasks[::args.sample])
+        rows.append((f"LocalCluster, {n} worker(s)", n, *on_cluster(n, fmu_path, tasks), loop_cpu / m))
     print(f"host: {os.uname().nodename}, {os.cpu_count()} cores, load average before: "
           f"{' '.join(f'{x:.1f}' for x in LOAD)}, after: {' '.join(f'{x:.1f}' for x in os.getloadavg())}")
     runs_all = sum(t[3] for t in tasks)
     print(f"{runs_all} runs in {len(tasks)} tasks ({runs_all / len(tasks):.1f} runs a task)")
-    cpu_base = rows[0][4] / rows[0][2]
     print("| configuration | runs | wall (s) | runs/s | workers busy | CPU s per run | CPU in runs per run "
           "| overhead (% of the runs' CPU) | CPU efficiency | client CPU per task (ms) | idle cluster (% of a core) "
-          "| overhead net of idle (%) | against the in-process loop (%) |")
+          "| overhead net of idle (%) | against the in-process loop just before (%) |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    for name, n, runs, wall, cpu, busy, client_ms, idle, in_runs in rows:
+    for name, n, runs, wall, cpu, busy, client_ms, idle, in_runs, cpu_base in rows:
         over = cpu / in_runs - 1
         net = (cpu - idle * wall) / in_runs - 1
         print(f"| {name} | {runs} | {wall:.2f} | {runs / wall:.2f} | {busy:.3f} | {cpu / runs:.4f} "
               f"| {in_runs / runs:.4f} | {100 * over:.1f} | {1 / (1 + over):.3f} | {client_ms:.1f} "
               f"| {100 * idle:.1f} | {100 * net:.1f} | {100 * (cpu / runs / cpu_base - 1):.1f} |")
+    one = next((r for r in rows if r[1] == 1 and r[0].startswith("Local")), None)
+    for r in rows:
+        if one and r[0].startswith("Local") and r[1] > 1:
+            print(f"wall-clock efficiency on {r[1]} workers: {(r[2] / r[3] / r[1]) / (one[2] / one[3]):.3f}")
     print("overhead: CPU of all processes (workers, client, scheduler) over the CPU spent inside the runs "
           "(each row's cpu_s, measured in the same study); CPU efficiency: 1 / (1 + overhead), what the "
           "wall-clock efficiency is on an idle machine whose cores the workers do not share; idle cluster: "
           f"its CPU while it waits ({IDLE_S:g} s before the runs), which grows with the wall time a loaded "
           "machine stretches; net of idle: the overhead without it; against the in-process loop: CPU per "
-          "run over the loop's, measured at another moment (the load moves it by 10-15 %)")
+          "run of all processes over the loop's, the same runs measured just before the cluster's")
     return 0
 
 

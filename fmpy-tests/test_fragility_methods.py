@@ -353,3 +353,24 @@ def test_margin_ratio_without_a_hazard_curve(tmp_path):
                          dict(mce=0.4, years=50.0))
     median = json.loads((tmp_path / "summary.json").read_text())["bodies"]["b"]["median"]
     assert f"collapse margin ratio {median / 0.4:.3g}" in text
+
+
+# ---------------------------------------------------------------------------
+# Section 5: tasks a small study can balance over its workers
+
+@pytest.mark.parametrize("costs", [
+    [9800] * 144,                                     # the 144-run study: 5 tasks before
+    [int(c) for c in np.random.default_rng(7).integers(500, 40_000, 297)],
+    [300_000] * 3,                                    # fewer units than MIN_TASKS
+    [1000] * 4000,                                    # a large study: STEPS_PER_TASK rules
+])
+def test_batches_are_equal_in_cost_and_at_least_min_tasks(costs):
+    from rocking.fragility.study import MIN_TASKS, STEPS_PER_TASK, equal_cost_batches
+    units = list(enumerate(costs))
+    batches = equal_cost_batches(units, lambda u: u[1])
+    assert [u for b in batches for u in b] == units  # every run once, in order
+    total = sum(costs)
+    n = max(MIN_TASKS, math.ceil(total / STEPS_PER_TASK))
+    assert len(batches) == min(n, len(units))
+    heaviest = max(sum(c for _, c in b) for b in batches)
+    assert heaviest <= total / n + max(costs)  # no batch above its share by more than one run

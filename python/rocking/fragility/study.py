@@ -27,9 +27,32 @@ from .hunt import HuntOptions, capacity
 
 #: Integration steps per task of runs at fixed intensities when `chunk` is 0: about half a
 #: second of runs (a run of the shipped suite, 9800 steps on average, costs about 13.5 ms of
-#: CPU: 1.4 us a step; runs that overturn stop early and cost less). Half a second rather
-#: than more: a small study still makes several tasks per worker, so none waits at the end.
+#: CPU: 1.4 us a step; runs that overturn stop early and cost less), so that Dask's cost
+#: per task (about 25 ms of the client's and scheduler's CPU) stays a few per cent.
 STEPS_PER_TASK = 300_000
+
+#: Fewest tasks of runs at fixed intensities (chunk 0): a small study still gives each of
+#: 2 workers 4 tasks of equal cost, so that neither waits long for the other at the end
+#: (5 tasks on 2 workers left one idle for a fifth of the 144-run study). A constant, not
+#: the cluster's size: the tasks, and so the keys a resume finds, depend on the study only.
+MIN_TASKS = 8
+
+
+def equal_cost_batches(units, cost):
+    """units cut, in order, into max(MIN_TASKS, total / STEPS_PER_TASK) batches of about
+    equal total cost (fewer when there are fewer units)."""
+    total = sum(cost(u) for u in units)
+    n = max(MIN_TASKS, math.ceil(total / STEPS_PER_TASK))
+    batches, current, done = [], [], 0
+    for unit in units:
+        current.append(unit)
+        done += cost(unit)
+        if done >= total * (len(batches) + 1) / n:
+            batches.append(current)
+            current = []
+    if current:
+        batches.append(current)
+    return batches
 
 
 def _hash(obj):
@@ -142,20 +165,14 @@ class Study:
 
     def _batches(self, fixed, digest, opts, salt):
         """Tasks of the runs at fixed intensities [(tag, job, intensities)]: `chunk` runs each,
-        or (chunk 0) as many as make STEPS_PER_TASK integration steps (half a second of
-        work, so that Dask's cost per task stays a few per cent of the runs'), across
-        records and bodies. Deterministic: a rerun finds the same keys."""
+        or (chunk 0) max(MIN_TASKS, steps / STEPS_PER_TASK) tasks of about equal integration
+        steps, across records and bodies. Deterministic: a rerun finds the same keys."""
         phase = "grid" if self.method == "ida" else "stripe"
         units = [(tag, job, im, self._steps(job)) for tag, job, ims in fixed for im in ims]
-        batches, current, cost = [], [], 0
-        for unit in units:
-            current.append(unit)
-            cost += unit[3]
-            if (len(current) >= self.chunk) if self.chunk else (cost >= STEPS_PER_TASK):
-                batches.append(current)
-                current, cost = [], 0
-        if current:
-            batches.append(current)
+        if self.chunk:
+            batches = [units[i:i + self.chunk] for i in range(0, len(units), self.chunk)]
+        else:
+            batches = equal_cost_batches(units, lambda u: u[3])
         out = []
         for batch in batches:
             parts, tags = {}, {}
