@@ -51,7 +51,7 @@ fn wall_triples(
 /// Minimum of lambda_alpha over the joint-aligned geometries, refined by Nelder-Mead when
 /// `options.refine`; `alpha` in rad from the x axis, in [0, pi/2].
 pub fn corner_multiplier(model: &CornerModel, alpha: f64) -> Result<CornerResult, CornerError> {
-    check_alpha(alpha)?;
+    let alpha = check_alpha(alpha)?;
     let (grid, counts) = grid_search(model, alpha);
     let refined = if model.options.refine {
         Some(refine::nelder_mead(model, &grid.geometry, alpha))

@@ -205,7 +205,7 @@ impl CornerModel {
 
     /// lambda_alpha of a given geometry, with both directions' terms.
     pub fn evaluate(&self, x: &Geometry, alpha: f64) -> Result<Evaluation, CornerError> {
-        check_alpha(alpha)?;
+        let alpha = check_alpha(alpha)?;
         x.check(self, 1e-9)?;
         Ok(self.evaluate_unchecked(x, alpha))
     }
@@ -226,14 +226,18 @@ impl CornerModel {
     }
 }
 
-pub(crate) fn check_alpha(alpha: f64) -> Result<(), CornerError> {
-    if !(alpha.is_finite() && (-1e-12..=FRAC_PI_2 + 1e-12).contains(&alpha)) {
+/// alpha (rad) checked to lie in [0, pi/2], and clamped there: pi/2 written to 10
+/// significant digits (1.570796327) lies 2e-10 above it, so values within 1e-9 of either
+/// end count as that end.
+pub(crate) fn check_alpha(alpha: f64) -> Result<f64, CornerError> {
+    const ROUNDING: f64 = 1e-9;
+    if !(alpha.is_finite() && (-ROUNDING..=FRAC_PI_2 + ROUNDING).contains(&alpha)) {
         return Err(err(
             "alpha",
             format!("must be in [0, pi/2] rad, got {alpha}"),
         ));
     }
-    Ok(())
+    Ok(alpha.clamp(0.0, FRAC_PI_2))
 }
 
 /// lambda_alpha and its parts for one geometry.

@@ -125,3 +125,25 @@ fn bad_input_is_refused_by_name() {
         assert!(err.contains(name), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn pi_over_2_written_to_ten_digits_is_pi_over_2() {
+    // 1.570796327 lies 2e-10 above pi/2: the same orientation as typed by a person
+    let out = run(&[
+        "--alpha",
+        "1.570796327",
+        "--k",
+        "0.3",
+        "--m",
+        "1",
+        "--json",
+        "--no-refine",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let r: Value = serde_json::from_str(String::from_utf8(out.stdout).unwrap().trim()).unwrap();
+    let model = CornerModel::paper(1, 0.3).unwrap();
+    let exact = corner_multiplier(&model, std::f64::consts::FRAC_PI_2).unwrap();
+    let lambda = r["lambda_alpha"].as_f64().unwrap();
+    assert!((lambda - exact.grid.lambda_alpha).abs() <= 1e-9 * exact.grid.lambda_alpha);
+    assert_eq!(run(&["--alpha", "1.5708"]).status.code(), Some(2)); // 3.7e-6 above: refused
+}
