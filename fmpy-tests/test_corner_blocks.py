@@ -129,3 +129,28 @@ def test_cli_lp_and_its_errors(capsys):
     assert "invalid --alpha" in capsys.readouterr().err
     assert main(["corner-blocks", "lp", "--ends", "clamped"]) == 2
     assert "--ends" in capsys.readouterr().err
+
+
+def test_study_refuses_options_it_would_ignore(capsys, tmp_path):
+    from rocking.cli import main
+
+    # the study's orientations are the paper's five: an --alpha would be silently dropped
+    assert main(["corner-blocks", "study", "--alpha", "0.5", "--out", str(tmp_path)]) == 2
+    assert "invalid --alpha" in capsys.readouterr().err
+    for bad, name in ((["--start-fraction", "1.2"], "--start-fraction"), (["--workers", "0"], "--workers")):
+        assert main(["corner-blocks", "study", "--methods", "dem", *bad, "--out", str(tmp_path)]) == 2
+        assert name in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())  # refused before any case ran
+
+
+def test_dem_start_is_on_the_step_grid_below_the_lp_bound():
+    from rocking.corner_blocks.dem import Protocol
+    from rocking.corner_blocks.study import dem_start, dem_supports
+
+    p = Protocol(step=0.01)
+    for lam_lp in (0.239, 0.487, 0.537, 1.0):
+        start = dem_start(p, lam_lp, 0.6)
+        assert start <= 0.6 * lam_lp < start + p.step
+        assert abs(start / p.step - round(start / p.step)) < 1e-9
+    assert dem_supports("outOfPlane", math.pi / 2) and dem_supports("outOfPlane", 0.0)
+    assert not dem_supports("outOfPlane", math.pi / 4) and dem_supports("fixed", math.pi / 4)

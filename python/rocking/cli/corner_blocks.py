@@ -15,10 +15,11 @@ def _specimen(args):
 
 
 def _alphas(args):
-    for a in args.alpha:
+    alphas = args.alpha if args.alpha is not None else [math.pi / 4, math.pi / 2]
+    for a in alphas:
         if not 0.0 <= a <= math.pi / 2 + 1e-9:
             raise CLIError(f"invalid --alpha: must be in [0, pi/2] rad, got {a}")
-    return args.alpha
+    return alphas
 
 
 def cmd_lp(args, _params):
@@ -81,6 +82,9 @@ def cmd_draw(args, _params):
 def cmd_study(args, _params):
     from ..corner_blocks import study
     from .corner import corner_binary
+    if args.alpha is not None:
+        raise CLIError("invalid --alpha: the study runs the paper's five orientations, pi/4 to pi/2; "
+                       "`rocking corner-blocks lp|dem --alpha` runs others")
     methods = tuple(args.methods.split(","))
     for m in methods:
         if m not in ("lp", "dem"):
@@ -128,7 +132,7 @@ def register(sub, common):
 def _specimen_parser():
     from ..corner_blocks.specimen import ENDS
     p = argparse_parent()
-    p.add_argument("--alpha", type=float, nargs="+", default=[math.pi / 4, math.pi / 2],
+    p.add_argument("--alpha", type=float, nargs="+", default=None,
                    help="load orientations (rad), docs/corner.md's convention (default pi/4 pi/2)")
     p.add_argument("--ends", choices=ENDS, default="fixed", help="the walls' free ends (default fixed)")
     p.add_argument("--mu", type=float, default=0.66, help="joint friction (default 0.66)")
