@@ -4,24 +4,27 @@
 # in requirements.txt, installed into .venv).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-echo "== venv, and the toolchains of the FMU's linux64 and win64 binaries"
+start=$SECONDS
+# a stage's header with the minutes:seconds since the start, so that a slow stage shows
+stage() { printf '== %s [%d:%02d]\n' "$1" $(((SECONDS - start) / 60)) $(((SECONDS - start) % 60)); }
+stage "venv, and the toolchains of the FMU's linux64 and win64 binaries"
 tools/venv.sh
 tools/cross-deps.sh --test
-echo "== format and lints"
+stage "format and lints"
 cargo fmt --all -- --check
 cargo clippy --workspace --all-targets --quiet -- -D warnings
-echo "== Rust tests"
+stage "Rust tests"
 cargo test --workspace --release
-echo "== the library crates as another FMU author gets them: rustdoc without warnings, and"
+stage "the library crates as another FMU author gets them: rustdoc without warnings, and"
 echo "   cargo publish --dry-run (packaged, then built from the package; 33 s cold, a few s warm)"
 crates="-p rocking -p model-description -p fmi2-export -p corner"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --quiet $crates
 cargo publish --dry-run --allow-dirty --quiet $crates
-echo "== valgrind memcheck of an instance's whole life through the C API"
+stage "valgrind memcheck of an instance's whole life through the C API"
 tools/memcheck.sh
-echo "== package the FMU (linux64 against glibc 2.17, win64) and its FMI cross-check artefacts"
+stage "package the FMU (linux64 against glibc 2.17, win64) and its FMI cross-check artefacts"
 cargo xtask crosscheck
-echo "== the packaged FMU through the fmi crate's FMI 2.0 importer (fmi-import/)"
+stage "the packaged FMU through the fmi crate's FMI 2.0 importer (fmi-import/)"
 # fmi-sys runs bindgen at build time: it needs libclang (Debian: libclang-dev)
 if ! dpkg -s libclang-dev >/dev/null 2>&1; then
     sudo=""
@@ -32,7 +35,8 @@ fi
 cargo fmt --manifest-path fmi-import/Cargo.toml -- --check
 cargo clippy --manifest-path fmi-import/Cargo.toml --release --all-targets --quiet -- -D warnings
 cargo test --release --manifest-path fmi-import/Cargo.toml
-echo "== the documentation site, strict, and its main pages in headless chromium (tools/docs.sh)"
+stage "the documentation site, strict, and its main pages in headless chromium (tools/docs.sh)"
 tools/docs.sh --check
-echo "== fmpy suite"
-.venv/bin/python -m pytest fmpy-tests -q -rs
+stage "fmpy suite"
+.venv/bin/python -m pytest fmpy-tests -q -rs --durations=12
+stage "done"
