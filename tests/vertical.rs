@@ -614,3 +614,35 @@ fn dharahara_f170_fm5() -> Params {
         ..Params::default()
     }
 }
+
+/// Model Exchange's overturning indicator at rotations so small that the
+/// resultant's shift vanishes in rounding against D/2 (1e-21 to 1e-12 rad)
+/// under av = 0.5 m/s2: the closed form `kn Is/N - hG` of a closed Winkler
+/// bed (Is = l b^3/12, N = rho b l h (g + av)), not `-hG`, which the quotient
+/// gave (the body was declared overturned at rest; found by fmusim).
+#[test]
+fn overturning_indicator_at_vanishing_rotation_is_the_closed_bed_limit() {
+    for (kn, fm) in [(5.0e9, 5.0e6), (2.0e8, 3.0e5)] {
+        let p = Params {
+            kn,
+            fm,
+            ..Params::default()
+        };
+        let m = p.build().unwrap();
+        let sim = Simulator::new(m, 1e-9);
+        let av = 0.5;
+        let n = p.rho * p.b * p.l * p.h * (p.g + av);
+        let limit = kn * p.l * p.b.powi(3) / 12.0 / n - p.h / 2.0;
+        for theta in [1e-21, -1e-19, 1e-16, 1e-12, 0.0] {
+            let mut state = sim.continuous(theta, 0.0, 0.0);
+            let z = sim.event_indicators_vertical(&state, 0.0, av);
+            assert!(
+                (z[1] - limit).abs() <= 1e-9 * limit,
+                "kn {kn}, theta {theta}: indicator {} against {limit}",
+                z[1]
+            );
+            let update = sim.event_update_vertical(&mut state, 0.0, av);
+            assert!(!update.overturned, "kn {kn}, theta {theta}: overturned");
+        }
+    }
+}

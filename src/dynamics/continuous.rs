@@ -315,10 +315,22 @@ impl Simulator {
 
     /// `hW(phi, N)/phi` at `N = W + m av` (docs/model.md §6.4), m/rad:
     /// positive below `thetaOv(N)`; at `phi = 0` its limit `kn Is/N - hG`.
+    /// Below `FULL_CONTACT_LIMIT` with the bed closed and uncrushed the limit
+    /// is taken too: there `hW` is `phi (kn Is/N - hG)` to O(phi^3), but the
+    /// resultant's shift `af - D/2`, of order `phi`, vanishes in rounding
+    /// against `D/2` below about 1e-16 rad and the quotient turns to `-hG`,
+    /// which would read as overturning at rest.
     fn hw_over_phi(&self, phi: f64, av: f64) -> f64 {
+        /// rad; the quotient's rounding there is ~1e-10 relative, its
+        /// difference from the limit O(phi^2) ~ 1e-12
+        const FULL_CONTACT_LIMIT: f64 = 1e-6;
         let b = &self.model.body;
         let n = b.weight + b.mass * av;
-        if phi == 0.0 {
+        let full_contact = || {
+            let [heel, toe] = self.model.interface.bed_margins(phi, n);
+            heel > 0.0 && toe <= 0.0
+        };
+        if phi == 0.0 || (phi < FULL_CONTACT_LIMIT && full_contact()) {
             let (c, _) = self.model.contact_loaded(0.0, n);
             return -c.daf - b.hg;
         }
