@@ -536,3 +536,18 @@ def test_reset_restores_the_start_values(host):
     host.fmu.reset()
     host.fmu.enterInitializationMode()
     assert host.get("B") == 0.5 and host.get("theta") == 0.0
+
+
+def test_debug_log_shows_values_as_a_reader_writes_them(fmu_path, unzipped):
+    """The trace of instantiate, setup and set: numbers, 'undefined', a path; no Rust debug
+    forms (Some(..), None, Real(..)) in what a user reads."""
+    h = Host(fmu_path, unzipped, logging_on=True)
+    try:
+        h.init(tolerance=None, kn=2e8, restraint="oneSided", eRestraint=0.5)
+        text = "\n".join(m for _, _, m in h.messages)
+    finally:
+        h.free()
+    assert "kn = 200000000" in text and "restraint = 2" in text and "eRestraint = 0.5" in text
+    assert "tolerance = undefined" in text and "stopTime = undefined" in text
+    for debug_form in ("Some(", "None", "Real(", "Integer("):
+        assert debug_form not in text, debug_form

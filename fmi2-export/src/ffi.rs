@@ -179,10 +179,13 @@ pub unsafe fn instantiate<S: Slave>(
         }
         inner.trace(|| {
             format!(
-                "fmi2Instantiate: instance {:?}, GUID {}, resources {:?}",
+                "fmi2Instantiate: instance {:?}, GUID {}, resources {}",
                 name.as_deref().unwrap_or(""),
                 S::guid(),
-                inner.resource_dir
+                inner
+                    .resource_dir
+                    .as_ref()
+                    .map_or("none".into(), |d| d.display().to_string())
             )
         });
         let inst = Box::new(Instance {
@@ -246,7 +249,14 @@ pub unsafe fn setup_experiment<S: Slave>(
     call::<S>(c, "fmi2SetupExperiment", |i| {
         let tol = (tolerance_defined != fmi2False).then_some(tolerance);
         let stop = (stop_time_defined != fmi2False).then_some(stop_time);
-        i.trace(|| format!("fmi2SetupExperiment(tolerance = {tol:?}, startTime = {start_time}, stopTime = {stop:?})"));
+        let shown = |x: Option<f64>| x.map_or("undefined".into(), |x| x.to_string());
+        i.trace(|| {
+            format!(
+                "fmi2SetupExperiment(tolerance = {}, startTime = {start_time}, stopTime = {})",
+                shown(tol),
+                shown(stop)
+            )
+        });
         i.setup_experiment(tol, start_time, stop)
     })
 }

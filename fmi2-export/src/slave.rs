@@ -19,6 +19,18 @@ pub enum Scalar {
     String(CString),
 }
 
+/// As a log message shows a value: `2e8`, `3`, `true`, `"text"`.
+impl std::fmt::Display for Scalar {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Scalar::Real(x) => write!(f, "{x}"),
+            Scalar::Integer(n) => write!(f, "{n}"),
+            Scalar::Boolean(b) => write!(f, "{b}"),
+            Scalar::String(s) => write!(f, "{:?}", s.to_string_lossy()),
+        }
+    }
+}
+
 impl Scalar {
     pub fn base(&self) -> BaseType {
         match self {

@@ -179,7 +179,7 @@ impl<S: Slave> Inner<S> {
             staged.push((i, v, make(k, v)?));
         }
         for (i, v, s) in staged {
-            self.trace(|| format!("{function}: {} = {s:?}", v.name));
+            self.trace(|| format!("{function}: {} = {s}", v.name));
             self.values[i] = Some(s);
             if v.causality == Causality::Input {
                 // A new input value starts a new polynomial: its derivative
