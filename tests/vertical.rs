@@ -614,3 +614,132 @@ fn dharahara_f170_fm5() -> Params {
         ..Params::default()
     }
 }
+
+// ---- liftOff of a rocking flexible body (issue 20's Kaikoura x1 runs) ----
+
+/// The first representable `t` in `[0, t_max]` at which
+/// `W + m (av0 + dav t) <= 0`, by bisection on the floats (`N` is
+/// monotone in `t` once rounded, as the interpolated input is).
+fn first_lift_off(m: &Model, av0: f64, dav: f64, t_max: f64) -> f64 {
+    let out = |t: f64| apparent(m, av0, dav, t) <= 0.0;
+    assert!(out(t_max) && !out(0.0));
+    let (mut lo, mut hi) = (0.0f64, t_max);
+    while lo.next_up() < hi {
+        let mid = 0.5 * (lo + hi);
+        let mid = if mid <= lo { lo.next_up() } else { mid };
+        if out(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
+}
+
+/// `(theta, omega)` at `t_end` of the power form written with
+/// `q = sqrt(I) omega` (docs/model-exchange.md): `theta' = q/sqrt(I)`,
+/// `q' = (-s N hW - m ag hg)/sqrt(I)`, bounded where `omega'` is not (the
+/// `dI/dN dN/dt` term grows without bound as N falls to 0), by RK4 at `n`
+/// fixed steps. At `N <= 0` the contact is the toe's (the limit N -> 0+).
+fn q_form_rk4(
+    m: &Model,
+    (theta0, omega0): (f64, f64),
+    ag: GroundInput,
+    v: VerticalInput,
+    t_end: f64,
+    n: usize,
+) -> (f64, f64) {
+    let b = &m.body;
+    let inertia = |t: f64, theta: f64| {
+        let nn = apparent(m, v.av, v.dav, t);
+        let phi = theta.abs();
+        let c = if nn > 0.0 {
+            m.contact_loaded(phi, nn).0
+        } else {
+            rocking::Contact {
+                af: 0.0,
+                daf: 0.0,
+                a: 0.0,
+                contact_length: 0.0,
+                phi,
+                da: 0.0,
+                regime: rocking::Regime::Partial,
+                iterations: 0,
+            }
+        };
+        (nn, m.levers(phi, &c))
+    };
+    let f = |t: f64, y: [f64; 2]| -> [f64; 2] {
+        let (nn, l) = inertia(t, y[0]);
+        let s = if y[0] >= 0.0 { 1.0 } else { -1.0 };
+        let sq = l.inertia.sqrt();
+        let agt = ag.ag + ag.dag * t;
+        [y[1] / sq, (-s * nn * l.hw - b.mass * agt * l.hg) / sq]
+    };
+    let mut y = [theta0, inertia(0.0, theta0).1.inertia.sqrt() * omega0];
+    let h = t_end / n as f64;
+    for k in 0..n {
+        let t = k as f64 * h;
+        let t1 = if k + 1 == n { t_end } else { t + h };
+        let k1 = f(t, y);
+        let k2 = f(
+            t + 0.5 * h,
+            [y[0] + 0.5 * h * k1[0], y[1] + 0.5 * h * k1[1]],
+        );
+        let k3 = f(
+            t + 0.5 * h,
+            [y[0] + 0.5 * h * k2[0], y[1] + 0.5 * h * k2[1]],
+        );
+        let k4 = f(t1, [y[0] + h * k3[0], y[1] + h * k3[1]]);
+        for i in 0..2 {
+            y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        }
+    }
+    (y[0], y[1] / inertia(t_end, y[0]).1.inertia.sqrt())
+}
+
+/// The Dharahara tower on its flexible foundation under the Kaikoura WTMC
+/// record x1 (docs/dharahara.md): the step from 49.08 s, where `av` falls
+/// from -6.454 to -10.5656 m/s² and N reaches 0, from the state the run
+/// had there. The right-hand side was evaluated at N = 0 (the step's last
+/// stage), whose contact equation has no solution: `omega` became NaN and
+/// `fmi2DoStep` failed instead of ending in `liftOff`. The call ends in
+/// `liftOff` at the first time N <= 0 (bisection here on the input), with
+/// the state of the `q` form integrated by RK4 in this test (20 000
+/// steps, converged to 2e-11). Measured at rtol 1e-11: theta to 2.9e-12,
+/// omega to 2.3e-9 (`omega` has a cusp `N^(2/5)` at the end, which the
+/// last, shortest step does not resolve; `theta` is its integral).
+#[test]
+fn a_rocking_flexible_body_ends_in_lift_off() {
+    let m = dharahara_f170_fm5().build().unwrap();
+    let dt = 0.02;
+    let ag = GroundInput {
+        ag: -2.4691,
+        dag: (-5.2653 + 2.4691) / dt,
+    };
+    let v = VerticalInput {
+        av: -6.454,
+        dav: (-10.5656 + 6.454) / dt,
+    };
+    let y0 = (-4.625895812475774e-3, -1.8933883577724048e-2);
+    let want_t = first_lift_off(&m, v.av, v.dav, dt);
+    let (want_theta, want_omega) = q_form_rk4(&m, y0, ag, v, want_t, 20_000);
+    for (rtol, tol_theta, tol_omega) in [(1e-9, 1e-8, 1e-6), (1e-11, 1e-10, 1e-8)] {
+        let sim = Simulator::new(m, rtol);
+        let mut st = sim.initial_state(y0.0, y0.1);
+        let ev = sim.advance_vertical(&mut st, dt, ag, v);
+        let term = ev.terminal.expect("liftOff");
+        assert_eq!(term.condition, OutOfRange::LiftOff);
+        assert_eq!((term.t, st.t), (want_t, want_t), "rtol {rtol}");
+        assert!(!st.overturned);
+        println!(
+            "rtol {rtol:e}: theta {:e} ({:.1e} rel. to RK4 q form), omega {:e} ({:.1e})",
+            st.theta,
+            (st.theta - want_theta).abs() / want_theta.abs(),
+            st.omega,
+            (st.omega - want_omega).abs() / want_omega.abs()
+        );
+        assert!((st.theta - want_theta).abs() <= tol_theta * want_theta.abs());
+        assert!((st.omega - want_omega).abs() <= tol_omega * want_omega.abs());
+    }
+}
