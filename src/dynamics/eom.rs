@@ -32,11 +32,8 @@ pub(crate) struct Eom<'a> {
 }
 
 impl<'a> Eom<'a> {
-    pub fn new(sim: &'a Simulator, t0: f64, input: GroundInput) -> Eom<'a> {
-        Eom::with_vertical(sim, t0, input, VerticalInput::default())
-    }
-
-    /// The same under the vertical input `av(t) = av + dav (t - t0)`.
+    /// The equation under the vertical input `av(t) = av + dav (t - t0)`
+    /// too (`VerticalInput::default()`: none).
     pub fn with_vertical(
         sim: &'a Simulator,
         t0: f64,
