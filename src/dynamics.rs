@@ -477,13 +477,13 @@ impl Simulator {
         for (lim, below, cond) in limits {
             let tau = if outside(0.0, lim, below) {
                 0.0
-            } else if dn != 0.0 && (dn < 0.0) == below {
-                let x = (lim - n(0.0)) / dn;
-                if outside(x, lim, below) {
-                    x
-                } else {
-                    x.next_up()
-                }
+            } else if dn != 0.0 && (dn < 0.0) == below && outside(tau_end, lim, below) {
+                // the first representable time, as N is computed: N rounded
+                // is monotone in tau, and flat over a few ulps of tau near
+                // the limit (more the slower it moves), so the closed-form
+                // root may be past the first time (the right-hand side was
+                // then evaluated at N = 0 before liftOff)
+                first_time(|tau| outside(tau, lim, below), tau_end)
             } else {
                 continue;
             };
@@ -572,5 +572,22 @@ impl Simulator {
         vertical: VerticalInput,
     ) -> Events {
         self.run(state, t_end, input, vertical, true)
+    }
+}
+
+/// The first representable `tau` in `(0, hi]` at which `holds`, which is
+/// monotone (false at 0, true at `hi`), by bisection on the floats.
+fn first_time(holds: impl Fn(f64) -> bool, hi: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0f64, hi);
+    loop {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            return hi;
+        }
+        if holds(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
     }
 }

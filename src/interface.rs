@@ -247,9 +247,20 @@ impl Interface {
     /// for none), and `xel`, the centroid (m from the toe) of the elastic
     /// part of the contact, for `daf/dN = (xel - af)/N`. The regime comes
     /// from the explicit bed resultant `Nbed(a, phi)` (docs/model.md §6.4),
-    /// not from the thresholds at the weight. Flexible laws; `n > 0`.
+    /// not from the thresholds at the weight. Flexible laws. At `n <= 0`
+    /// (only at the `liftOff` instant that ends a run, docs/model.md §6.5)
+    /// the limit `n -> 0+`: the contact shrunk to the toe (`af = 0`), or
+    /// at `phi = 0` the whole base with `daf = 0`.
     pub fn contact_loaded(&self, phi: f64, n: f64, a_hint: f64) -> (Contact, f64) {
         let phi = phi.abs();
+        if n <= 0.0 && self.law != Law::Rigid {
+            return if phi == 0.0 {
+                let (c, xel) = self.solve(phi, self.weight, Regime::FullContact, a_hint);
+                (Contact { daf: 0.0, ..c }, xel)
+            } else {
+                (toe(phi), 0.0)
+            };
+        }
         let regime = if phi == 0.0 || self.law == Law::Rigid {
             Regime::FullContact
         } else {
@@ -310,17 +321,7 @@ impl Interface {
             return (c, self.d / 2.0);
         }
         if self.law == Law::Rigid {
-            let c = Contact {
-                af: 0.0,
-                daf: 0.0,
-                a: 0.0,
-                contact_length: 0.0,
-                phi,
-                da: 0.0,
-                regime: Regime::Partial,
-                iterations: 0,
-            };
-            return (c, 0.0);
+            return (toe(phi), 0.0);
         }
         let d = self.d;
         let k = self.kn * phi; // stress per unit length of closure, Pa/m
@@ -576,6 +577,20 @@ impl Resultants {
         self.n += d * (self.dn_da + 0.5 * d * self.d2n_da2);
         self.m += d * (self.dm_da + 0.5 * d * self.d2m_da2);
         self.central += d * self.dcentral_da;
+    }
+}
+
+/// The contact of the rigid law at `phi > 0`: the reaction at the toe.
+fn toe(phi: f64) -> Contact {
+    Contact {
+        af: 0.0,
+        daf: 0.0,
+        a: 0.0,
+        contact_length: 0.0,
+        phi,
+        da: 0.0,
+        regime: Regime::Partial,
+        iterations: 0,
     }
 }
 

@@ -502,8 +502,13 @@ impl Model {
 
     /// The contact at `phi` under the apparent weight `n` (N, docs/model.md
     /// §6.1), with `daf/dN` (m/N) in place of nothing: `(contact, daf/dN)`.
-    /// At `n = W` exactly, the contact at the weight.
+    /// At `n = W` exactly, the contact at the weight; at `n <= 0` the limit
+    /// `n -> 0+` of [`Interface::contact_loaded`] with `daf/dN = 0` (it grows
+    /// without bound as N falls to 0; only the `liftOff` instant asks).
     pub fn contact_loaded(&self, phi: f64, n: f64) -> (Contact, f64) {
+        if n <= 0.0 {
+            return (self.interface.contact_loaded(phi, n, f64::NAN).0, 0.0);
+        }
         if n == self.body.weight || self.interface.law() == Law::Rigid {
             let c = self.interface.contact(phi);
             let (_, xel) = self.interface.contact_loaded(phi, n, c.a);
@@ -515,9 +520,13 @@ impl Model {
 
     /// Overturning rotation under the apparent weight `n` (N): the first root
     /// of `hW(phi, N)` (docs/model.md §6.1); `alpha` for the rigid law.
+    /// At `n <= 0` the limit `n -> 0+`, the rigid body's `alpha`.
     pub fn theta_ov_at(&self, n: f64) -> f64 {
         if n == self.body.weight {
             return self.theta_ov;
+        }
+        if n <= 0.0 {
+            return self.body.alpha;
         }
         self.find_theta_ov_at(n)
     }

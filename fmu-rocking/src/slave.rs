@@ -44,9 +44,9 @@ pub struct RockingSlave {
     left_with: f64,
     /// Outputs at `state` for the ground accelerations `(ag, av)` with these bits.
     cache: Option<(u64, u64, Outputs)>,
-    /// Output derivatives at `state` for the ground input `(ag, dag/dt)`
-    /// with these bits.
-    rates: Option<(u64, u64, OutputRates)>,
+    /// Output derivatives at `state` for the ground input `(ag, dag/dt,
+    /// av, dav/dt)` with these bits.
+    rates: Option<([u64; 4], OutputRates)>,
     /// The input left the model's range (docs/model.md §6.5): `regime` 5.
     terminal: Option<Terminal>,
     /// `av` at the end of the last step (none before the first; an FMU
@@ -100,14 +100,15 @@ impl RockingSlave {
         }
     }
 
-    fn rates(&mut self, input: GroundInput) -> OutputRates {
-        let key = (input.ag.to_bits(), input.dag.to_bits());
+    /// `None`: a flexible law under a vertical input (not available).
+    fn rates(&mut self, input: GroundInput, v: VerticalInput) -> Option<OutputRates> {
+        let key = [input.ag, input.dag, v.av, v.dav].map(f64::to_bits);
         match self.rates {
-            Some((a, d, r)) if (a, d) == key => r,
+            Some((k, r)) if k == key => Some(r),
             _ => {
-                let r = self.sim.output_rates(&self.state, input);
-                self.rates = Some((key.0, key.1, r));
-                r
+                let r = self.sim.output_rates_vertical(&self.state, input, v)?;
+                self.rates = Some((key, r));
+                Some(r)
             }
         }
     }
@@ -279,18 +280,21 @@ impl Slave for RockingSlave {
             ag,
             dag: inputs.derivative(vr::AG),
         };
-        let (av, dav) = (inputs.real(vr::AV), inputs.derivative(vr::AV));
-        if av != 0.0 || dav != 0.0 {
-            return Err(format!(
-                "av = {av}, dav/dt = {dav}: output derivatives are available only without a vertical input (av = 0)"
-            ));
-        }
+        let v = VerticalInput {
+            av: inputs.real(vr::AV),
+            dav: inputs.derivative(vr::AV),
+        };
         // the FMI layer has checked 1 <= order <= maxOutputDerivativeOrder
         let k = match order {
             1 | 2 => order as usize,
             _ => return Err(format!("derivative order {order} is not 1 or 2")),
         };
-        let rates = self.rates(input);
+        let Some(rates) = self.rates(input, v) else {
+            return Err(format!(
+                "av = {}, dav/dt = {}: under a vertical input, output derivatives are available for interface = rigid only",
+                v.av, v.dav
+            ));
+        };
         let x = match r {
             vr::THETA => rates.theta[k],
             vr::OMEGA => rates.omega[k],
@@ -302,6 +306,7 @@ impl Slave for RockingSlave {
             vr::FX => rates.fx[k],
             vr::FZ => rates.fz[k],
             vr::FRICTION_DEMAND => rates.friction_demand()[k],
+            vr::APPARENT_WEIGHT => rates.apparent_weight[k],
             _ => return Err(format!("no Real output with value reference {r}")),
         };
         if !x.is_finite() && !may_be_infinite(r, x) {

@@ -3,7 +3,9 @@
 //! `fmi2Discard` at the exact time `N = W + m av` reaches 0 (computed here
 //! from the FMU's `weight` and `mass`), with `fmi2Terminated`, `regime` 5
 //! and a message naming the condition, `av` and the time; a non-finite
-//! `av` and bad `side`, `eRestraint` are `fmi2Error` naming the variable.
+//! `av` and bad `side`, `eRestraint` are `fmi2Error` naming the variable;
+//! output derivatives under `av`: the rigid law's, a flexible law's refused
+//! naming `av`.
 
 mod host;
 
@@ -127,4 +129,44 @@ fn fmu_state_keeps_the_last_av_and_the_terminal_condition() {
     assert_eq!(d.set_state(d.deserialize(&ended)), fmi2OK);
     assert_eq!(d.integer("regime"), 5);
     assert_ne!(d.do_step(0.1, 0.1), fmi2OK);
+}
+
+/// `fmi2GetRealOutputDerivatives` of one variable at `order`.
+fn output_derivative(h: &Host, name: &str, order: i32) -> (fmi2Status, f64) {
+    let r = vr_of(name);
+    let mut out = f64::NAN;
+    // SAFETY: one value reference, one order, room for one value.
+    let s = unsafe { fmu_rocking::fmi2GetRealOutputDerivatives(h.c, &r, 1, &order, &mut out) };
+    (s, out)
+}
+
+#[test]
+fn output_derivatives_under_av_for_the_rigid_law_only() {
+    let dav = -2.0;
+    for (law, rigid) in [(enums::RIGID, true), (enums::ELASTO_PLASTIC, false)] {
+        let h = Host::new();
+        assert_eq!(h.set_integer("interface", law), fmi2OK);
+        assert_eq!(h.set_real("theta", 0.05), fmi2OK);
+        h.init();
+        assert_eq!(h.set_real("av", 1.0), fmi2OK);
+        assert_eq!(h.set_input_derivative("av", 1, dav), fmi2OK);
+        assert_eq!(h.do_step(0.0, 0.01), fmi2OK, "{:?}", h.messages());
+        assert_eq!(h.set_real("av", 1.0 + dav * 0.01), fmi2OK);
+        assert_eq!(h.set_input_derivative("av", 1, dav), fmi2OK);
+        let (s, x) = output_derivative(&h, "apparentWeight", 1);
+        if rigid {
+            assert_eq!((s, x), (fmi2OK, h.real("mass") * dav));
+            let (s, d) = output_derivative(&h, "theta", 1);
+            assert_eq!((s, d), (fmi2OK, h.real("omega")));
+            let (s, d) = output_derivative(&h, "MR", 2);
+            assert!(s == fmi2OK && d.is_finite(), "{s:?} {d}");
+        } else {
+            assert_eq!(s, fmi2Error);
+            assert!(
+                h.errors().iter().any(|m| m.contains("av = ")),
+                "{:?}",
+                h.errors()
+            );
+        }
+    }
 }

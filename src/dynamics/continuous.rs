@@ -118,6 +118,50 @@ impl Simulator {
         ]
     }
 
+    /// `sqrt(I(phi, N))` at `theta` under `N = W + m av` (kg^(1/2) m): the
+    /// factor between `omega` and the state `q = sqrt(I) omega` of the
+    /// power form (docs/model-exchange.md, "A varying `av`").
+    pub fn sqrt_inertia(&self, theta: f64, av: f64) -> f64 {
+        self.inertia_at(theta, av).0.sqrt()
+    }
+
+    /// `(I, dI/dphi)` at `theta` under `N = W + m av`, kg m² and kg m²/rad.
+    fn inertia_at(&self, theta: f64, av: f64) -> (f64, f64) {
+        let b = &self.model.body;
+        let n = b.weight + b.mass * av;
+        let phi = theta.abs();
+        let l = self.model.levers(phi, &self.model.contact_loaded(phi, n).0);
+        (l.inertia, l.dinertia)
+    }
+
+    /// `[theta', q']` at `c` under `ag`, `av` (m/s²), with `q = sqrt(I)
+    /// omega` (`c.state.omega` is `q / sqrt(I)` at this `av`): the power
+    /// form of docs/model.md §6.2 as `theta' = q/sqrt(I)`, `q' = (-s N hW -
+    /// m ag hg)/sqrt(I)`, exact for any `av(t)` with no derivative of it
+    /// (`dI/dN dN/dt` is in the change of `sqrt(I)`). Computed as
+    /// `sqrt(I) omega' + s (dI/dphi) omega²/(2 sqrt(I))` from `omega'` at
+    /// `dN/dt = 0`, so `costa` (whose `omega'` has no `dN/dt` term) gets
+    /// the term `-(dI/dN)(dN/dt) omega/(2 sqrt(I))` wrong under a varying
+    /// `av` instead; the rigid law's `IO` does not depend on N.
+    pub fn derivatives_q(&self, c: &Continuous, ag: f64, av: f64) -> [f64; 2] {
+        let [theta_dot, omega_dot] = self.derivatives_vertical(c, ag, av);
+        if theta_dot == 0.0 && omega_dot == 0.0 {
+            return [0.0, 0.0];
+        }
+        let (i, di) = self.inertia_at(c.state.theta, av);
+        let sq = i.sqrt();
+        let s = if c.state.theta != 0.0 {
+            c.state.theta.signum()
+        } else {
+            c.side
+        };
+        let omega = c.state.omega;
+        [
+            theta_dot,
+            sq * omega_dot + 0.5 * s * di * omega * omega / sq,
+        ]
+    }
+
     /// The event indicators at `c` under `ag` (see the module doc).
     pub fn event_indicators(&self, c: &Continuous, ag: f64) -> [f64; EVENT_INDICATORS] {
         self.event_indicators_vertical(c, ag, 0.0)

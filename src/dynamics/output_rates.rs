@@ -30,12 +30,18 @@
 //!
 //! A body at rest has constant outputs, except `Fx = m ag` whose derivative
 //! is `m dag`.
+//!
+//! Under a vertical input `av + dav (t - t0)` (docs/model.md §6) the rigid
+//! law's outputs carry the jet of `N = W + m av`, `[N, m dav, 0]`, in place
+//! of the weight (its levers do not depend on N); `Fz = m (g + av + zG'')`.
+//! The flexible laws' contact depends on N as well, and their rates under
+//! `av` are not available ([`Simulator::output_rates_vertical`]).
 
 use crate::interface::{Law, Regime};
 use crate::model::Formulation;
 
 use super::eom::{side_of, Eom};
-use super::{GroundInput, Simulator, State};
+use super::{GroundInput, Simulator, State, VerticalInput};
 
 /// `[x, dx/dt, d²x/dt²]` of one output, in its unit per s^order.
 pub type Jet = [f64; 3];
@@ -60,6 +66,8 @@ pub struct OutputRates {
     pub fx: Jet,
     /// N.
     pub fz: Jet,
+    /// The apparent weight `N = W + m av`, N (docs/model.md §6.1).
+    pub apparent_weight: Jet,
 }
 
 impl OutputRates {
@@ -74,6 +82,15 @@ impl OutputRates {
         let q = jet_div(self.fx, self.fz);
         let sign = q.iter().find(|x| **x != 0.0).map_or(1.0, |x| x.signum());
         jet_scale(sign, q)
+    }
+}
+
+/// The jet of `N = W + m (av + dav t)`, N (the weight without `av`).
+fn apparent_weight(b: &crate::Body, v: VerticalInput) -> Jet {
+    if v.av == 0.0 && v.dav == 0.0 {
+        [b.weight, 0.0, 0.0]
+    } else {
+        [b.weight + b.mass * v.av, b.mass * v.dav, 0.0]
     }
 }
 
@@ -134,9 +151,29 @@ impl Simulator {
     /// under the ground input `ag + dag (t - state.t)` (m/s², m/s³).
     /// The values (order 0) are those of [`Simulator::outputs`].
     pub fn output_rates(&self, state: &State, input: GroundInput) -> OutputRates {
+        self.rates_under(state, input, VerticalInput::default())
+    }
+
+    /// [`output_rates`](Self::output_rates) under the vertical input
+    /// `av + dav (t - state.t)` too (m/s², m/s³); the values are those of
+    /// [`Simulator::outputs_vertical`]. `None` for a flexible law under a
+    /// vertical input (its contact moves with N: not available).
+    pub fn output_rates_vertical(
+        &self,
+        state: &State,
+        input: GroundInput,
+        v: VerticalInput,
+    ) -> Option<OutputRates> {
+        let vertical = v.av != 0.0 || v.dav != 0.0;
+        (!vertical || self.model.interface.law() == Law::Rigid)
+            .then(|| self.rates_under(state, input, v))
+    }
+
+    fn rates_under(&self, state: &State, input: GroundInput, v: VerticalInput) -> OutputRates {
         let m = &self.model;
         let b = &m.body;
         let GroundInput { ag, dag } = input;
+        let n = apparent_weight(b, v);
         if state.at_rest {
             let c = m.interface.contact(0.0);
             let constant = |x: f64| [x, 0.0, 0.0];
@@ -148,15 +185,16 @@ impl Simulator {
                 contact_length: constant(c.contact_length),
                 mr: constant(0.0),
                 fx: [b.mass * ag, b.mass * dag, 0.0],
-                fz: constant(b.weight),
+                fz: n,
+                apparent_weight: n,
             };
-            if self.held_at_rest(ag) {
+            if self.held(ag, v.av) {
                 return rest;
             }
             // ag sets the body moving: the motion's rates, but the contact
             // outputs keep their rest values as `outputs` does (the rigid
             // law's toe contact starts only once the body has lifted).
-            let start = self.output_rates_in_motion(state, input);
+            let start = self.output_rates_in_motion(state, input, v);
             return OutputRates {
                 af: rest.af,
                 contact_length: rest.contact_length,
@@ -164,14 +202,22 @@ impl Simulator {
                 ..start
             };
         }
-        self.output_rates_in_motion(state, input)
+        self.output_rates_in_motion(state, input, v)
     }
 
-    /// [`output_rates`](Self::output_rates) from the equation of motion at `state`.
-    fn output_rates_in_motion(&self, state: &State, input: GroundInput) -> OutputRates {
+    /// [`output_rates`](Self::output_rates) from the equation of motion at
+    /// `state` (under `v`: the rigid law only).
+    fn output_rates_in_motion(
+        &self,
+        state: &State,
+        input: GroundInput,
+        v: VerticalInput,
+    ) -> OutputRates {
         let m = &self.model;
         let b = &m.body;
         let GroundInput { ag, dag } = input;
+        let vertical = v.av != 0.0 || v.dav != 0.0;
+        let n_jet = apparent_weight(b, v);
         let rigid = m.interface.law() == Law::Rigid;
         let s = side_of(state.theta, state.omega, ag);
         // the rigid law continues the formulas through theta = 0 (see
@@ -203,8 +249,13 @@ impl Simulator {
             let w = [th[1], th[2], th[3]];
             let w2 = jet_mul(w, w);
             let ag_jet = [ag, dag, 0.0];
+            let weight = if vertical {
+                jet_scale(-s, jet_mul(n_jet, compose(&g.hw, p)))
+            } else {
+                jet_scale(-s * b.weight, compose(&g.hw, p))
+            };
             let mut n = jet_add(
-                jet_scale(-s * b.weight, compose(&g.hw, p)),
+                weight,
                 jet_scale(-b.mass, jet_mul(ag_jet, compose(&g.hg, p))),
             );
             if pivot {
@@ -218,7 +269,12 @@ impl Simulator {
         // theta'' itself as `Simulator::outputs` has it, to the bit; then
         // one more derivative per pass (the k-th of theta'' needs theta up
         // to order k + 1): theta''', then theta''''
-        let eom = Eom::new(self, state.t, GroundInput { ag, dag: 0.0 });
+        let eom = Eom::with_vertical(
+            self,
+            state.t,
+            GroundInput { ag, dag: 0.0 },
+            VerticalInput { av: v.av, dav: 0.0 },
+        );
         let mut hint = state.a;
         let theta_dd = eom.accel(state.t, state.theta, state.omega, s, &mut hint);
         let mut th = [state.theta, state.omega, theta_dd, 0.0, 0.0];
@@ -249,9 +305,15 @@ impl Simulator {
             theta_dd: thdd,
             af: compose(&af, p),
             contact_length,
-            mr: jet_scale(b.weight, compose(&g.hw, p)),
+            mr: if vertical {
+                jet_mul(n_jet, compose(&g.hw, p))
+            } else {
+                jet_scale(b.weight, compose(&g.hw, p))
+            },
             fx: jet_scale(b.mass, jet_add([ag, dag, 0.0], xg_dd)),
-            fz: jet_scale(b.mass, jet_add([b.g, 0.0, 0.0], zg_dd)),
+            // av = 0: b.g + 0.0 is b.g, the same bits
+            fz: jet_scale(b.mass, jet_add([b.g + v.av, v.dav, 0.0], zg_dd)),
+            apparent_weight: n_jet,
         }
     }
 

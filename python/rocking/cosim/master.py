@@ -221,8 +221,8 @@ class _Loop:
         self.r_u = frame.refs([f"u[{i}]" for i in range(1, n + 1)])
         self.r_bag = block.refs(["ag"])
         self.r_bav = block.refs(["av"]) if vertical is not None else None
-        # the FMU gives output derivatives only without av (docs/model.md §7.4): with av the
-        # block's force reaches the frame constant over a step
+        # under av the FMU gives output derivatives for a rigid block only (docs/model.md
+        # §7.4): with av the block's force reaches the frame constant over a step
         self.force_rates = extrapolate and vertical is None
         self.r_bf = block.refs(["Fx", "Fz"])
         self.r_th = block.refs(["theta", "omega"])
