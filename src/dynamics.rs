@@ -314,8 +314,11 @@ impl Simulator {
 
     /// [`contact`](Self::contact) for the equation of motion: where the
     /// table answers, only `af` and `af'` (`a`, `a'` and the contact length
-    /// are NaN).
-    #[inline]
+    /// are NaN). Always inlined, as is the table's `reaction`: with two
+    /// callers (the flexible and the loaded equation of motion) the
+    /// compiler left them out of line, a call at every evaluation that cost
+    /// the `av = 0` path 5 % (callgrind, docs/performance.md).
+    #[inline(always)]
     pub(crate) fn reaction(&self, phi: f64, a_hint: f64) -> Contact {
         let it = &self.model.interface;
         match self.table.as_ref().and_then(|t| t.reaction(it, phi)) {
