@@ -314,8 +314,11 @@ impl Simulator {
 
     /// [`contact`](Self::contact) for the equation of motion: where the
     /// table answers, only `af` and `af'` (`a`, `a'` and the contact length
-    /// are NaN).
-    #[inline]
+    /// are NaN). Always inlined, as is the table's `reaction`: with two
+    /// callers (the flexible and the loaded equation of motion) the
+    /// compiler left them out of line, a call at every evaluation that cost
+    /// the `av = 0` path 5 % (callgrind, docs/performance.md).
+    #[inline(always)]
     pub(crate) fn reaction(&self, phi: f64, a_hint: f64) -> Contact {
         let it = &self.model.interface;
         match self.table.as_ref().and_then(|t| t.reaction(it, phi)) {
@@ -450,31 +453,30 @@ impl Simulator {
         let b = &m.body;
         let n = |tau: f64| b.weight + b.mass * (v.av + v.dav * tau);
         let dn = b.mass * v.dav;
-        // (limit, below: the range is N > limit, else N < limit)
-        let mut limits = vec![(0.0, true, OutOfRange::LiftOff)];
-        match m.interface.law() {
-            Law::Rigid => {}
-            Law::Elastic { kn } => {
-                limits.push((
-                    kn * m.interface.shape().second_moment() / b.hg,
-                    false,
-                    OutOfRange::RestUnstable,
-                ));
-            }
-            Law::ElastoPlastic { kn, fm } => {
-                let shape = m.interface.shape();
-                limits.push((fm * shape.area(), false, OutOfRange::BaseCrushing));
-                limits.push((
-                    kn * shape.second_moment() / b.hg,
-                    false,
-                    OutOfRange::RestUnstable,
-                ));
-            }
-        }
+        // (limit, below: the range is N > limit, else N < limit), in an
+        // array: a Vec here was an allocation at every call with av
+        let lift = Some((0.0, true, OutOfRange::LiftOff));
+        let shape = m.interface.shape();
+        let unstable = |kn: f64| {
+            Some((
+                kn * shape.second_moment() / b.hg,
+                false,
+                OutOfRange::RestUnstable,
+            ))
+        };
+        let limits = match m.interface.law() {
+            Law::Rigid => [lift, None, None],
+            Law::Elastic { kn } => [lift, unstable(kn), None],
+            Law::ElastoPlastic { kn, fm } => [
+                lift,
+                Some((fm * shape.area(), false, OutOfRange::BaseCrushing)),
+                unstable(kn),
+            ],
+        };
         let outside =
             |tau: f64, lim: f64, below: bool| if below { n(tau) <= lim } else { n(tau) >= lim };
         let mut first: Option<(f64, OutOfRange)> = None;
-        for (lim, below, cond) in limits {
+        for (lim, below, cond) in limits.into_iter().flatten() {
             let tau = if outside(0.0, lim, below) {
                 0.0
             } else if dn != 0.0 && (dn < 0.0) == below && outside(tau_end, lim, below) {

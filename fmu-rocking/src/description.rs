@@ -832,6 +832,42 @@ mod tests {
         }
     }
 
+    /// `by_vr`'s lookup from index `vr` down gives what a scan of the table
+    /// gives, for every value reference (and some that are none) and base:
+    /// on this table, on it reversed, and with every third variable left out.
+    #[test]
+    fn lookup_by_value_reference_is_a_scan() {
+        let scan = |md: &ModelDescription, base: BaseType, vr: u32| {
+            md.variables
+                .iter()
+                .enumerate()
+                .find(|(_, v)| v.vr == vr && v.ty.base() == base)
+        };
+        let reversed: Vec<Variable> = VARIABLES.iter().rev().copied().collect();
+        let holes: Vec<Variable> = VARIABLES.iter().step_by(3).copied().collect();
+        for vars in [VARIABLES, &*reversed.leak(), &*holes.leak()] {
+            let md = ModelDescription {
+                variables: vars,
+                ..ROCKING_BLOCK
+            };
+            for vr in 0..VARIABLES.len() as u32 + 3 {
+                for base in [
+                    BaseType::Real,
+                    BaseType::Integer,
+                    BaseType::Boolean,
+                    BaseType::String,
+                ] {
+                    let (got, want) = (md.by_vr(base, vr), scan(&md, base, vr));
+                    assert_eq!(
+                        got.map(|(i, _)| i),
+                        want.map(|(i, _)| i),
+                        "vr {vr}, {base:?}"
+                    );
+                }
+            }
+        }
+    }
+
     #[test]
     fn every_model_md_variable_is_there() {
         for n in [

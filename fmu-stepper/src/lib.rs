@@ -4,8 +4,8 @@
 //! through a whole input record and records outputs into caller-owned
 //! arrays. It calls the FMU only through the function pointers it is given
 //! (those of the FMU's own shared library, already loaded and instantiated
-//! by the caller), so it works with any build of any FMU with at most one
-//! real input, and knows nothing of the model.
+//! by the caller), so it works with any build of any FMU with at most two
+//! real inputs, and knows nothing of the model.
 //!
 //! It makes exactly the calls of the reference loop in
 //! `python/rocking/fmu.py` (`RockingFMU.simulate`), in the same order with
@@ -49,17 +49,36 @@ pub struct Functions {
     pub get_boolean_status: GetBooleanStatus,
 }
 
+/// The layout of [`Run`] this library reads ([`fmu_stepper_abi`]): 2 added
+/// the second input.
+pub const ABI: u32 = 2;
+
+/// The version of [`Run`]'s layout, for a caller to refuse a stale build
+/// (one that would not read the fields it sets).
+#[no_mangle]
+pub extern "C" fn fmu_stepper_abi() -> u32 {
+    ABI
+}
+
+/// One input line: at each communication point its value and the slope of
+/// the segment that starts there (`fmi2SetRealInputDerivatives`, order 1).
+#[repr(C)]
+pub struct InputLine {
+    /// Null: the input is not set.
+    pub value: *const f64,
+    pub slope: *const f64,
+    pub vr: u32,
+}
+
 /// One run's inputs and output buffers, all owned by the caller.
 #[repr(C)]
 pub struct Run {
     /// Communication points `grid[0..=n_steps]`, s.
     pub grid: *const f64,
     pub n_steps: usize,
-    /// The input at each point and the slope of the segment that starts
-    /// there (`fmi2SetRealInputDerivatives`, order 1); null: no input set.
-    pub input: *const f64,
-    pub slope: *const f64,
-    pub vr_input: u32,
+    /// The inputs, set in this order before every step.
+    pub input: InputLine,
+    pub second: InputLine,
     /// Outputs recorded at every sample, by value reference and type.
     pub vr_real: *const u32,
     pub n_real: usize,
@@ -92,7 +111,8 @@ pub struct Outcome {
     pub status: i32,
     /// 0 none, 1 fmi2Get*, 2 fmi2SetReal/fmi2SetRealInputDerivatives,
     /// 3 fmi2DoStep, 4 fmi2GetRealStatus/fmi2GetBooleanStatus,
-    /// 5 the buffers are too small.
+    /// 5 the buffers are too small, 6 fmi2SetReal/fmi2SetRealInputDerivatives
+    /// of the second input.
     pub failed_call: i32,
 }
 
@@ -125,6 +145,23 @@ unsafe fn sample(f: &Functions, c: Component, run: &Run, row: usize, t: f64) -> 
     Ok(())
 }
 
+/// Sets `line`'s value and slope at point `k`, if it is set; the worse status.
+///
+/// # Safety
+/// As for [`fmu_stepper_run`].
+unsafe fn set_input(f: &Functions, c: Component, line: &InputLine, k: usize) -> i32 {
+    if line.value.is_null() {
+        return 0;
+    }
+    let order: i32 = 1;
+    let a = *line.value.add(k);
+    let status = (f.set_real)(c, &line.vr, 1, &a);
+    let slope = *line.slope.add(k);
+    status.max((f.set_real_input_derivatives)(
+        c, &line.vr, 1, &order, &slope,
+    ))
+}
+
 /// Steps `component` from `grid[0]` to `grid[n_steps]` and records the
 /// outputs (a first row at `grid[0]`, as the caller has initialised it).
 /// Stops at the first failed call or at a discarded step after which the
@@ -133,8 +170,8 @@ unsafe fn sample(f: &Functions, c: Component, run: &Run, row: usize, t: f64) -> 
 /// # Safety
 /// `functions` points to the functions of the library `component` was
 /// instantiated by; every pointer of `run` is valid for the lengths it
-/// states (`grid`, `input`, `slope`: `n_steps + 1`; the buffers: `capacity`
-/// rows).
+/// states (`grid` and each set input's `value` and `slope`: `n_steps + 1`;
+/// the buffers: `capacity` rows).
 #[no_mangle]
 pub unsafe extern "C" fn fmu_stepper_run(
     functions: *const Functions,
@@ -157,23 +194,15 @@ pub unsafe extern "C" fn fmu_stepper_run(
         return fail(out, s, 1);
     }
     out.rows = 1;
-    let order: i32 = 1;
     for k in 0..run.n_steps {
         let t = *run.grid.add(k);
-        if !run.input.is_null() {
-            let a = *run.input.add(k);
-            let mut status = (f.set_real)(component, &run.vr_input, 1, &a);
-            let slope = *run.slope.add(k);
-            status = status.max((f.set_real_input_derivatives)(
-                component,
-                &run.vr_input,
-                1,
-                &order,
-                &slope,
-            ));
-            if status > 1 {
-                return fail(out, status, 2);
-            }
+        let status = set_input(f, component, &run.input, k);
+        if status > 1 {
+            return fail(out, status, 2);
+        }
+        let status = set_input(f, component, &run.second, k);
+        if status > 1 {
+            return fail(out, status, 6);
         }
         let status = (f.do_step)(component, t, *run.grid.add(k + 1) - t, 1);
         if status > 1 {

@@ -400,10 +400,7 @@ class RockingFMU:
         val = (c_double * 1)()
         if loop not in ("auto", "native", "python"):
             raise ValueError(f"loop = {loop!r}: not one of 'auto', 'native', 'python'")
-        if vertical_input is not None and loop == "native":
-            raise ValueError("loop='native' takes one input (ag): with av, use loop='python' or 'auto'")
-        # fmu-stepper's C ABI carries one input (ag): runs with av take the Python loop
-        native = vertical_input is None and (loop == "native" or (loop == "auto" and stepper.library() is not None))
+        native = loop == "native" or (loop == "auto" and stepper.library() is not None)
         if native and stepper.library() is None:
             raise FileNotFoundError(f"loop='native': {stepper.library_path()} not built "
                                     "(cargo build --release -p fmu-stepper, or cargo xtask fmu)")
@@ -432,7 +429,7 @@ class RockingFMU:
 
             if native:
                 times, rows_r, rows_i, rows_b, overturned = self._native_loop(
-                    slave, component, grid, *inputs, vr_ag[0], vr_r, vr_i, vr_b, every)
+                    slave, component, grid, *inputs, vr_ag[0], vr_r, vr_i, vr_b, every, vertical_input)
             else:
                 times, rows_r, rows_i, rows_b, overturned = self._python_loop(
                     slave, component, grid, *inputs, vr_ag[0], vr_r, vr_i, vr_b, every, vertical_input)
@@ -482,11 +479,11 @@ class RockingFMU:
         )
 
     @staticmethod
-    def _native_loop(slave, component, grid, acc, slope, vr_ag, vr_r, vr_i, vr_b, every):
+    def _native_loop(slave, component, grid, acc, slope, vr_ag, vr_r, vr_i, vr_b, every, vertical=None):
         """The stepping loop in fmu-stepper (rocking.stepper): the calls of `_python_loop`, natively."""
         fns = stepper.functions(slave._functions)
         out, times, reals, ints, bools = stepper.step(fns, component, grid, acc, slope, vr_ag,
-                                                      vr_r, vr_i, vr_b, every)
+                                                      vr_r, vr_i, vr_b, every, second=vertical)
         if out.failed_call:
             raise FMICallException(stepper.CALLS.get(out.failed_call, "?"), out.status)
         return times, reals, ints.astype(np.int64), bools.astype(bool), bool(out.terminated)

@@ -26,7 +26,11 @@ _NAME = {"win32": "fmu_stepper.dll", "darwin": "libfmu_stepper.dylib"}.get(sys.p
 
 #: Outcome.failed_call: which call failed.
 CALLS = {1: "fmi2Get*", 2: "fmi2SetReal/fmi2SetRealInputDerivatives", 3: "fmi2DoStep",
-         4: "fmi2GetRealStatus/fmi2GetBooleanStatus", 5: "fmu_stepper_run (buffers too small)"}
+         4: "fmi2GetRealStatus/fmi2GetBooleanStatus", 5: "fmu_stepper_run (buffers too small)",
+         6: "fmi2SetReal/fmi2SetRealInputDerivatives (av)"}
+
+#: The layout of `Run` this module writes (the library's `fmu_stepper_abi()`).
+ABI = 2
 
 # The FMU's functions the loop calls, in the order of the Rust struct `Functions`.
 FUNCTIONS = ("fmi2SetReal", "fmi2SetRealInputDerivatives", "fmi2DoStep", "fmi2GetReal",
@@ -37,9 +41,13 @@ class _Functions(Structure):
     _fields_ = [(name, c_void_p) for name in FUNCTIONS]
 
 
+class _InputLine(Structure):
+    _fields_ = [("value", POINTER(c_double)), ("slope", POINTER(c_double)), ("vr", c_uint32)]
+
+
 class _Run(Structure):
     _fields_ = [("grid", POINTER(c_double)), ("n_steps", c_size_t),
-                ("input", POINTER(c_double)), ("slope", POINTER(c_double)), ("vr_input", c_uint32),
+                ("input", _InputLine), ("second", _InputLine),
                 ("vr_real", POINTER(c_uint32)), ("n_real", c_size_t),
                 ("vr_integer", POINTER(c_uint32)), ("n_integer", c_size_t),
                 ("vr_boolean", POINTER(c_uint32)), ("n_boolean", c_size_t),
@@ -72,7 +80,13 @@ def library():
         path = library_path()
         _LIB = None
         if path and os.path.isfile(path):
-            run = ctypes.CDLL(path).fmu_stepper_run
+            lib = ctypes.CDLL(path)
+            abi = getattr(lib, "fmu_stepper_abi", None)
+            if abi is None or abi() != ABI:  # a stale build: it would not read every field
+                raise RuntimeError(f"{path}: built for another layout of its runs (ABI "
+                                   f"{abi() if abi else 1}, this module writes {ABI}): rebuild it "
+                                   "(cargo xtask fmu)")
+            run = lib.fmu_stepper_run
             run.argtypes = [POINTER(_Functions), c_void_p, POINTER(_Run)]
             run.restype = Outcome
             _LIB = run
@@ -94,8 +108,9 @@ def _vrs(values):
     return np.ascontiguousarray(values, dtype=np.uint32)
 
 
-def step(fns, component, grid, acc, slope, vr_input, vr_real, vr_integer, vr_boolean, every):
-    """Step from grid[0] to grid[-1]; `acc`, `slope` None: no input.
+def step(fns, component, grid, acc, slope, vr_input, vr_real, vr_integer, vr_boolean, every, second=None):
+    """Step from grid[0] to grid[-1]; `acc`, `slope` None: no input; `second`: None, or a
+    second input (value reference, values, slopes on the grid), set after the first.
 
     Returns (outcome, times, reals, integers, booleans), the arrays cut to the rows written.
     """
@@ -109,17 +124,17 @@ def step(fns, component, grid, acc, slope, vr_input, vr_real, vr_integer, vr_boo
     ints = np.empty((cap, len(vr_i)), dtype=np.intc)
     bools = np.empty((cap, len(vr_b)), dtype=np.intc)
     keep = [grid]
-    run = _Run(grid=_ptr(grid, c_double), n_steps=n_steps, vr_input=vr_input,
+    run = _Run(grid=_ptr(grid, c_double), n_steps=n_steps,
                vr_real=_ptr(vr_r, c_uint32), n_real=len(vr_r),
                vr_integer=_ptr(vr_i, c_uint32), n_integer=len(vr_i),
                vr_boolean=_ptr(vr_b, c_uint32), n_boolean=len(vr_b),
                every=every, capacity=cap, times=_ptr(times, c_double), reals=_ptr(reals, c_double),
                integers=_ptr(ints, c_int), booleans=_ptr(bools, c_int))
-    if acc is not None:
-        acc = np.ascontiguousarray(acc, dtype=float)
-        slope = np.ascontiguousarray(slope, dtype=float)
-        keep += [acc, slope]
-        run.input, run.slope = _ptr(acc, c_double), _ptr(slope, c_double)
+    for field, line in (("input", None if acc is None else (vr_input, acc, slope)), ("second", second)):
+        if line is not None:
+            value, slope_ = (np.ascontiguousarray(x, dtype=float) for x in line[1:])
+            keep += [value, slope_]
+            setattr(run, field, _InputLine(_ptr(value, c_double), _ptr(slope_, c_double), line[0]))
     out = run_fn(ctypes.byref(fns), component, ctypes.byref(run))
     del keep
     n = out.rows

@@ -141,7 +141,9 @@ impl<'a> Eom<'a> {
     /// on `phi/N` only, so the table at the weight answers at `phi W/N`
     /// (`af(phi, N) = af(phi W/N, W)`, `daf/dphi` scaled by `W/N`,
     /// `daf/dN = -(phi/N) daf/dphi`); a crushing bed is solved at N.
-    #[inline]
+    /// Out of line: inlined, its copy of the contact made `av = 0`'s
+    /// evaluations slower (docs/performance.md).
+    #[inline(never)]
     fn accel_loaded(
         &self,
         ag: f64,

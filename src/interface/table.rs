@@ -405,7 +405,7 @@ impl ContactTable {
 
     /// Like [`contact`](Self::contact), but only `af` and `af'` (what the
     /// equation of motion needs): `a`, `a'` and the contact length are NaN.
-    #[inline]
+    #[inline(always)]
     pub fn reaction(&self, it: &Interface, phi: f64) -> Option<Contact> {
         let phi = phi.abs();
         let (piece, regime) = self.lookup(it, phi)?;
