@@ -154,3 +154,14 @@ def test_dem_start_is_on_the_step_grid_below_the_lp_bound():
         assert abs(start / p.step - round(start / p.step)) < 1e-9
     assert dem_supports("outOfPlane", math.pi / 2) and dem_supports("outOfPlane", 0.0)
     assert not dem_supports("outOfPlane", math.pi / 4) and dem_supports("fixed", math.pi / 4)
+
+
+def test_study_table_only_runs_no_dem_case(tmp_path):
+    from rocking.corner_blocks import study
+
+    columns = study.run(tmp_path, ends=("free",), methods=("lp", "dem"), courses=3, blocks=3,
+                        start_fraction=0.6, table_only=True, log=lambda s: None)
+    assert columns["DEM free"] == [None] * 5  # shown as "-", nothing computed
+    assert all(lam > 0 for lam in columns["LP free"])
+    assert not list(tmp_path.glob("dem_*.json"))
+    assert "| DEM free |" in (tmp_path / "table.md").read_text().splitlines()[0]

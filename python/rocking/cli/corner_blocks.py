@@ -96,7 +96,8 @@ def cmd_study(args, _params):
         raise CLIError(f"invalid --workers: must be at least 1, got {args.workers}")
     study.run(args.out, ends=ends, mu=args.mu, methods=methods, binary=corner_binary(),
               dem_protocol=_protocol(args), log=lambda s: print(s, file=sys.stderr, flush=True),
-              courses=args.courses, blocks=args.blocks, start_fraction=args.start_fraction, workers=args.workers)
+              courses=args.courses, blocks=args.blocks, start_fraction=args.start_fraction, workers=args.workers,
+              table_only=args.table_only)
     print(Path(args.out, "table.md").read_text())
     return 0
 
@@ -126,6 +127,8 @@ def register(sub, common):
                     help="DEM: start each test at this fraction of the case's LP multiplier (its upper bound), "
                          "instead of --start; a test that collapses at its first level is redone from half of it")
     st.add_argument("--workers", type=int, default=1, help="DEM cases at once, on a Dask LocalCluster (default 1)")
+    st.add_argument("--table-only", action="store_true",
+                    help="compute no DEM case: the table and plot of those already in --out, the others as -")
     st.set_defaults(func=cmd_study)
 
 

@@ -59,11 +59,13 @@ def la_cases(binary, k, alphas, courses=9, blocks=7):
 
 
 def run(out, ends=("fixed", "free", "outOfPlane"), mu=0.66, methods=("lp",), binary=None, dem_protocol=None,
-        log=print, courses=9, blocks=7, start_fraction=None, workers=1):
+        log=print, courses=9, blocks=7, start_fraction=None, workers=1, table_only=False):
     """Every case of the study into out/ (the paper's columns only make sense for the
     paper's 9 courses of 7 blocks); returns the table's columns. DEM cases run on a Dask
     LocalCluster of `workers` processes; with start_fraction, each DEM test starts at that
-    fraction of the same case's LP multiplier (an upper bound of it, see dem_start)."""
+    fraction of the same case's LP multiplier (an upper bound of it, see dem_start).
+    table_only: no case is computed; the table and plot show the cached ones (a study
+    still running, or stopped), the others as "-"."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     alphas = [a for a, _ in ORIENTATIONS]
@@ -116,6 +118,11 @@ def run(out, ends=("fixed", "free", "outOfPlane"), mu=0.66, methods=("lp",), bin
                 continue
             start = dem_start(protocol, lp_of[e, i]["lam"], start_fraction) if start_fraction else protocol.start
             jobs[name] = (e, i, {"specimen": {"ends": e, "mu": mu, **geometry}}, replace(protocol, start=start))
+        if table_only:
+            for name, (e, i, _, _) in jobs.items():
+                n += 1
+                record(n, "dem", e, i, {"lam": None, "skipped": "not computed yet"}, 0.0)
+            jobs = {}
         for name, (e, i, spec, proto), r, seconds in run_dem_jobs(jobs, alphas, workers):
             (out / f"{name}.json").write_text(json.dumps(r))
             n += 1
@@ -132,7 +139,22 @@ def run(out, ends=("fixed", "free", "outOfPlane"), mu=0.66, methods=("lp",), bin
                 spec = Specimen(ends=e, mu=mu, courses=courses, blocks=blocks)
                 mechanism_figure(out / f"mechanism_lp_{e}_{i}.png", spec, rs[i],
                                  f"LP, ends {e}, alpha {ORIENTATIONS[i][1]}")
+        if key.startswith("_dem_"):
+            e = key[5:]
+            for i, r in enumerate(rs):
+                if r and r.get("corners"):
+                    dem_figure(out / f"mechanism_dem_{e}_{i}.png", Specimen(ends=e, mu=mu, courses=courses,
+                               blocks=blocks), r, f"DEM, ends {e}, alpha {ORIENTATIONS[i][1]}")
     return columns
+
+
+def dem_figure(path, specimen, result, title):
+    """The DEM's blocks a little after collapse (their corners as the run left them)."""
+    import numpy as np
+
+    a = Assembly.from_specimen(specimen)
+    corners = [np.array(c) for c in result["corners"]]
+    draw.figure(a.blocks, path, corners, result["moving"], title=title, fixed=a.fixed)
 
 
 def _default_protocol():
