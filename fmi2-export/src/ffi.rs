@@ -35,7 +35,7 @@ unsafe fn instance<'a, S: Slave>(c: fmi2Component) -> Option<&'a Instance<S>> {
 }
 
 /// Runs `body` on the instance: state, logging, errors and panics handled.
-pub(crate) fn call<S: Slave>(
+pub fn call<S: Slave>(
     c: fmi2Component,
     function: &'static str,
     body: impl FnOnce(&mut Inner<S>) -> Res<Status>,
@@ -69,7 +69,7 @@ pub(crate) fn call<S: Slave>(
     .unwrap_or(fmi2Fatal)
 }
 
-pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Res<&'a [T]> {
+pub unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Res<&'a [T]> {
     if n == 0 {
         Ok(&[])
     } else if p.is_null() {
@@ -80,7 +80,7 @@ pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Res<&'a 
     }
 }
 
-pub(crate) unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Res<&'a mut [T]> {
+pub unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Res<&'a mut [T]> {
     if n == 0 {
         Ok(&mut [])
     } else if p.is_null() {
@@ -91,7 +91,7 @@ pub(crate) unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Res<&'
     }
 }
 
-unsafe fn out<'a, T>(p: *mut T, what: &str) -> Res<&'a mut T> {
+pub unsafe fn out<'a, T>(p: *mut T, what: &str) -> Res<&'a mut T> {
     if p.is_null() {
         error(format!("{what} is NULL"))
     } else {
@@ -108,7 +108,7 @@ pub fn get_version() -> *const c_char {
     c"2.0".as_ptr()
 }
 
-unsafe fn c_str(p: fmi2String) -> Option<String> {
+pub unsafe fn c_str(p: fmi2String) -> Option<String> {
     if p.is_null() {
         None
     } else {
