@@ -219,3 +219,68 @@ def test_early_return_stops_at_each_impact_of_a_rigid_block(fmu3_path):
     err = np.abs(np.array(at_impact[:len(exact)]) - exact) / np.array(exact)
     print(f"\nearly returns at {len(exact)} impacts: worst relative error {err.max():.1e} against Housner")
     assert err.max() < 1e-7
+
+
+def _overturn_2_0(fmu_path, params, ag, h):
+    """fmi2LastSuccessfulTime of the step that discards at overturning."""
+    from fmpy.fmi2 import fmi2LastSuccessfulTime, fmi2Terminated
+
+    md = read_model_description(fmu_path)
+    s = FMU2Slave(guid=md.guid, unzipDirectory=extract(fmu_path), modelIdentifier="RockingBlock",
+                  instanceName="ov2")
+    s.instantiate()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    for name, value in params.items():
+        (s.setInteger if isinstance(value, int) else s.setReal)(_vr(md, [name]), [value])
+    s.exitInitializationMode()
+    s.setReal(_vr(md, ["ag"]), [ag])
+    t = 0.0
+    while True:
+        try:
+            s.doStep(t, h)
+        except FMICallException:
+            break
+        t += h
+    assert s.getBooleanStatus(fmi2Terminated)
+    t_ov = s.getRealStatus(fmi2LastSuccessfulTime)
+    s.terminate()
+    s.freeInstance()
+    return t_ov
+
+
+@pytest.mark.parametrize("early", [False, True])
+def test_overturning_ends_the_run_at_the_2_0_time(fmu_path, fmu3_path, early):
+    """A rigid block under a constant ag of twice g tan(alpha) overturns;
+    3.0 ends the run with terminateSimulation at the time 2.0 discards at
+    (bit for bit without early return, where the steps are the same)."""
+    params = start_values(rigid_block(theta_over_alpha=0.0))
+    ag, h = 2 * 9.81 * 0.25, 0.05
+    t_ov2 = _overturn_2_0(fmu_path, params, ag, h)
+    s, md, messages = _slave3(fmu3_path, eventModeUsed=early, earlyReturnAllowed=early)
+    s.enterInitializationMode(startTime=0.0)
+    for name, value in params.items():
+        (s.setInt64 if isinstance(value, int) else s.setFloat64)(_vr(md, [name]), [value])
+    s.exitInitializationMode()
+    if early:
+        s.updateDiscreteStates()
+        s.enterStepMode()
+    s.setFloat64(_vr(md, ["ag"]), [ag])
+    t, returns = 0.0, []
+    while True:
+        event, terminate, early_return, last = s.doStep(t, h)
+        if terminate:
+            break
+        if early_return:  # uplift at the start
+            returns.append(last)
+            s.enterEventMode()
+            s.updateDiscreteStates()
+            s.enterStepMode()
+        t = last
+    assert s.getBoolean(_vr(md, ["overturned"]))[0]
+    s.terminate()
+    s.freeInstance()
+    if early:
+        assert abs(last - t_ov2) < 1e-9 * t_ov2
+    else:
+        assert last == t_ov2 and returns == []
