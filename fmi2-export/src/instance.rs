@@ -62,11 +62,7 @@ pub struct Inner<S: Slave> {
 unsafe impl<S: Slave> Send for Inner<S> {}
 
 impl<S: Slave> Inner<S> {
-    pub fn new(
-        logger: Logger,
-        resource_dir: Option<PathBuf>,
-        model_exchange: bool,
-    ) -> Inner<S> {
+    pub fn new(logger: Logger, resource_dir: Option<PathBuf>, model_exchange: bool) -> Inner<S> {
         let md = S::description();
         let mut inner = Inner {
             md,

@@ -235,7 +235,9 @@ pub unsafe fn set_float64<S: Slave>(
         let vr = unsafe { slice(vr, n, "valueReferences") }?;
         let value = unsafe { slice(value, n, "values") }?;
         if let Some(&v) = vr.iter().find(|&&v| added(i.md, v).is_some()) {
-            return error(format!("value reference {v} (time or an event indicator) cannot be set"));
+            return error(format!(
+                "value reference {v} (time or an event indicator) cannot be set"
+            ));
         }
         i.set_real(vr, value)
     })
@@ -405,10 +407,17 @@ pub unsafe fn no_such_type<S: Slave>(
         match vr.first() {
             None => Ok(Status::Ok),
             Some(&v) => {
-                let what = i.md.variables.iter().find(|x| x.vr == v).map(|x| x.ty.base());
+                let what =
+                    i.md.variables
+                        .iter()
+                        .find(|x| x.vr == v)
+                        .map(|x| x.ty.base());
                 error(format!(
                     "value reference {v} is no variable of this type{}",
-                    what.map_or(String::new(), |b: BaseType| format!(" (it is a {})", b.as_str()))
+                    what.map_or(String::new(), |b: BaseType| format!(
+                        " (it is a {})",
+                        b.as_str()
+                    ))
                 ))
             }
         }

@@ -44,7 +44,11 @@ pub unsafe fn do_step<S: Slave>(
         // 2.0 discards the step.
         let result = match result {
             Err(f) if f.status == Status::Discard && i.terminated => {
-                i.logger.log(Status::Ok, LOG_EVENTS, &format!("fmi3DoStep: {}", f.message));
+                i.logger.log(
+                    Status::Ok,
+                    LOG_EVENTS,
+                    &format!("fmi3DoStep: {}", f.message),
+                );
                 Ok((Status::Ok, i.last_successful_time < t + h))
             }
             r => r,
@@ -125,7 +129,9 @@ pub unsafe fn update_discrete_states<S: Slave>(c: fmi3Instance, r: UpdateResults
 }
 
 pub unsafe fn enter_continuous_time_mode<S: Slave>(c: fmi3Instance) -> fmi3Status {
-    call::<S>(c, "fmi3EnterContinuousTimeMode", |i| i.enter_continuous_time_mode())
+    call::<S>(c, "fmi3EnterContinuousTimeMode", |i| {
+        i.enter_continuous_time_mode()
+    })
 }
 
 pub unsafe fn completed_integrator_step<S: Slave>(
@@ -147,7 +153,11 @@ pub unsafe fn set_time<S: Slave>(c: fmi3Instance, time: f64) -> fmi3Status {
     call::<S>(c, "fmi3SetTime", |i| i.set_time(time))
 }
 
-pub unsafe fn set_continuous_states<S: Slave>(c: fmi3Instance, x: *const f64, n: usize) -> fmi3Status {
+pub unsafe fn set_continuous_states<S: Slave>(
+    c: fmi3Instance,
+    x: *const f64,
+    n: usize,
+) -> fmi3Status {
     call::<S>(c, "fmi3SetContinuousStates", |i| {
         let x = unsafe { slice(x, n, "continuousStates") }?;
         i.set_continuous_states(x)
@@ -166,24 +176,45 @@ macro_rules! reals_fn {
     };
 }
 
-reals_fn!(get_continuous_states, get_continuous_states, "fmi3GetContinuousStates", "continuousStates");
+reals_fn!(
+    get_continuous_states,
+    get_continuous_states,
+    "fmi3GetContinuousStates",
+    "continuousStates"
+);
 reals_fn!(
     get_nominals_of_continuous_states,
     get_nominals_of_continuous_states,
     "fmi3GetNominalsOfContinuousStates",
     "nominals"
 );
-reals_fn!(get_derivatives, get_derivatives, "fmi3GetContinuousStateDerivatives", "derivatives");
-reals_fn!(get_event_indicators, get_event_indicators, "fmi3GetEventIndicators", "eventIndicators");
+reals_fn!(
+    get_derivatives,
+    get_derivatives,
+    "fmi3GetContinuousStateDerivatives",
+    "derivatives"
+);
+reals_fn!(
+    get_event_indicators,
+    get_event_indicators,
+    "fmi3GetEventIndicators",
+    "eventIndicators"
+);
 
-pub unsafe fn get_number_of_continuous_states<S: Slave>(c: fmi3Instance, n: *mut usize) -> fmi3Status {
+pub unsafe fn get_number_of_continuous_states<S: Slave>(
+    c: fmi3Instance,
+    n: *mut usize,
+) -> fmi3Status {
     call::<S>(c, "fmi3GetNumberOfContinuousStates", |i| {
         *unsafe { out(n, "nContinuousStates") }? = i.continuous_state_count();
         Ok(Status::Ok)
     })
 }
 
-pub unsafe fn get_number_of_event_indicators<S: Slave>(c: fmi3Instance, n: *mut usize) -> fmi3Status {
+pub unsafe fn get_number_of_event_indicators<S: Slave>(
+    c: fmi3Instance,
+    n: *mut usize,
+) -> fmi3Status {
     call::<S>(c, "fmi3GetNumberOfEventIndicators", |i| {
         *unsafe { out(n, "nEventIndicators") }? = i.event_indicator_count();
         Ok(Status::Ok)

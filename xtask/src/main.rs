@@ -68,7 +68,7 @@ const SHEAR_FRAME: Model = Model {
     identifier: "ShearFrame",
     bins: &[],
     companions: &[],
-    fmi3: false,
+    fmi3: true,
 };
 
 /// The FMUs `cargo xtask fmu` writes.
@@ -431,7 +431,11 @@ fn package(model: &Model) -> Res<(PathBuf, Built, Vec<&'static str>)> {
     let xml3 = read(&built.out_dir.join("modelDescription3.xml"))?;
     let mut entries3 = vec![
         ("modelDescription.xml".to_string(), xml3, 0o644),
-        ("documentation/index.html".to_string(), entries[1].1.clone(), 0o644),
+        (
+            "documentation/index.html".to_string(),
+            entries[1].1.clone(),
+            0o644,
+        ),
     ];
     let mut platforms = Vec::new();
     let mut add = |platform: &'static str, library: &Path, seconds: f64| -> Res<()> {
@@ -449,7 +453,11 @@ fn package(model: &Model) -> Res<(PathBuf, Built, Vec<&'static str>)> {
             data.len(),
             library.display()
         );
-        let name3 = format!("binaries/{}/{}.{ext}", fmi3_platform(platform), model.identifier);
+        let name3 = format!(
+            "binaries/{}/{}.{ext}",
+            fmi3_platform(platform),
+            model.identifier
+        );
         entries3.push((name3, data.clone(), 0o755));
         entries.push((name, data, 0o755));
         platforms.push(platform);
