@@ -35,6 +35,9 @@ unsafe fn instance<'a, S: Slave>(c: fmi2Component) -> Option<&'a Instance<S>> {
 }
 
 /// Runs `body` on the instance: state, logging, errors and panics handled.
+/// Public for `fmi3-export`, which serves FMI 3.0 on the same instances; `c`
+/// is only dereferenced after `instance` recognised it as one of ours.
+#[allow(clippy::not_unsafe_ptr_arg_deref)]
 pub fn call<S: Slave>(
     c: fmi2Component,
     function: &'static str,
