@@ -327,27 +327,42 @@ pub unsafe fn set_string<S: Slave>(
     })
 }
 
-pub unsafe fn get_fmu_state<S: Slave>(c: fmi2Component, state: *mut fmi2FMUstate) -> fmi2Status {
-    call::<S>(c, "fmi2GetFMUstate", |i| {
+// The FMU-state functions have the same C shapes in FMI 2.0 and 3.0:
+// `function` is the standard's name, for the messages.
+
+pub unsafe fn get_fmu_state<S: Slave>(
+    c: fmi2Component,
+    state: *mut fmi2FMUstate,
+    function: &'static str,
+) -> fmi2Status {
+    call::<S>(c, function, |i| {
         let state = unsafe { out(state, "FMUstate") }?;
         let p = i.get_fmu_state(*state as usize)?;
         *state = p as fmi2FMUstate;
-        i.trace(|| format!("fmi2GetFMUstate -> {p:#x}"));
+        i.trace(|| format!("{function} -> {p:#x}"));
         Ok(Status::Ok)
     })
 }
 
-pub unsafe fn set_fmu_state<S: Slave>(c: fmi2Component, state: fmi2FMUstate) -> fmi2Status {
-    call::<S>(c, "fmi2SetFMUstate", |i| {
-        i.trace(|| format!("fmi2SetFMUstate({:#x})", state as usize));
+pub unsafe fn set_fmu_state<S: Slave>(
+    c: fmi2Component,
+    state: fmi2FMUstate,
+    function: &'static str,
+) -> fmi2Status {
+    call::<S>(c, function, |i| {
+        i.trace(|| format!("{function}({:#x})", state as usize));
         i.set_fmu_state(state as usize)
     })
 }
 
-pub unsafe fn free_fmu_state<S: Slave>(c: fmi2Component, state: *mut fmi2FMUstate) -> fmi2Status {
-    call::<S>(c, "fmi2FreeFMUstate", |i| {
+pub unsafe fn free_fmu_state<S: Slave>(
+    c: fmi2Component,
+    state: *mut fmi2FMUstate,
+    function: &'static str,
+) -> fmi2Status {
+    call::<S>(c, function, |i| {
         let state = unsafe { out(state, "FMUstate") }?;
-        i.trace(|| format!("fmi2FreeFMUstate({:#x})", *state as usize));
+        i.trace(|| format!("{function}({:#x})", *state as usize));
         let s = i.free_fmu_state(*state as usize)?;
         *state = ptr::null_mut();
         Ok(s)
@@ -358,8 +373,9 @@ pub unsafe fn serialized_fmu_state_size<S: Slave>(
     c: fmi2Component,
     state: fmi2FMUstate,
     size: *mut usize,
+    function: &'static str,
 ) -> fmi2Status {
-    call::<S>(c, "fmi2SerializedFMUstateSize", |i| {
+    call::<S>(c, function, |i| {
         let size = unsafe { out(size, "size") }?;
         *size = i.serialized_size(state as usize)?;
         Ok(Status::Ok)
@@ -369,24 +385,26 @@ pub unsafe fn serialized_fmu_state_size<S: Slave>(
 pub unsafe fn serialize_fmu_state<S: Slave>(
     c: fmi2Component,
     state: fmi2FMUstate,
-    bytes: *mut fmi2Byte,
+    bytes: *mut u8,
     size: usize,
+    function: &'static str,
 ) -> fmi2Status {
-    call::<S>(c, "fmi2SerializeFMUstate", |i| {
-        let buf = unsafe { slice_mut(bytes as *mut u8, size, "serializedState") }?;
+    call::<S>(c, function, |i| {
+        let buf = unsafe { slice_mut(bytes, size, "serializedState") }?;
         i.serialize_fmu_state(state as usize, buf)
     })
 }
 
 pub unsafe fn deserialize_fmu_state<S: Slave>(
     c: fmi2Component,
-    bytes: *const fmi2Byte,
+    bytes: *const u8,
     size: usize,
     state: *mut fmi2FMUstate,
+    function: &'static str,
 ) -> fmi2Status {
-    call::<S>(c, "fmi2DeSerializeFMUstate", |i| {
+    call::<S>(c, function, |i| {
         let state = unsafe { out(state, "FMUstate") }?;
-        let buf = unsafe { slice(bytes as *const u8, size, "serializedState") }?;
+        let buf = unsafe { slice(bytes, size, "serializedState") }?;
         let p = i.deserialize_fmu_state(buf)?;
         *state = p as fmi2FMUstate;
         Ok(Status::Ok)

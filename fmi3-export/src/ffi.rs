@@ -13,7 +13,7 @@ use std::ptr;
 use std::sync::Mutex;
 
 use fmi2_export::fail::{error, Res};
-use fmi2_export::ffi::{c_str, call, out, slice, slice_mut};
+use fmi2_export::ffi::{c_str, call, slice, slice_mut};
 use fmi2_export::instance::{Inner, Instance, INSTANCE_MAGIC};
 use fmi2_export::logging::{Callback, Logger};
 use fmi2_export::machine::Machine;
@@ -446,66 +446,5 @@ pub unsafe fn get_output_derivatives<S: Slave>(
         let order = unsafe { slice(order, n, "orders") }?;
         let value = unsafe { slice_mut(value, n, "values") }?;
         i.get_real_output_derivatives(vr, order, value)
-    })
-}
-
-// ----- FMU states -------------------------------------------------------
-
-pub unsafe fn get_fmu_state<S: Slave>(c: fmi3Instance, state: *mut fmi3FMUState) -> fmi3Status {
-    call::<S>(c, "fmi3GetFMUState", |i| {
-        let state = unsafe { out(state, "FMUState") }?;
-        *state = i.get_fmu_state(*state as usize)? as fmi3FMUState;
-        Ok(Status::Ok)
-    })
-}
-
-pub unsafe fn set_fmu_state<S: Slave>(c: fmi3Instance, state: fmi3FMUState) -> fmi3Status {
-    call::<S>(c, "fmi3SetFMUState", |i| i.set_fmu_state(state as usize))
-}
-
-pub unsafe fn free_fmu_state<S: Slave>(c: fmi3Instance, state: *mut fmi3FMUState) -> fmi3Status {
-    call::<S>(c, "fmi3FreeFMUState", |i| {
-        let state = unsafe { out(state, "FMUState") }?;
-        let s = i.free_fmu_state(*state as usize)?;
-        *state = ptr::null_mut();
-        Ok(s)
-    })
-}
-
-pub unsafe fn serialized_fmu_state_size<S: Slave>(
-    c: fmi3Instance,
-    state: fmi3FMUState,
-    size: *mut usize,
-) -> fmi3Status {
-    call::<S>(c, "fmi3SerializedFMUStateSize", |i| {
-        let size = unsafe { out(size, "size") }?;
-        *size = i.serialized_size(state as usize)?;
-        Ok(Status::Ok)
-    })
-}
-
-pub unsafe fn serialize_fmu_state<S: Slave>(
-    c: fmi3Instance,
-    state: fmi3FMUState,
-    bytes: *mut fmi3Byte,
-    size: usize,
-) -> fmi3Status {
-    call::<S>(c, "fmi3SerializeFMUState", |i| {
-        let buf = unsafe { slice_mut(bytes, size, "serializedState") }?;
-        i.serialize_fmu_state(state as usize, buf)
-    })
-}
-
-pub unsafe fn deserialize_fmu_state<S: Slave>(
-    c: fmi3Instance,
-    bytes: *const fmi3Byte,
-    size: usize,
-    state: *mut fmi3FMUState,
-) -> fmi3Status {
-    call::<S>(c, "fmi3DeserializeFMUState", |i| {
-        let state = unsafe { out(state, "FMUState") }?;
-        let buf = unsafe { slice(bytes, size, "serializedState") }?;
-        *state = i.deserialize_fmu_state(buf)? as fmi3FMUState;
-        Ok(Status::Ok)
     })
 }

@@ -84,6 +84,21 @@ macro_rules! __simple {
     )*};
 }
 
+/// The FMU-state functions: `fmi2-export`'s, which have the same C shapes,
+/// called with the 3.0 name.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __states {
+    ($slave:ty, $($name:ident => $f:ident($($arg:ident: $ty:ty),*)),* $(,)?) => {$(
+        #[no_mangle]
+        pub unsafe extern "C" fn $name(
+            c: $crate::types::fmi3Instance, $($arg: $ty),*
+        ) -> $crate::types::fmi3Status {
+            unsafe { $crate::fmi2_export::ffi::$f::<$slave>(c, $($arg,)* stringify!($name)) }
+        }
+    )*};
+}
+
 /// Exports the FMI 3.0 functions for the model type `$slave` (which
 /// implements `fmi2_export::Slave`). Call once, at the root of a cdylib.
 #[macro_export]
@@ -209,14 +224,6 @@ macro_rules! export_fmi3 {
             fmi3ExitInitializationMode => ffi::exit_initialization_mode(),
             fmi3Terminate => ffi::terminate(),
             fmi3Reset => ffi::reset(),
-            fmi3GetFMUState => ffi::get_fmu_state(state: *mut $crate::types::fmi3FMUState),
-            fmi3SetFMUState => ffi::set_fmu_state(state: $crate::types::fmi3FMUState),
-            fmi3FreeFMUState => ffi::free_fmu_state(state: *mut $crate::types::fmi3FMUState),
-            fmi3SerializedFMUStateSize => ffi::serialized_fmu_state_size(state: $crate::types::fmi3FMUState, size: *mut usize),
-            fmi3SerializeFMUState => ffi::serialize_fmu_state(
-                state: $crate::types::fmi3FMUState, bytes: *mut $crate::types::fmi3Byte, size: usize),
-            fmi3DeserializeFMUState => ffi::deserialize_fmu_state(
-                bytes: *const $crate::types::fmi3Byte, size: usize, state: *mut $crate::types::fmi3FMUState),
             fmi3GetOutputDerivatives => ffi::get_output_derivatives(
                 vr: *const $crate::types::fmi3ValueReference, n: usize, orders: *const i32, values: *mut f64, n_values: usize),
             fmi3EnterEventMode => modes::enter_event_mode(),
@@ -232,6 +239,18 @@ macro_rules! export_fmi3 {
             fmi3GetEventIndicators => modes::get_event_indicators(x: *mut f64, n: usize),
             fmi3GetNumberOfContinuousStates => modes::get_number_of_continuous_states(n: *mut usize),
             fmi3GetNumberOfEventIndicators => modes::get_number_of_event_indicators(n: *mut usize),
+        );
+
+        $crate::__states!($slave,
+            fmi3GetFMUState => get_fmu_state(state: *mut $crate::types::fmi3FMUState),
+            fmi3SetFMUState => set_fmu_state(state: $crate::types::fmi3FMUState),
+            fmi3FreeFMUState => free_fmu_state(state: *mut $crate::types::fmi3FMUState),
+            fmi3SerializedFMUStateSize => serialized_fmu_state_size(
+                state: $crate::types::fmi3FMUState, size: *mut usize),
+            fmi3SerializeFMUState => serialize_fmu_state(
+                state: $crate::types::fmi3FMUState, bytes: *mut $crate::types::fmi3Byte, size: usize),
+            fmi3DeserializeFMUState => deserialize_fmu_state(
+                bytes: *const $crate::types::fmi3Byte, size: usize, state: *mut $crate::types::fmi3FMUState),
         );
 
         $crate::__values!($slave,
