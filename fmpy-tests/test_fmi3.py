@@ -136,7 +136,7 @@ def _slave3(path, **flags):
     return s, md, messages
 
 
-def test_fmu_state_serializes_and_round_trips(fmu3_path):
+def test_fmu_state_round_trips_and_output_derivatives(fmu3_path):
     s, md, _ = _slave3(fmu3_path)
     s.enterInitializationMode(startTime=0.0)
     s.setFloat64(_vr(md, CASE), list(CASE.values()))
@@ -152,6 +152,9 @@ def test_fmu_state_serializes_and_round_trips(fmu3_path):
         return rows
 
     run(0.0, 50)
+    # output derivatives as in 2.0: d theta / dt is omega
+    theta, omega = _vr(md, ["theta", "omega"])
+    assert s.getOutputDerivatives([theta], [1]) == s.getFloat64([omega])
     bytes_ = s.serializeFMUState(s.getFMUState())
     first = run(0.5, 50)
     state = s.deserializeFMUState(bytes_)

@@ -319,12 +319,17 @@ pub unsafe fn set_string<S: Slave>(
     call::<S>(c, "fmi2SetString", |i| {
         let vr = unsafe { slice(vr, n, "vr") }?;
         let value = unsafe { slice(value, n, "value") }?;
-        let strings: Vec<Option<CString>> = value
-            .iter()
-            .map(|&p| (!p.is_null()).then(|| unsafe { CStr::from_ptr(p) }.to_owned()))
-            .collect();
-        i.set_string(vr, &strings)
+        i.set_string(vr, &unsafe { owned_strings(value) })
     })
+}
+
+/// The host's strings, copied (`None` for NULL, which `set_string` refuses).
+pub unsafe fn owned_strings(value: &[fmi2String]) -> Vec<Option<CString>> {
+    value
+        .iter()
+        // SAFETY: non-null NUL-terminated strings from the host.
+        .map(|&p| (!p.is_null()).then(|| unsafe { CStr::from_ptr(p) }.to_owned()))
+        .collect()
 }
 
 // The FMU-state functions have the same C shapes in FMI 2.0 and 3.0:

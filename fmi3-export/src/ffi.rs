@@ -6,14 +6,14 @@
 
 #![allow(clippy::missing_safety_doc, clippy::too_many_arguments)]
 
-use std::ffi::{c_char, CStr, CString};
+use std::ffi::{c_char, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 use std::ptr;
 use std::sync::Mutex;
 
 use fmi2_export::fail::{error, Res};
-use fmi2_export::ffi::{c_str, call, slice, slice_mut};
+use fmi2_export::ffi::{c_str, call, owned_strings, slice, slice_mut};
 use fmi2_export::instance::{Inner, Instance, INSTANCE_MAGIC};
 use fmi2_export::logging::{Callback, Logger};
 use fmi2_export::machine::Machine;
@@ -386,11 +386,7 @@ pub unsafe fn set_string<S: Slave>(
         check_n_values(n, n_values)?;
         let vr = unsafe { slice(vr, n, "valueReferences") }?;
         let value = unsafe { slice(value, n, "values") }?;
-        let strings: Vec<Option<CString>> = value
-            .iter()
-            .map(|&p| (!p.is_null()).then(|| unsafe { CStr::from_ptr(p) }.to_owned()))
-            .collect();
-        i.set_string(vr, &strings)
+        i.set_string(vr, &unsafe { owned_strings(value) })
     })
 }
 
