@@ -35,7 +35,10 @@ unsafe fn instance<'a, S: Slave>(c: fmi2Component) -> Option<&'a Instance<S>> {
 }
 
 /// Runs `body` on the instance: state, logging, errors and panics handled.
-pub(crate) fn call<S: Slave>(
+/// Public for `fmi3-export`, which serves FMI 3.0 on the same instances; `c`
+/// is only dereferenced after `instance` recognised it as one of ours.
+#[allow(clippy::not_unsafe_ptr_arg_deref)]
+pub fn call<S: Slave>(
     c: fmi2Component,
     function: &'static str,
     body: impl FnOnce(&mut Inner<S>) -> Res<Status>,
@@ -69,7 +72,7 @@ pub(crate) fn call<S: Slave>(
     .unwrap_or(fmi2Fatal)
 }
 
-pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Res<&'a [T]> {
+pub unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Res<&'a [T]> {
     if n == 0 {
         Ok(&[])
     } else if p.is_null() {
@@ -80,7 +83,7 @@ pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Res<&'a 
     }
 }
 
-pub(crate) unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Res<&'a mut [T]> {
+pub unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Res<&'a mut [T]> {
     if n == 0 {
         Ok(&mut [])
     } else if p.is_null() {
@@ -91,7 +94,7 @@ pub(crate) unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Res<&'
     }
 }
 
-unsafe fn out<'a, T>(p: *mut T, what: &str) -> Res<&'a mut T> {
+pub unsafe fn out<'a, T>(p: *mut T, what: &str) -> Res<&'a mut T> {
     if p.is_null() {
         error(format!("{what} is NULL"))
     } else {
@@ -108,7 +111,7 @@ pub fn get_version() -> *const c_char {
     c"2.0".as_ptr()
 }
 
-unsafe fn c_str(p: fmi2String) -> Option<String> {
+pub unsafe fn c_str(p: fmi2String) -> Option<String> {
     if p.is_null() {
         None
     } else {
@@ -326,35 +329,55 @@ pub unsafe fn set_string<S: Slave>(
     call::<S>(c, "fmi2SetString", |i| {
         let vr = unsafe { slice(vr, n, "vr") }?;
         let value = unsafe { slice(value, n, "value") }?;
-        let strings: Vec<Option<CString>> = value
-            .iter()
-            .map(|&p| (!p.is_null()).then(|| unsafe { CStr::from_ptr(p) }.to_owned()))
-            .collect();
-        i.set_string(vr, &strings)
+        i.set_string(vr, &unsafe { owned_strings(value) })
     })
 }
 
-pub unsafe fn get_fmu_state<S: Slave>(c: fmi2Component, state: *mut fmi2FMUstate) -> fmi2Status {
-    call::<S>(c, "fmi2GetFMUstate", |i| {
+/// The host's strings, copied (`None` for NULL, which `set_string` refuses).
+pub unsafe fn owned_strings(value: &[fmi2String]) -> Vec<Option<CString>> {
+    value
+        .iter()
+        // SAFETY: non-null NUL-terminated strings from the host.
+        .map(|&p| (!p.is_null()).then(|| unsafe { CStr::from_ptr(p) }.to_owned()))
+        .collect()
+}
+
+// The FMU-state functions have the same C shapes in FMI 2.0 and 3.0:
+// `function` is the standard's name, for the messages.
+
+pub unsafe fn get_fmu_state<S: Slave>(
+    c: fmi2Component,
+    state: *mut fmi2FMUstate,
+    function: &'static str,
+) -> fmi2Status {
+    call::<S>(c, function, |i| {
         let state = unsafe { out(state, "FMUstate") }?;
         let p = i.get_fmu_state(*state as usize)?;
         *state = p as fmi2FMUstate;
-        i.trace(|| format!("fmi2GetFMUstate -> {p:#x}"));
+        i.trace(|| format!("{function} -> {p:#x}"));
         Ok(Status::Ok)
     })
 }
 
-pub unsafe fn set_fmu_state<S: Slave>(c: fmi2Component, state: fmi2FMUstate) -> fmi2Status {
-    call::<S>(c, "fmi2SetFMUstate", |i| {
-        i.trace(|| format!("fmi2SetFMUstate({:#x})", state as usize));
+pub unsafe fn set_fmu_state<S: Slave>(
+    c: fmi2Component,
+    state: fmi2FMUstate,
+    function: &'static str,
+) -> fmi2Status {
+    call::<S>(c, function, |i| {
+        i.trace(|| format!("{function}({:#x})", state as usize));
         i.set_fmu_state(state as usize)
     })
 }
 
-pub unsafe fn free_fmu_state<S: Slave>(c: fmi2Component, state: *mut fmi2FMUstate) -> fmi2Status {
-    call::<S>(c, "fmi2FreeFMUstate", |i| {
+pub unsafe fn free_fmu_state<S: Slave>(
+    c: fmi2Component,
+    state: *mut fmi2FMUstate,
+    function: &'static str,
+) -> fmi2Status {
+    call::<S>(c, function, |i| {
         let state = unsafe { out(state, "FMUstate") }?;
-        i.trace(|| format!("fmi2FreeFMUstate({:#x})", *state as usize));
+        i.trace(|| format!("{function}({:#x})", *state as usize));
         let s = i.free_fmu_state(*state as usize)?;
         *state = ptr::null_mut();
         Ok(s)
@@ -365,8 +388,9 @@ pub unsafe fn serialized_fmu_state_size<S: Slave>(
     c: fmi2Component,
     state: fmi2FMUstate,
     size: *mut usize,
+    function: &'static str,
 ) -> fmi2Status {
-    call::<S>(c, "fmi2SerializedFMUstateSize", |i| {
+    call::<S>(c, function, |i| {
         let size = unsafe { out(size, "size") }?;
         *size = i.serialized_size(state as usize)?;
         Ok(Status::Ok)
@@ -376,24 +400,26 @@ pub unsafe fn serialized_fmu_state_size<S: Slave>(
 pub unsafe fn serialize_fmu_state<S: Slave>(
     c: fmi2Component,
     state: fmi2FMUstate,
-    bytes: *mut fmi2Byte,
+    bytes: *mut u8,
     size: usize,
+    function: &'static str,
 ) -> fmi2Status {
-    call::<S>(c, "fmi2SerializeFMUstate", |i| {
-        let buf = unsafe { slice_mut(bytes as *mut u8, size, "serializedState") }?;
+    call::<S>(c, function, |i| {
+        let buf = unsafe { slice_mut(bytes, size, "serializedState") }?;
         i.serialize_fmu_state(state as usize, buf)
     })
 }
 
 pub unsafe fn deserialize_fmu_state<S: Slave>(
     c: fmi2Component,
-    bytes: *const fmi2Byte,
+    bytes: *const u8,
     size: usize,
     state: *mut fmi2FMUstate,
+    function: &'static str,
 ) -> fmi2Status {
-    call::<S>(c, "fmi2DeSerializeFMUstate", |i| {
+    call::<S>(c, function, |i| {
         let state = unsafe { out(state, "FMUstate") }?;
-        let buf = unsafe { slice(bytes as *const u8, size, "serializedState") }?;
+        let buf = unsafe { slice(bytes, size, "serializedState") }?;
         let p = i.deserialize_fmu_state(buf)?;
         *state = p as fmi2FMUstate;
         Ok(Status::Ok)

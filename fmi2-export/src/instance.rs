@@ -21,33 +21,38 @@ use Machine as M;
 /// An instance as the host sees it (`fmi2Component`).
 #[repr(C)]
 pub struct Instance<S: Slave> {
-    pub(crate) magic: u64,
-    pub(crate) guid: &'static str,
-    pub(crate) inner: Mutex<Inner<S>>,
+    pub magic: u64,
+    pub guid: &'static str,
+    pub inner: Mutex<Inner<S>>,
 }
 
-pub(crate) const INSTANCE_MAGIC: u64 = u64::from_le_bytes(*b"FMI2INST");
+pub const INSTANCE_MAGIC: u64 = u64::from_le_bytes(*b"FMI2INST");
 
 pub struct Inner<S: Slave> {
-    pub(crate) md: &'static ModelDescription,
-    pub(crate) logger: Logger,
-    pub(crate) machine: Machine,
-    pub(crate) values: Vec<Option<Scalar>>,
-    pub(crate) derivatives: Vec<f64>,
-    pub(crate) setup: Setup,
-    pub(crate) time: f64,
-    pub(crate) last_successful_time: f64,
-    pub(crate) terminated: bool,
-    pub(crate) slave: Option<S>,
+    pub md: &'static ModelDescription,
+    pub logger: Logger,
+    pub machine: Machine,
+    pub values: Vec<Option<Scalar>>,
+    pub derivatives: Vec<f64>,
+    pub setup: Setup,
+    pub time: f64,
+    pub last_successful_time: f64,
+    pub terminated: bool,
+    pub slave: Option<S>,
     /// The stored values changed since `slave` was built.
-    pub(crate) stale: bool,
+    pub stale: bool,
     /// The instance is of fmuType fmi2ModelExchange.
-    pub(crate) model_exchange: bool,
+    pub model_exchange: bool,
     /// Live `fmi2FMUstate` pointers handed out by this instance: a membership
     /// registry, ordered rather than hashed, so that the FMU never asks the OS
     /// for random hasher keys (std's `HashSet` seeds its `RandomState` so).
-    pub(crate) states: BTreeSet<usize>,
-    pub(crate) resource_dir: Option<PathBuf>,
+    pub states: BTreeSet<usize>,
+    pub resource_dir: Option<PathBuf>,
+    /// FMI 3.0 co-simulation: the host uses event mode (`eventModeUsed`).
+    pub event_mode_used: bool,
+    /// FMI 3.0 co-simulation: `fmi3DoStep` may stop at an event
+    /// (`earlyReturnAllowed`).
+    pub early_return_allowed: bool,
 }
 
 // SAFETY: the raw pointers in `Logger` (host environment and callback) are
@@ -57,11 +62,7 @@ pub struct Inner<S: Slave> {
 unsafe impl<S: Slave> Send for Inner<S> {}
 
 impl<S: Slave> Inner<S> {
-    pub(crate) fn new(
-        logger: Logger,
-        resource_dir: Option<PathBuf>,
-        model_exchange: bool,
-    ) -> Inner<S> {
+    pub fn new(logger: Logger, resource_dir: Option<PathBuf>, model_exchange: bool) -> Inner<S> {
         let md = S::description();
         let mut inner = Inner {
             md,
@@ -82,12 +83,14 @@ impl<S: Slave> Inner<S> {
             model_exchange,
             states: BTreeSet::new(),
             resource_dir,
+            event_mode_used: false,
+            early_return_allowed: false,
         };
         inner.reset_values();
         inner
     }
 
-    pub(crate) fn reset_values(&mut self) {
+    pub fn reset_values(&mut self) {
         self.values = self.md.variables.iter().map(start_value).collect();
         self.derivatives = vec![0.0; self.md.variables.len()];
         self.setup = Setup {
@@ -107,14 +110,14 @@ impl<S: Slave> Inner<S> {
     }
 
     /// Logs a trace of a call (category logAll), formatting only if wanted.
-    pub(crate) fn trace(&self, f: impl FnOnce() -> String) {
+    pub fn trace(&self, f: impl FnOnce() -> String) {
         if self.logger.wants(Status::Ok, LOG_ALL) {
             self.logger.log(Status::Ok, LOG_ALL, &f());
         }
     }
 
     /// Reports a failed call and moves to the error state for fmi2Error.
-    pub(crate) fn fail(&mut self, function: &str, f: Fail) -> fmi2Status {
+    pub fn fail(&mut self, function: &str, f: Fail) -> fmi2Status {
         self.logger
             .status(f.status, &format!("{function}: {}", f.message));
         match f.status {
@@ -127,7 +130,7 @@ impl<S: Slave> Inner<S> {
 
     /// The call is allowed in the current state (the function name is
     /// prefixed to the message by `fail`).
-    pub(crate) fn check_state(&self, allowed: Mask) -> Res<()> {
+    pub fn check_state(&self, allowed: Mask) -> Res<()> {
         if allowed.contains(self.machine) {
             Ok(())
         } else {
@@ -140,7 +143,7 @@ impl<S: Slave> Inner<S> {
         }
     }
 
-    pub(crate) fn lookup(&self, base: BaseType, vr: u32) -> Res<(usize, &'static Variable)> {
+    pub fn lookup(&self, base: BaseType, vr: u32) -> Res<(usize, &'static Variable)> {
         match self.md.by_vr(base, vr) {
             Some(x) => Ok(x),
             None => error(format!("unknown {} value reference {vr}", base.as_str())),
@@ -148,7 +151,7 @@ impl<S: Slave> Inner<S> {
     }
 
     /// Builds the model if it is missing or the stored values changed.
-    pub(crate) fn ensure_slave(&mut self) -> Res<()> {
+    pub fn ensure_slave(&mut self) -> Res<()> {
         if self.slave.is_some() && !self.stale {
             return Ok(());
         }
@@ -168,7 +171,7 @@ impl<S: Slave> Inner<S> {
     }
 
     /// The model (built if needed) and the inputs it sees.
-    pub(crate) fn slave_and_inputs(&mut self) -> Res<(&mut S, Inputs<'_>)> {
+    pub fn slave_and_inputs(&mut self) -> Res<(&mut S, Inputs<'_>)> {
         self.ensure_slave()?;
         let inputs = Inputs {
             values: Values {
@@ -181,7 +184,7 @@ impl<S: Slave> Inner<S> {
     }
 
     /// Evaluates `f` on the model, a panic becoming an error about `what`.
-    pub(crate) fn with_inputs<T>(
+    pub fn with_inputs<T>(
         &mut self,
         f: impl FnOnce(&mut S, Inputs<'_>) -> Result<T, String>,
         what: &str,
@@ -277,14 +280,14 @@ impl<S: Slave> Inner<S> {
         Ok(Status::Ok)
     }
 
-    pub(crate) fn log_status_warning(&self, message: &str) {
+    pub fn log_status_warning(&self, message: &str) {
         self.logger
             .log(Status::Warning, LOG_STATUS_WARNING, message);
     }
 
     /// Logs what a slave reported during a call: its events, then its
     /// warnings; `Status::Warning` if it warned, else `Status::Ok`.
-    pub(crate) fn flush(&self, log: &EventLog) -> Status {
+    pub fn flush(&self, log: &EventLog) -> Status {
         for m in &log.messages {
             self.logger.log(Status::Ok, LOG_EVENTS, m);
         }

@@ -330,7 +330,7 @@ macro_rules! export_fmi2 {
             c: $crate::types::fmi2Component,
             state: *mut $crate::types::fmi2FMUstate,
         ) -> $crate::types::fmi2Status {
-            unsafe { $crate::ffi::get_fmu_state::<$slave>(c, state) }
+            unsafe { $crate::ffi::get_fmu_state::<$slave>(c, state, "fmi2GetFMUstate") }
         }
 
         #[no_mangle]
@@ -338,7 +338,7 @@ macro_rules! export_fmi2 {
             c: $crate::types::fmi2Component,
             state: $crate::types::fmi2FMUstate,
         ) -> $crate::types::fmi2Status {
-            unsafe { $crate::ffi::set_fmu_state::<$slave>(c, state) }
+            unsafe { $crate::ffi::set_fmu_state::<$slave>(c, state, "fmi2SetFMUstate") }
         }
 
         #[no_mangle]
@@ -346,7 +346,7 @@ macro_rules! export_fmi2 {
             c: $crate::types::fmi2Component,
             state: *mut $crate::types::fmi2FMUstate,
         ) -> $crate::types::fmi2Status {
-            unsafe { $crate::ffi::free_fmu_state::<$slave>(c, state) }
+            unsafe { $crate::ffi::free_fmu_state::<$slave>(c, state, "fmi2FreeFMUstate") }
         }
 
         #[no_mangle]
@@ -355,7 +355,14 @@ macro_rules! export_fmi2 {
             state: $crate::types::fmi2FMUstate,
             size: *mut usize,
         ) -> $crate::types::fmi2Status {
-            unsafe { $crate::ffi::serialized_fmu_state_size::<$slave>(c, state, size) }
+            unsafe {
+                $crate::ffi::serialized_fmu_state_size::<$slave>(
+                    c,
+                    state,
+                    size,
+                    "fmi2SerializedFMUstateSize",
+                )
+            }
         }
 
         #[no_mangle]
@@ -365,7 +372,15 @@ macro_rules! export_fmi2 {
             serialized_state: *mut $crate::types::fmi2Byte,
             size: usize,
         ) -> $crate::types::fmi2Status {
-            unsafe { $crate::ffi::serialize_fmu_state::<$slave>(c, state, serialized_state, size) }
+            unsafe {
+                $crate::ffi::serialize_fmu_state::<$slave>(
+                    c,
+                    state,
+                    serialized_state as *mut u8,
+                    size,
+                    "fmi2SerializeFMUstate",
+                )
+            }
         }
 
         #[no_mangle]
@@ -376,7 +391,13 @@ macro_rules! export_fmi2 {
             state: *mut $crate::types::fmi2FMUstate,
         ) -> $crate::types::fmi2Status {
             unsafe {
-                $crate::ffi::deserialize_fmu_state::<$slave>(c, serialized_state, size, state)
+                $crate::ffi::deserialize_fmu_state::<$slave>(
+                    c,
+                    serialized_state as *const u8,
+                    size,
+                    state,
+                    "fmi2DeSerializeFMUstate",
+                )
             }
         }
 

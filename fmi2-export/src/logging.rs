@@ -38,8 +38,16 @@ pub fn escape_format(message: &str) -> CString {
     CString::new(s).expect("NUL bytes were removed")
 }
 
+/// The host's logger: FMI 2.0's (printf-like, with the instance name) or
+/// FMI 3.0's (`fmi3LogMessageCallback`: the message as it is).
+#[derive(Clone, Copy)]
+pub enum Callback {
+    Fmi2(fmi2CallbackLogger),
+    Fmi3(fmi3LogMessageCallback),
+}
+
 pub struct Logger {
-    callback: Option<fmi2CallbackLogger>,
+    callback: Option<Callback>,
     env: fmi2ComponentEnvironment,
     instance_name: CString,
     md: &'static ModelDescription,
@@ -52,6 +60,17 @@ impl Logger {
     pub fn new(
         md: &'static ModelDescription,
         callback: Option<fmi2CallbackLogger>,
+        env: fmi2ComponentEnvironment,
+        instance_name: CString,
+        debug: bool,
+    ) -> Logger {
+        Logger::with(md, callback.map(Callback::Fmi2), env, instance_name, debug)
+    }
+
+    /// A logger with either standard's callback.
+    pub fn with(
+        md: &'static ModelDescription,
+        callback: Option<Callback>,
         env: fmi2ComponentEnvironment,
         instance_name: CString,
         debug: bool,
@@ -111,18 +130,24 @@ impl Logger {
         }
         let Some(cb) = self.callback else { return };
         let category = CString::new(category).unwrap_or_default();
-        let text = escape_format(message);
-        // SAFETY: the host gave us this callback for this purpose; every
-        // pointer is a valid NUL-terminated string that outlives the call,
-        // and the format string has no conversion specifications left.
-        unsafe {
-            cb(
-                self.env,
-                self.instance_name.as_ptr(),
-                status.raw(),
-                category.as_ptr(),
-                text.as_ptr(),
-            );
+        match cb {
+            // SAFETY: the host gave us this callback for this purpose; every
+            // pointer is a valid NUL-terminated string that outlives the call,
+            // and the format string has no conversion specifications left.
+            Callback::Fmi2(cb) => unsafe {
+                cb(
+                    self.env,
+                    self.instance_name.as_ptr(),
+                    status.raw(),
+                    category.as_ptr(),
+                    escape_format(message).as_ptr(),
+                );
+            },
+            // SAFETY: as above; FMI 3.0 passes the message as it is.
+            Callback::Fmi3(cb) => unsafe {
+                let text = CString::new(message.replace('\0', "")).unwrap_or_default();
+                cb(self.env, status.raw(), category.as_ptr(), text.as_ptr());
+            },
         }
     }
 

@@ -181,6 +181,10 @@ pub enum StepEnd {
     /// is false, and the state is the model's at `time`. The host goes on
     /// from a state it saved (`fmi2SetFMUstate`) with smaller steps.
     Stopped { time: f64, reason: String },
+    /// Only from [`Slave::do_step_to_event`]: the model stopped at an event
+    /// (an impact, an uplift...) at `time`, before `t + h`; the state is the
+    /// one just after the event. FMI 3.0's early return.
+    Event { time: f64 },
 }
 
 /// What a Model Exchange event update did (`fmi2NewDiscreteStates`).
@@ -246,6 +250,19 @@ pub trait Slave: Sized + Send + 'static {
         inputs: Inputs<'_>,
         log: &mut EventLog,
     ) -> Result<StepEnd, String>;
+
+    /// Like [`do_step`](Self::do_step), but may stop at the first event
+    /// inside the step ([`StepEnd::Event`]): FMI 3.0's early return. A model
+    /// without events keeps this default.
+    fn do_step_to_event(
+        &mut self,
+        t: f64,
+        h: f64,
+        inputs: Inputs<'_>,
+        log: &mut EventLog,
+    ) -> Result<StepEnd, String> {
+        self.do_step(t, h, inputs, log)
+    }
 
     fn state(&self) -> Self::State;
     fn set_state(&mut self, state: Self::State);

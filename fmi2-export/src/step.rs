@@ -20,6 +20,17 @@ impl<S: Slave> Inner<S> {
     const TIME_RTOL: f64 = 1e-9;
 
     pub fn do_step(&mut self, t: f64, h: f64) -> Res<Status> {
+        self.step(t, h, false).map(|(s, _)| s)
+    }
+
+    /// `do_step` that may stop at the model's first event in the step (FMI
+    /// 3.0's early return): `true` with the status if it did, the FMU's time
+    /// then being the event's.
+    pub fn do_step_to_event(&mut self, t: f64, h: f64) -> Res<(Status, bool)> {
+        self.step(t, h, true)
+    }
+
+    fn step(&mut self, t: f64, h: f64, to_event: bool) -> Res<(Status, bool)> {
         self.check_state(mask::fmi2DoStep)?;
         if !t.is_finite() || !h.is_finite() || h <= 0.0 {
             return error(format!(
@@ -57,7 +68,13 @@ impl<S: Slave> Inner<S> {
         let mut log = EventLog::new(events_on);
         let (slave, inputs) = self.slave_and_inputs()?;
         let before = slave.state();
-        let result = guarded("fmi2DoStep", || slave.do_step(t, h, inputs, &mut log));
+        let result = guarded("fmi2DoStep", || {
+            if to_event {
+                slave.do_step_to_event(t, h, inputs, &mut log)
+            } else {
+                slave.do_step(t, h, inputs, &mut log)
+            }
+        });
         let status = self.flush(&log);
         match result {
             Ok(StepEnd::Completed) => {
@@ -71,7 +88,12 @@ impl<S: Slave> Inner<S> {
                         }
                     }
                 }
-                Ok(status)
+                Ok((status, false))
+            }
+            Ok(StepEnd::Event { time }) => {
+                self.stop_within_step(t, time, false);
+                self.machine = M::StepComplete;
+                Ok((status, true))
             }
             Ok(StepEnd::Terminated { time, reason }) => {
                 self.stop_within_step(t, time, true);

@@ -111,3 +111,11 @@ impl Status {
         }
     }
 }
+
+/// FMI 3.0's logger: `(instanceEnvironment, status, category, message)`.
+pub type fmi3LogMessageCallback = unsafe extern "C" fn(
+    env: *mut c_void,
+    status: fmi2Status,
+    category: fmi2String,
+    message: fmi2String,
+);

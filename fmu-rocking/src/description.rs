@@ -780,7 +780,12 @@ pub static ROCKING_BLOCK: ModelDescription = ModelDescription {
     copyright: common::COPYRIGHT,
     license: common::LICENSE,
     generation_tool: common::GENERATION_TOOL,
-    co_simulation: common::co_simulation("RockingBlock"),
+    co_simulation: CoSimulation {
+        // FMI 3.0: fmi3DoStep stops at impacts, uplift, rest and overturning
+        has_event_mode: true,
+        might_return_early_from_do_step: true,
+        ..common::co_simulation("RockingBlock")
+    },
     model_exchange: Some(common::model_exchange("RockingBlock", EVENT_INDICATORS)),
     units: UNITS,
     types: TYPES,

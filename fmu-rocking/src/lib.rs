@@ -19,3 +19,6 @@ pub use slave::RockingSlave;
 fmi2_export::generated_files!();
 
 fmi2_export::export_fmi2!(crate::slave::RockingSlave);
+
+// FMI 3.0 from the same binary (`target/fmu/fmi3/RockingBlock.fmu`).
+fmi3_export::export_fmi3!(crate::slave::RockingSlave);

@@ -168,6 +168,140 @@ impl RockingSlave {
         }
         Ok((x, dx))
     }
+
+    /// A step from `t` to `t + h`, or (`to_event`) to the first event in it.
+    fn step(
+        &mut self,
+        t: f64,
+        h: f64,
+        inputs: Inputs<'_>,
+        log: &mut EventLog,
+        to_event: bool,
+    ) -> Result<StepEnd, String> {
+        let (ag, dag) = Self::input_line(&inputs, vr::AG, "ag", h)?;
+        // docs/model.md §7.4: av is checked like ag
+        let (av, dav) = Self::input_line(&inputs, vr::AV, "av", h)?;
+        let v = VerticalInput { av, dav };
+        if self.state.overturned {
+            return Ok(StepEnd::Terminated {
+                time: self.state.t,
+                reason: "the body has already overturned".into(),
+            });
+        }
+        if let Some(term) = self.terminal {
+            return Ok(StepEnd::Terminated {
+                time: term.t,
+                reason: format!(
+                    "the run ended at t = {} ({})",
+                    term.t,
+                    term.condition.name()
+                ),
+            });
+        }
+        let before = log.enabled().then(|| self.regime(ag, v.av));
+        let mut s = self.state;
+        if let Some(prev) = self.av_end {
+            self.sim.vertical_jump(&mut s, prev, v.av);
+        }
+        let input = GroundInput { ag, dag };
+        let ev = if to_event {
+            self.sim.advance_to_event_vertical(&mut s, t + h, input, v)
+        } else {
+            self.sim.advance_vertical(&mut s, t + h, input, v)
+        };
+        if !(s.theta.is_finite() && s.omega.is_finite() && s.t.is_finite()) {
+            return Err(format!(
+                "the integration produced a non-finite state (theta = {}, omega = {}) at t = {}",
+                s.theta, s.omega, s.t
+            ));
+        }
+        self.state = s;
+        self.av_end = Some(v.av + v.dav * (s.t - t));
+        self.cache = None;
+        self.rates = None;
+        self.check_sliding(ag + dag * h, av + dav * h, log);
+        if log.enabled() {
+            if ev.uplift {
+                log.event(format!(
+                    "uplift in ({t}, {}]: the body starts rocking",
+                    t + h
+                ));
+            }
+            if ev.zero_crossings > 0 {
+                log.event(format!(
+                    "{} zero crossing(s) of theta in ({t}, {}], of which {} impact(s) (returns after the joint opened); {} crossings, {} impacts so far",
+                    ev.zero_crossings,
+                    t + h,
+                    ev.impacts,
+                    s.zero_crossings,
+                    s.impacts
+                ));
+            }
+            if ev.came_to_rest {
+                log.event(format!("came to rest in ({t}, {}]", t + h));
+            }
+            let a_end = ag + dag * h;
+            let after = self.regime(a_end, v.av + v.dav * h);
+            if let Some(b) = before {
+                if b != after {
+                    log.event(format!(
+                        "regime {} ({}) -> {} ({}) in ({t}, {}]",
+                        b as i32,
+                        regime_name(b),
+                        after as i32,
+                        regime_name(after),
+                        t + h
+                    ));
+                }
+            }
+        }
+        if let Some(t_ov) = ev.overturned_at {
+            log.event(format!(
+                "overturned at t = {t_ov}: |theta| reached thetaOv = {} rad",
+                self.sim.model.theta_ov
+            ));
+            return Ok(StepEnd::Terminated {
+                time: t_ov,
+                reason: format!(
+                    "the body overturned (|theta| reached thetaOv = {} rad) at t = {t_ov}",
+                    self.sim.model.theta_ov
+                ),
+            });
+        }
+        if let Some(term) = ev.terminal {
+            self.terminal = Some(term);
+            let why = match term.condition {
+                OutOfRange::LiftOff => "the apparent weight N = m (g + av) reached 0: the body leaves the ground (free flight is not modelled)",
+                OutOfRange::BaseCrushing => "the apparent weight N reached fm A: the whole section crushes",
+                OutOfRange::RestUnstable => "N hG reached kn Is: the rest position is unstable",
+            };
+            return Ok(StepEnd::Terminated {
+                time: term.t,
+                reason: format!(
+                    "{} at t = {}: av = {} m/s2; {why}",
+                    term.condition.name(),
+                    term.t,
+                    term.av
+                ),
+            });
+        }
+        if let Some(l) = ev.limited {
+            let max_steps = self.sim.work_limit.map_or(0, |w| w.per_call);
+            return Ok(StepEnd::Stopped {
+                time: l.t,
+                reason: format!(
+                    "work limit reached after {} in the step of {h} s from t = {t} (budget {}: maxSteps = {max_steps}, \
+                     up to 1.5 times that for steps over 1 s)",
+                    l.cause(),
+                    l.budget
+                ),
+            });
+        }
+        if to_event && s.t < t + h {
+            return Ok(StepEnd::Event { time: s.t });
+        }
+        Ok(StepEnd::Completed)
+    }
 }
 
 impl Slave for RockingSlave {
@@ -322,123 +456,19 @@ impl Slave for RockingSlave {
         inputs: Inputs<'_>,
         log: &mut EventLog,
     ) -> Result<StepEnd, String> {
-        let (ag, dag) = Self::input_line(&inputs, vr::AG, "ag", h)?;
-        // docs/model.md §7.4: av is checked like ag
-        let (av, dav) = Self::input_line(&inputs, vr::AV, "av", h)?;
-        let v = VerticalInput { av, dav };
-        if self.state.overturned {
-            return Ok(StepEnd::Terminated {
-                time: self.state.t,
-                reason: "the body has already overturned".into(),
-            });
-        }
-        if let Some(term) = self.terminal {
-            return Ok(StepEnd::Terminated {
-                time: term.t,
-                reason: format!(
-                    "the run ended at t = {} ({})",
-                    term.t,
-                    term.condition.name()
-                ),
-            });
-        }
-        let before = log.enabled().then(|| self.regime(ag, v.av));
-        let mut s = self.state;
-        if let Some(prev) = self.av_end {
-            self.sim.vertical_jump(&mut s, prev, v.av);
-        }
-        let ev = self
-            .sim
-            .advance_vertical(&mut s, t + h, GroundInput { ag, dag }, v);
-        if !(s.theta.is_finite() && s.omega.is_finite() && s.t.is_finite()) {
-            return Err(format!(
-                "the integration produced a non-finite state (theta = {}, omega = {}) at t = {}",
-                s.theta, s.omega, s.t
-            ));
-        }
-        self.state = s;
-        self.av_end = Some(v.av + v.dav * (s.t - t));
-        self.cache = None;
-        self.rates = None;
-        self.check_sliding(ag + dag * h, av + dav * h, log);
-        if log.enabled() {
-            if ev.uplift {
-                log.event(format!(
-                    "uplift in ({t}, {}]: the body starts rocking",
-                    t + h
-                ));
-            }
-            if ev.zero_crossings > 0 {
-                log.event(format!(
-                    "{} zero crossing(s) of theta in ({t}, {}], of which {} impact(s) (returns after the joint opened); {} crossings, {} impacts so far",
-                    ev.zero_crossings,
-                    t + h,
-                    ev.impacts,
-                    s.zero_crossings,
-                    s.impacts
-                ));
-            }
-            if ev.came_to_rest {
-                log.event(format!("came to rest in ({t}, {}]", t + h));
-            }
-            let a_end = ag + dag * h;
-            let after = self.regime(a_end, v.av + v.dav * h);
-            if let Some(b) = before {
-                if b != after {
-                    log.event(format!(
-                        "regime {} ({}) -> {} ({}) in ({t}, {}]",
-                        b as i32,
-                        regime_name(b),
-                        after as i32,
-                        regime_name(after),
-                        t + h
-                    ));
-                }
-            }
-        }
-        if let Some(t_ov) = ev.overturned_at {
-            log.event(format!(
-                "overturned at t = {t_ov}: |theta| reached thetaOv = {} rad",
-                self.sim.model.theta_ov
-            ));
-            return Ok(StepEnd::Terminated {
-                time: t_ov,
-                reason: format!(
-                    "the body overturned (|theta| reached thetaOv = {} rad) at t = {t_ov}",
-                    self.sim.model.theta_ov
-                ),
-            });
-        }
-        if let Some(term) = ev.terminal {
-            self.terminal = Some(term);
-            let why = match term.condition {
-                OutOfRange::LiftOff => "the apparent weight N = m (g + av) reached 0: the body leaves the ground (free flight is not modelled)",
-                OutOfRange::BaseCrushing => "the apparent weight N reached fm A: the whole section crushes",
-                OutOfRange::RestUnstable => "N hG reached kn Is: the rest position is unstable",
-            };
-            return Ok(StepEnd::Terminated {
-                time: term.t,
-                reason: format!(
-                    "{} at t = {}: av = {} m/s2; {why}",
-                    term.condition.name(),
-                    term.t,
-                    term.av
-                ),
-            });
-        }
-        if let Some(l) = ev.limited {
-            let max_steps = self.sim.work_limit.map_or(0, |w| w.per_call);
-            return Ok(StepEnd::Stopped {
-                time: l.t,
-                reason: format!(
-                    "work limit reached after {} in the step of {h} s from t = {t} (budget {}: maxSteps = {max_steps}, \
-                     up to 1.5 times that for steps over 1 s)",
-                    l.cause(),
-                    l.budget
-                ),
-            });
-        }
-        Ok(StepEnd::Completed)
+        self.step(t, h, inputs, log, false)
+    }
+
+    /// Stops at the first zero crossing (an impact of a rigid block),
+    /// uplift, rest or overturning the integrator locates in the step.
+    fn do_step_to_event(
+        &mut self,
+        t: f64,
+        h: f64,
+        inputs: Inputs<'_>,
+        log: &mut EventLog,
+    ) -> Result<StepEnd, String> {
+        self.step(t, h, inputs, log, true)
     }
 
     fn state(&self) -> Saved {

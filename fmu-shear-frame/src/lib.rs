@@ -21,3 +21,6 @@ pub use slave::ShearFrameSlave;
 fmi2_export::generated_files!();
 
 fmi2_export::export_fmi2!(crate::slave::ShearFrameSlave);
+
+// FMI 3.0 co-simulation from the same binary (`target/fmu/fmi3/ShearFrame.fmu`).
+fmi3_export::export_fmi3!(crate::slave::ShearFrameSlave);

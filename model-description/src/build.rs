@@ -7,9 +7,10 @@
 
 use std::{env, fs, path::PathBuf, process::Command};
 
-use crate::{html, xml, ModelDescription};
+use crate::{html, xml, xml3, ModelDescription};
 
-/// Writes `modelDescription.xml`, `guid.txt` and `index.html` of `md` into
+/// Writes `modelDescription.xml` (FMI 2.0), `modelDescription3.xml` (FMI
+/// 3.0), `guid.txt` and `index.html` of `md` into
 /// `OUT_DIR`, and asks cargo to run the build script again when it, the
 /// table (`src/description.rs`) or its page (`src/description.html`) change.
 pub fn generate(md: &ModelDescription) {
@@ -19,6 +20,8 @@ pub fn generate(md: &ModelDescription) {
     fs::write(out.join("modelDescription.xml"), &xml).expect("write modelDescription.xml");
     fs::write(out.join("guid.txt"), &guid).expect("write guid.txt");
     fs::write(out.join("index.html"), html::index_html(md, &guid)).expect("write index.html");
+    let xml3 = xml3::model_description_xml(md, generated.as_deref());
+    fs::write(out.join("modelDescription3.xml"), xml3).expect("write modelDescription3.xml");
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=src/description.rs");
     println!("cargo:rerun-if-changed=src/description.html");

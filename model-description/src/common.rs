@@ -26,6 +26,8 @@ pub const fn co_simulation(model_identifier: &'static str) -> CoSimulation {
         can_get_and_set_fmu_state: true,
         can_serialize_fmu_state: true,
         provides_directional_derivative: false,
+        has_event_mode: false,
+        might_return_early_from_do_step: false,
     }
 }
 

@@ -10,6 +10,8 @@
 //!   licence, the co-simulation capabilities of `fmi2-export`);
 //! - `xml` (feature `xml`): `modelDescription.xml` through serde + quick-xml,
 //!   and the GUID derived from its content (SHA-256 of the XML without it);
+//! - `xml3` (feature `xml`): the FMI 3.0 `modelDescription.xml` of the same
+//!   table, and [`fmi3`]: the variables 3.0 adds (`time`, event indicators);
 //! - `html` (feature `xml`): `documentation/index.html` with the variable table;
 //! - `build` (feature `xml`): the three files an FMU crate's `build.rs` writes.
 //!
@@ -62,6 +64,7 @@
 //! ```
 
 pub mod common;
+pub mod fmi3;
 pub mod schema;
 
 #[cfg(feature = "xml")]
@@ -70,5 +73,7 @@ pub mod build;
 pub mod html;
 #[cfg(feature = "xml")]
 pub mod xml;
+#[cfg(feature = "xml")]
+pub mod xml3;
 
 pub use schema::*;

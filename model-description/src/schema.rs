@@ -327,6 +327,11 @@ pub struct CoSimulation {
     pub can_get_and_set_fmu_state: bool,
     pub can_serialize_fmu_state: bool,
     pub provides_directional_derivative: bool,
+    /// FMI 3.0 only (`hasEventMode`): the FMU has event mode in co-simulation.
+    pub has_event_mode: bool,
+    /// FMI 3.0 only (`mightReturnEarlyFromDoStep`): `fmi3DoStep` may stop at
+    /// an event before the end of the step when the host allows it.
+    pub might_return_early_from_do_step: bool,
 }
 
 /// The `<ModelExchange>` element: capabilities of an FMU's Model Exchange

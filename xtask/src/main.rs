@@ -48,6 +48,8 @@ struct Model {
     /// Other packages built with the native release library: the hosts'
     /// helpers the Python package loads from target/release.
     companions: &'static [&'static str],
+    /// The library exports FMI 3.0 too: also write `target/fmu/fmi3/<model>.fmu`.
+    fmi3: bool,
 }
 
 const ROCKING_BLOCK: Model = Model {
@@ -57,6 +59,7 @@ const ROCKING_BLOCK: Model = Model {
     bins: &["run_direct"],
     // the stepping loop python/rocking/stepper.py loads
     companions: &["fmu-stepper"],
+    fmi3: true,
 };
 
 const SHEAR_FRAME: Model = Model {
@@ -65,6 +68,7 @@ const SHEAR_FRAME: Model = Model {
     identifier: "ShearFrame",
     bins: &[],
     companions: &[],
+    fmi3: true,
 };
 
 /// The FMUs `cargo xtask fmu` writes.
@@ -424,6 +428,15 @@ fn package(model: &Model) -> Res<(PathBuf, Built, Vec<&'static str>)> {
         ("modelDescription.xml".to_string(), xml, 0o644),
         ("documentation/index.html".to_string(), html, 0o644),
     ];
+    let xml3 = read(&built.out_dir.join("modelDescription3.xml"))?;
+    let mut entries3 = vec![
+        ("modelDescription.xml".to_string(), xml3, 0o644),
+        (
+            "documentation/index.html".to_string(),
+            entries[1].1.clone(),
+            0o644,
+        ),
+    ];
     let mut platforms = Vec::new();
     let mut add = |platform: &'static str, library: &Path, seconds: f64| -> Res<()> {
         let data = read(library)?;
@@ -440,6 +453,12 @@ fn package(model: &Model) -> Res<(PathBuf, Built, Vec<&'static str>)> {
             data.len(),
             library.display()
         );
+        let name3 = format!(
+            "binaries/{}/{}.{ext}",
+            fmi3_platform(platform),
+            model.identifier
+        );
+        entries3.push((name3, data.clone(), 0o755));
         entries.push((name, data, 0o755));
         platforms.push(platform);
         Ok(())
@@ -465,10 +484,27 @@ fn package(model: &Model) -> Res<(PathBuf, Built, Vec<&'static str>)> {
     write_fmu(&path, &mut entries)?;
     let size = fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
     println!("{} ({size} bytes, GUID {guid})", path.display());
+    if model.fmi3 {
+        let dir3 = dir.join("fmi3");
+        fs::create_dir_all(&dir3).map_err(|e| format!("{}: {e}", dir3.display()))?;
+        let path3 = dir3.join(format!("{}.fmu", model.identifier));
+        write_fmu(&path3, &mut entries3)?;
+        let size = fs::metadata(&path3).map(|m| m.len()).unwrap_or(0);
+        println!("{} (FMI 3.0, {size} bytes, token {guid})", path3.display());
+    }
     if let Some(r) = &built.run_direct {
         println!("{}", r.display());
     }
     Ok((path, built, platforms))
+}
+
+/// FMI 3.0's name of an FMI 2.0 platform folder (`<arch>-<os>`).
+fn fmi3_platform(platform: &str) -> &'static str {
+    match platform {
+        "linux64" => "x86_64-linux",
+        "win64" => "x86_64-windows",
+        other => panic!("no FMI 3.0 name for platform {other}"),
+    }
 }
 
 /// The cross-check case: the default block on its crushing joint under a

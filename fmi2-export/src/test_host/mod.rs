@@ -406,19 +406,19 @@ impl<S: Slave> Host<S> {
     /// `fmi2GetFMUstate` into `s` (a new state if NULL, else overwritten).
     pub fn update_state(&self, s: &mut fmi2FMUstate) -> fmi2Status {
         // SAFETY: a live instance; *s is NULL or a state of this instance.
-        unsafe { ffi::get_fmu_state::<S>(self.c, s) }
+        unsafe { ffi::get_fmu_state::<S>(self.c, s, "fmi2GetFMUstate") }
     }
 
     #[allow(clippy::not_unsafe_ptr_arg_deref)] // the layer refuses pointers it did not give out
     pub fn set_state(&self, s: fmi2FMUstate) -> fmi2Status {
         // SAFETY: a live instance (the FMU checks the state pointer).
-        unsafe { ffi::set_fmu_state::<S>(self.c, s) }
+        unsafe { ffi::set_fmu_state::<S>(self.c, s, "fmi2SetFMUstate") }
     }
 
     /// `fmi2FreeFMUstate`, which sets `*s` to NULL.
     pub fn free_state(&self, s: &mut fmi2FMUstate) -> fmi2Status {
         // SAFETY: a live instance (the FMU checks the state pointer).
-        let st = unsafe { ffi::free_fmu_state::<S>(self.c, s) };
+        let st = unsafe { ffi::free_fmu_state::<S>(self.c, s, "fmi2FreeFMUstate") };
         assert!(
             st != fmi2OK || s.is_null(),
             "fmi2FreeFMUstate left the state"
@@ -432,12 +432,14 @@ impl<S: Slave> Host<S> {
     pub fn serialize(&self, s: fmi2FMUstate) -> Vec<u8> {
         let mut n = 0usize;
         // SAFETY: a live instance and room for the size.
-        let st = unsafe { ffi::serialized_fmu_state_size::<S>(self.c, s, &mut n) };
+        let st = unsafe {
+            ffi::serialized_fmu_state_size::<S>(self.c, s, &mut n, "fmi2SerializedFMUstateSize")
+        };
         self.check("fmi2SerializedFMUstateSize", st);
         let mut buf = vec![0u8; n];
         // SAFETY: n writable bytes.
         let st = unsafe {
-            ffi::serialize_fmu_state::<S>(self.c, s, buf.as_mut_ptr() as *mut fmi2Byte, n)
+            ffi::serialize_fmu_state::<S>(self.c, s, buf.as_mut_ptr(), n, "fmi2SerializeFMUstate")
         };
         self.check("fmi2SerializeFMUstate", st);
         buf
@@ -450,9 +452,10 @@ impl<S: Slave> Host<S> {
         let st = unsafe {
             ffi::deserialize_fmu_state::<S>(
                 self.c,
-                buf.as_ptr() as *const fmi2Byte,
+                buf.as_ptr(),
                 buf.len(),
                 &mut s,
+                "fmi2DeSerializeFMUstate",
             )
         };
         self.check("fmi2DeSerializeFMUstate", st);

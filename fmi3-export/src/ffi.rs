@@ -1,0 +1,446 @@
+//! The C side of the FMI 3.0 functions, generic over the model: each maps
+//! its arguments onto the instance of `fmi2-export` (stored values, state
+//! machine, FMU states, logger) through `fmi2_export::ffi::call`, which
+//! checks the instance, catches panics and reports failures by the name of
+//! the 3.0 function. [`crate::export_fmi3!`] exports them by their names.
+
+#![allow(clippy::missing_safety_doc, clippy::too_many_arguments)]
+
+use std::ffi::{c_char, CString};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::PathBuf;
+use std::ptr;
+use std::sync::Mutex;
+
+use fmi2_export::fail::{error, Res};
+use fmi2_export::ffi::{c_str, call, owned_strings, slice, slice_mut};
+use fmi2_export::instance::{Inner, Instance, INSTANCE_MAGIC};
+use fmi2_export::logging::{Callback, Logger};
+use fmi2_export::machine::Machine;
+use fmi2_export::model_description::{BaseType, ModelDescription, Type};
+use fmi2_export::types::Status;
+use fmi2_export::Slave;
+
+use crate::types::*;
+
+pub fn get_version() -> *const c_char {
+    c"3.0".as_ptr()
+}
+
+/// How an instance is created: `fmi3InstantiateModelExchange` or
+/// `fmi3InstantiateCoSimulation` with its two flags.
+#[derive(Clone, Copy)]
+pub struct Kind {
+    pub model_exchange: bool,
+    pub event_mode_used: bool,
+    pub early_return_allowed: bool,
+}
+
+/// The host's `instanceName`, `instantiationToken` and `resourcePath`.
+pub struct Names {
+    pub instance_name: fmi3String,
+    pub token: fmi3String,
+    pub resource_path: fmi3String,
+}
+
+pub unsafe fn instantiate<S: Slave>(
+    names: Names,
+    kind: Kind,
+    logging_on: bool,
+    env: fmi3InstanceEnvironment,
+    log_message: Option<fmi3LogMessageCallback>,
+) -> fmi3Instance {
+    catch_unwind(AssertUnwindSafe(|| {
+        let md = S::description();
+        let name = unsafe { c_str(names.instance_name) };
+        let logger = Logger::with(
+            md,
+            log_message.map(Callback::Fmi3),
+            env,
+            CString::new(name.clone().unwrap_or_default()).unwrap_or_default(),
+            logging_on,
+        );
+        let function = if kind.model_exchange {
+            "fmi3InstantiateModelExchange"
+        } else {
+            "fmi3InstantiateCoSimulation"
+        };
+        let refuse = |m: String| {
+            logger.status(Status::Error, &format!("{function}: {m}"));
+            ptr::null_mut()
+        };
+        if name.as_deref().is_none_or(str::is_empty) {
+            return refuse("instanceName must be a non-empty string".into());
+        }
+        if kind.model_exchange && md.model_exchange.is_none() {
+            return refuse("this FMU has no Model Exchange interface".into());
+        }
+        let token = unsafe { c_str(names.token) };
+        if token.as_deref() != Some(S::guid()) {
+            return refuse(format!(
+                "instantiationToken = {}: this binary was built for the model description with token {}",
+                token.as_deref().unwrap_or("NULL"),
+                S::guid()
+            ));
+        }
+        let resource_dir = unsafe { c_str(names.resource_path) }.map(PathBuf::from);
+        let mut inner = Inner::<S>::new(logger, resource_dir, kind.model_exchange);
+        inner.event_mode_used = kind.event_mode_used && !kind.model_exchange;
+        inner.early_return_allowed = kind.early_return_allowed && !kind.model_exchange;
+        inner.trace(|| format!("{function}: instance {name:?}, token {}", S::guid()));
+        let inst = Box::new(Instance {
+            magic: INSTANCE_MAGIC,
+            guid: S::guid(),
+            inner: Mutex::new(inner),
+        });
+        Box::into_raw(inst) as fmi3Instance
+    }))
+    .unwrap_or(ptr::null_mut())
+}
+
+pub unsafe fn set_debug_logging<S: Slave>(
+    c: fmi3Instance,
+    logging_on: bool,
+    n: usize,
+    categories: *const fmi3String,
+) -> fmi3Status {
+    call::<S>(c, "fmi3SetDebugLogging", |i| {
+        let cats = unsafe { slice(categories, n, "categories") }?;
+        let mut names = Vec::with_capacity(cats.len());
+        for &p in cats {
+            match unsafe { c_str(p) } {
+                Some(s) => names.push(s),
+                None => return error("a category is NULL"),
+            }
+        }
+        i.set_debug_logging(logging_on, &names)
+    })
+}
+
+pub unsafe fn enter_initialization_mode<S: Slave>(
+    c: fmi3Instance,
+    tolerance_defined: bool,
+    tolerance: f64,
+    start_time: f64,
+    stop_time_defined: bool,
+    stop_time: f64,
+) -> fmi3Status {
+    call::<S>(c, "fmi3EnterInitializationMode", |i| {
+        let tol = tolerance_defined.then_some(tolerance);
+        let stop = stop_time_defined.then_some(stop_time);
+        i.setup_experiment(tol, start_time, stop)?;
+        i.enter_initialization_mode()
+    })
+}
+
+pub unsafe fn exit_initialization_mode<S: Slave>(c: fmi3Instance) -> fmi3Status {
+    call::<S>(c, "fmi3ExitInitializationMode", |i| {
+        let s = i.exit_initialization_mode()?;
+        if i.event_mode_used {
+            i.machine = Machine::EventMode;
+        }
+        Ok(s)
+    })
+}
+
+pub unsafe fn terminate<S: Slave>(c: fmi3Instance) -> fmi3Status {
+    call::<S>(c, "fmi3Terminate", |i| i.terminate())
+}
+
+pub unsafe fn reset<S: Slave>(c: fmi3Instance) -> fmi3Status {
+    call::<S>(c, "fmi3Reset", |i| i.reset())
+}
+
+/// What 3.0 adds to the table's variables ([`fmi2_export::model_description::fmi3`]).
+enum Added {
+    Time,
+    EventIndicator(usize),
+}
+
+fn added(md: &ModelDescription, vr: u32) -> Option<Added> {
+    if vr == md.fmi3_time_vr() {
+        Some(Added::Time)
+    } else {
+        md.fmi3_event_indicator_of(vr).map(Added::EventIndicator)
+    }
+}
+
+/// Every `vr` names a variable of the table whose type `is` accepts.
+fn check_types(md: &ModelDescription, vrs: &[u32], what: &str, is: fn(&Type) -> bool) -> Res<()> {
+    for &vr in vrs {
+        if !md.variables.iter().any(|v| v.vr == vr && is(&v.ty)) {
+            return error(format!("value reference {vr} is no {what} variable"));
+        }
+    }
+    Ok(())
+}
+
+/// The host's `nValues` for scalars: as many values as value references.
+fn check_n_values(n: usize, n_values: usize) -> Res<()> {
+    if n == n_values {
+        Ok(())
+    } else {
+        error(format!(
+            "nValues = {n_values} but nValueReferences = {n}: every variable is a scalar"
+        ))
+    }
+}
+
+fn float64s<S: Slave>(i: &mut Inner<S>, vrs: &[u32], out: &mut [f64]) -> Res<Status> {
+    if vrs.iter().all(|&vr| added(i.md, vr).is_none()) {
+        return i.get_real(vrs, out);
+    }
+    let mut z = vec![0.0; i.event_indicator_count()];
+    let mut status = Status::Ok;
+    for (k, &vr) in vrs.iter().enumerate() {
+        out[k] = match added(i.md, vr) {
+            Some(Added::Time) => i.time,
+            Some(Added::EventIndicator(j)) => {
+                status = status.max(i.get_event_indicators(&mut z)?);
+                z[j]
+            }
+            None => {
+                status = status.max(i.get_real(&[vr], &mut out[k..=k])?);
+                out[k]
+            }
+        };
+    }
+    Ok(status)
+}
+
+pub unsafe fn get_float64<S: Slave>(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n: usize,
+    value: *mut f64,
+    n_values: usize,
+) -> fmi3Status {
+    call::<S>(c, "fmi3GetFloat64", |i| {
+        check_n_values(n, n_values)?;
+        let vr = unsafe { slice(vr, n, "valueReferences") }?;
+        let value = unsafe { slice_mut(value, n, "values") }?;
+        float64s(i, vr, value)
+    })
+}
+
+pub unsafe fn set_float64<S: Slave>(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n: usize,
+    value: *const f64,
+    n_values: usize,
+) -> fmi3Status {
+    call::<S>(c, "fmi3SetFloat64", |i| {
+        check_n_values(n, n_values)?;
+        let vr = unsafe { slice(vr, n, "valueReferences") }?;
+        let value = unsafe { slice(value, n, "values") }?;
+        if let Some(&v) = vr.iter().find(|&&v| added(i.md, v).is_some()) {
+            return error(format!(
+                "value reference {v} (time or an event indicator) cannot be set"
+            ));
+        }
+        i.set_real(vr, value)
+    })
+}
+
+fn is_int32(t: &Type) -> bool {
+    matches!(t, Type::Integer { .. })
+}
+
+fn is_enumeration(t: &Type) -> bool {
+    matches!(t, Type::Enumeration { .. })
+}
+
+pub unsafe fn get_int32<S: Slave>(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n: usize,
+    value: *mut i32,
+    n_values: usize,
+) -> fmi3Status {
+    call::<S>(c, "fmi3GetInt32", |i| {
+        check_n_values(n, n_values)?;
+        let vr = unsafe { slice(vr, n, "valueReferences") }?;
+        let value = unsafe { slice_mut(value, n, "values") }?;
+        check_types(i.md, vr, "Int32", is_int32)?;
+        i.get_integer(vr, value)
+    })
+}
+
+pub unsafe fn set_int32<S: Slave>(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n: usize,
+    value: *const i32,
+    n_values: usize,
+) -> fmi3Status {
+    call::<S>(c, "fmi3SetInt32", |i| {
+        check_n_values(n, n_values)?;
+        let vr = unsafe { slice(vr, n, "valueReferences") }?;
+        let value = unsafe { slice(value, n, "values") }?;
+        check_types(i.md, vr, "Int32", is_int32)?;
+        i.set_integer(vr, value)
+    })
+}
+
+/// Enumerations are `Int64` in FMI 3.0; the table's codes fit an `i32`.
+pub unsafe fn get_int64<S: Slave>(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n: usize,
+    value: *mut i64,
+    n_values: usize,
+) -> fmi3Status {
+    call::<S>(c, "fmi3GetInt64", |i| {
+        check_n_values(n, n_values)?;
+        let vr = unsafe { slice(vr, n, "valueReferences") }?;
+        let value = unsafe { slice_mut(value, n, "values") }?;
+        check_types(i.md, vr, "Enumeration (Int64)", is_enumeration)?;
+        let mut v = vec![0; n];
+        let s = i.get_integer(vr, &mut v)?;
+        value.iter_mut().zip(v).for_each(|(o, x)| *o = x.into());
+        Ok(s)
+    })
+}
+
+pub unsafe fn set_int64<S: Slave>(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n: usize,
+    value: *const i64,
+    n_values: usize,
+) -> fmi3Status {
+    call::<S>(c, "fmi3SetInt64", |i| {
+        check_n_values(n, n_values)?;
+        let vr = unsafe { slice(vr, n, "valueReferences") }?;
+        let value = unsafe { slice(value, n, "values") }?;
+        check_types(i.md, vr, "Enumeration (Int64)", is_enumeration)?;
+        let mut v = Vec::with_capacity(n);
+        for (&r, &x) in vr.iter().zip(value) {
+            match i32::try_from(x) {
+                Ok(x) => v.push(x),
+                Err(_) => return error(format!("value {x} of value reference {r} is no item")),
+            }
+        }
+        i.set_integer(vr, &v)
+    })
+}
+
+pub unsafe fn get_boolean<S: Slave>(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n: usize,
+    value: *mut bool,
+    n_values: usize,
+) -> fmi3Status {
+    call::<S>(c, "fmi3GetBoolean", |i| {
+        check_n_values(n, n_values)?;
+        let vr = unsafe { slice(vr, n, "valueReferences") }?;
+        let value = unsafe { slice_mut(value, n, "values") }?;
+        let mut v = vec![0; n];
+        let s = i.get_boolean(vr, &mut v)?;
+        value.iter_mut().zip(v).for_each(|(o, x)| *o = x != 0);
+        Ok(s)
+    })
+}
+
+pub unsafe fn set_boolean<S: Slave>(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n: usize,
+    value: *const bool,
+    n_values: usize,
+) -> fmi3Status {
+    call::<S>(c, "fmi3SetBoolean", |i| {
+        check_n_values(n, n_values)?;
+        let vr = unsafe { slice(vr, n, "valueReferences") }?;
+        let value = unsafe { slice(value, n, "values") }?;
+        let v: Vec<i32> = value.iter().map(|&b| b.into()).collect();
+        i.set_boolean(vr, &v)
+    })
+}
+
+pub unsafe fn get_string<S: Slave>(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n: usize,
+    value: *mut fmi3String,
+    n_values: usize,
+) -> fmi3Status {
+    call::<S>(c, "fmi3GetString", |i| {
+        check_n_values(n, n_values)?;
+        let vr = unsafe { slice(vr, n, "valueReferences") }?;
+        let value = unsafe { slice_mut(value, n, "values") }?;
+        i.get_string(vr, value)
+    })
+}
+
+pub unsafe fn set_string<S: Slave>(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n: usize,
+    value: *const fmi3String,
+    n_values: usize,
+) -> fmi3Status {
+    call::<S>(c, "fmi3SetString", |i| {
+        check_n_values(n, n_values)?;
+        let vr = unsafe { slice(vr, n, "valueReferences") }?;
+        let value = unsafe { slice(value, n, "values") }?;
+        i.set_string(vr, &unsafe { owned_strings(value) })
+    })
+}
+
+/// `fmi3Get<T>`/`fmi3Set<T>` of a type no variable of this layer has:
+/// nothing to do for no value references, an error otherwise.
+pub unsafe fn no_such_type<S: Slave>(
+    c: fmi3Instance,
+    function: &'static str,
+    vr: *const fmi3ValueReference,
+    n: usize,
+) -> fmi3Status {
+    call::<S>(c, function, |i| {
+        let vr = unsafe { slice(vr, n, "valueReferences") }?;
+        match vr.first() {
+            None => Ok(Status::Ok),
+            Some(&v) => {
+                let what =
+                    i.md.variables
+                        .iter()
+                        .find(|x| x.vr == v)
+                        .map(|x| x.ty.base());
+                error(format!(
+                    "value reference {v} is no variable of this type{}",
+                    what.map_or(String::new(), |b: BaseType| format!(
+                        " (it is a {})",
+                        b.as_str()
+                    ))
+                ))
+            }
+        }
+    })
+}
+
+/// A function of FMI 3.0 this layer does not provide (its capability flag
+/// is false or absent in the model description).
+pub unsafe fn not_provided<S: Slave>(c: fmi3Instance, function: &'static str) -> fmi3Status {
+    call::<S>(c, function, |_| {
+        error("not provided by this FMU (see its modelDescription.xml)")
+    })
+}
+
+pub unsafe fn get_output_derivatives<S: Slave>(
+    c: fmi3Instance,
+    vr: *const fmi3ValueReference,
+    n: usize,
+    order: *const i32,
+    value: *mut f64,
+    n_values: usize,
+) -> fmi3Status {
+    call::<S>(c, "fmi3GetOutputDerivatives", |i| {
+        check_n_values(n, n_values)?;
+        let vr = unsafe { slice(vr, n, "valueReferences") }?;
+        let order = unsafe { slice(order, n, "orders") }?;
+        let value = unsafe { slice_mut(value, n, "values") }?;
+        i.get_real_output_derivatives(vr, order, value)
+    })
+}

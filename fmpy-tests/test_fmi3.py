@@ -1,0 +1,312 @@
+"""RockingBlock as an FMI 3.0 FMU (target/fmu/fmi3/RockingBlock.fmu, the same
+binary as the 2.0 archive): fmpy's FMI 3.0 XSD and validation, the same
+variables as 2.0, trajectories bit for bit equal to 2.0's under the same host
+loop (co-simulation and Model Exchange), FMU states round-tripped, calls
+refused in the wrong state, and early return at the impacts of a rigid
+block against Housner's closed form (test_model_exchange.Exact)."""
+
+import math
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from fmpy import extract, read_model_description, simulate_fmu
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import FMU2Slave
+from fmpy.fmi3 import FMU3Slave
+from fmpy.validation import validate_fmu
+
+from conftest import FMU
+from fmu_helpers import start_values
+from test_model_exchange import Exact, rigid_block
+
+FMU3 = FMU.parent / "fmi3" / "RockingBlock.fmu"
+
+
+@pytest.fixture(scope="module")
+def fmu3_path():
+    if not FMU3.is_file():
+        pytest.fail(f"{FMU3} not found: run `cargo xtask fmu` first", pytrace=False)
+    return str(FMU3)
+
+
+def test_the_archive_validates_and_declares_the_2_0_variables(fmu_path, fmu3_path):
+    assert validate_fmu(fmu3_path) == []
+    cli = subprocess.run([sys.executable, "-m", "fmpy.cli", "validate", fmu3_path],
+                         capture_output=True, text=True)
+    assert cli.returncode == 0, cli.stdout + cli.stderr
+    md2, md3 = read_model_description(fmu_path), read_model_description(fmu3_path, validate=True)
+    assert md3.fmiVersion == "3.0" and md3.instantiationToken == md2.guid
+    cs = md3.coSimulation
+    assert cs.hasEventMode and cs.mightReturnEarlyFromDoStep and cs.canGetAndSetFMUstate
+    assert md3.modelExchange is not None and md3.numberOfEventIndicators == md2.numberOfEventIndicators
+
+    def table(md, skip=()):
+        return {v.name: (v.valueReference, v.causality, v.variability, v.unit, v.start)
+                for v in md.modelVariables if v.name not in skip}
+
+    added = {"time"} | {f"eventIndicator{i + 1}" for i in range(md2.numberOfEventIndicators)}
+    assert table(md3, added) == table(md2)
+    # the same binaries under 3.0's platform names: the 2.0 archive's checks
+    # (glibc 2.17 baseline, the win64 host under wine) hold for them
+    two, three = _binaries(fmu_path), _binaries(fmu3_path)
+    assert "x86_64-linux" in three and set(three) <= {"x86_64-linux", "x86_64-windows"}
+    assert {NAMES[p]: b for p, b in two.items()} == three
+
+
+NAMES = {"linux64": "x86_64-linux", "win64": "x86_64-windows"}
+
+
+def _binaries(path):
+    """Platform folder -> the bytes of the archive's binary there."""
+    import zipfile
+
+    with zipfile.ZipFile(path) as z:
+        return {pathlib.PurePath(n).parts[1]: z.read(n) for n in z.namelist() if n.startswith("binaries/")}
+
+
+def _ground(t):
+    """A decaying 2 Hz pulse (m/s2): rocking with impacts on the crushing joint."""
+    return 4.0 * math.sin(2 * math.pi * 2.0 * t) * math.exp(-0.5 * t)
+
+
+CASE = dict(B=0.4, H=1.6, theta=0.0, omega=0.0)
+OUT = ["theta", "omega", "af", "Fx"]
+
+
+def _vr(md, names):
+    v = {x.name: x.valueReference for x in md.modelVariables}
+    return [v[n] for n in names]
+
+
+def _co_simulate(path, slave_class, n=300, h=0.01):
+    """One host loop for both standards: inputs held over each step."""
+    md = read_model_description(path)
+    unzipped = extract(path)
+    s = slave_class(guid=md.guid if md.fmiVersion == "2.0" else md.instantiationToken,
+                    unzipDirectory=unzipped, modelIdentifier="RockingBlock", instanceName="cs")
+    s.instantiate()
+    real = s.setReal if md.fmiVersion == "2.0" else s.setFloat64
+    get = s.getReal if md.fmiVersion == "2.0" else s.getFloat64
+    if md.fmiVersion == "2.0":
+        s.setupExperiment(startTime=0.0)
+        s.enterInitializationMode()
+    else:
+        s.enterInitializationMode(startTime=0.0)
+    real(_vr(md, CASE), list(CASE.values()))
+    s.exitInitializationMode()
+    ag, out = _vr(md, ["ag"]), _vr(md, OUT)
+    rows = []
+    for k in range(n):
+        t = k * h
+        real(ag, [_ground(t)])
+        s.doStep(t, h)
+        rows.append(get(out))
+    s.terminate()
+    s.freeInstance()
+    return np.array(rows)
+
+
+def test_co_simulation_is_bit_for_bit_the_2_0_trajectory(fmu_path, fmu3_path):
+    a, b = _co_simulate(fmu_path, FMU2Slave), _co_simulate(fmu3_path, FMU3Slave)
+    assert np.abs(a[:, 0]).max() > 1e-3  # it rocks
+    assert a.tobytes() == b.tobytes()
+
+
+def test_model_exchange_is_bit_for_bit_the_2_0_trajectory(fmu_path, fmu3_path):
+    params = rigid_block()
+    kw = dict(fmi_type="ModelExchange", solver="CVode", relative_tolerance=1e-8, stop_time=2.0,
+              output_interval=0.01, start_values=start_values(params),
+              output=["theta", "omega", "impacts"])
+    a, b = simulate_fmu(fmu_path, **kw), simulate_fmu(fmu3_path, **kw)
+    assert a["impacts"][-1] >= 3
+    for name in ["time", "theta", "omega", "impacts"]:
+        assert a[name].tobytes() == b[name].tobytes(), name
+
+
+def _slave3(path, **flags):
+    md = read_model_description(path)
+    s = FMU3Slave(guid=md.instantiationToken, unzipDirectory=extract(path),
+                  modelIdentifier="RockingBlock", instanceName="s3")
+    messages = []
+    s.instantiate(logMessage=lambda env, status, category, message: messages.append(message.decode()),
+                  **flags)
+    return s, md, messages
+
+
+def test_fmu_state_round_trips_and_output_derivatives(fmu3_path):
+    s, md, _ = _slave3(fmu3_path)
+    s.enterInitializationMode(startTime=0.0)
+    s.setFloat64(_vr(md, CASE), list(CASE.values()))
+    s.exitInitializationMode()
+    ag, out = _vr(md, ["ag"]), _vr(md, OUT)
+
+    def run(t0, n):
+        rows = []
+        for k in range(n):
+            s.setFloat64(ag, [_ground(t0 + k * 0.01)])
+            s.doStep(t0 + k * 0.01, 0.01)
+            rows.append(s.getFloat64(out))
+        return rows
+
+    run(0.0, 50)
+    # output derivatives as in 2.0: d theta / dt is omega
+    theta, omega = _vr(md, ["theta", "omega"])
+    assert s.getOutputDerivatives([theta], [1]) == s.getFloat64([omega])
+    bytes_ = s.serializeFMUState(s.getFMUState())
+    first = run(0.5, 50)
+    state = s.deserializeFMUState(bytes_)
+    s.setFMUState(state)
+    s.freeFMUState(state)
+    again = run(0.5, 50)
+    assert np.array(first).tobytes() == np.array(again).tobytes()
+    s.terminate()
+    s.freeInstance()
+
+
+def test_bad_calls_are_refused_through_the_logger(fmu3_path):
+    """Each bad call on a fresh instance: refused with fmi3Error and a
+    message naming the function and what is wrong."""
+
+    def refused(call, expect):
+        s, md, messages = _slave3(fmu3_path)
+        with pytest.raises(FMICallException):
+            call(s, md)
+        s.freeInstance()
+        assert any(expect in m for m in messages), messages
+
+    refused(lambda s, md: s.doStep(0.0, 0.01), "fmi3DoStep: not allowed in state instantiated")
+    # an enumeration is an Int64 in FMI 3.0, not an Int32
+    refused(lambda s, md: s.setInt32(_vr(md, ["shape"]), [1]), "is no Int32 variable")
+    refused(lambda s, md: s.setInt64(_vr(md, ["shape"]), [2**40]), "is no item")
+    refused(lambda s, md: s.setFloat64(_vr(md, ["time"]), [1.0]), "cannot be set")
+    refused(lambda s, md: s.enterStepMode(), "eventModeUsed = false")
+
+    def bad_width(s, md):
+        s.enterInitializationMode(startTime=0.0)
+        s.setFloat64(_vr(md, ["B"]), [-1.0])
+        s.exitInitializationMode()
+
+    refused(bad_width, "invalid parameters")
+    s, md, _ = _slave3(fmu3_path)
+    s.setInt64(_vr(md, ["shape"]), [1])  # the Int64 of an enumeration is accepted
+    s.freeInstance()
+
+
+def test_early_return_stops_at_each_impact_of_a_rigid_block(fmu3_path):
+    """Free rocking of a rigid block from 0.5 alpha, 0.05 s steps: each step
+    that holds an impact returns early at it, and the returned times are
+    Housner's closed-form impact times."""
+    ex = Exact(0.25, 1.0)
+    exact = ex.impact_times(0.5 * ex.alpha, 6)
+    s, md, _ = _slave3(fmu3_path, eventModeUsed=True, earlyReturnAllowed=True)
+    params = start_values(rigid_block())
+    s.enterInitializationMode(startTime=0.0)
+    for name, value in params.items():
+        (s.setInt64 if isinstance(value, int) else s.setFloat64)(_vr(md, [name]), [value])
+    s.exitInitializationMode()
+    s.updateDiscreteStates()
+    s.enterStepMode()
+    t, h, returns = 0.0, 0.05, []
+    impacts = _vr(md, ["impacts"])
+    while t < exact[-1] + 0.01:
+        event, terminate, early, last = s.doStep(t, min(h, exact[-1] + 0.01 - t))
+        assert not terminate
+        if early:
+            assert event and t < last < t + h
+            returns.append((last, s.getInt32(impacts)[0]))
+            s.enterEventMode()
+            s.updateDiscreteStates()
+            s.enterStepMode()
+        t = last
+    s.terminate()
+    s.freeInstance()
+    at_impact = [t for t, _ in returns]
+    # every impact is an early return, and the impact count rises at each
+    assert [n for _, n in returns][:len(exact)] == list(range(1, len(exact) + 1))
+    err = np.abs(np.array(at_impact[:len(exact)]) - exact) / np.array(exact)
+    print(f"\nearly returns at {len(exact)} impacts: worst relative error {err.max():.1e} against Housner")
+    assert err.max() < 1e-7
+
+
+def _overturn_2_0(fmu_path, params, ag, h):
+    """fmi2LastSuccessfulTime of the step that discards at overturning."""
+    from fmpy.fmi2 import fmi2LastSuccessfulTime, fmi2Terminated
+
+    md = read_model_description(fmu_path)
+    s = FMU2Slave(guid=md.guid, unzipDirectory=extract(fmu_path), modelIdentifier="RockingBlock",
+                  instanceName="ov2")
+    s.instantiate()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    for name, value in params.items():
+        (s.setInteger if isinstance(value, int) else s.setReal)(_vr(md, [name]), [value])
+    s.exitInitializationMode()
+    s.setReal(_vr(md, ["ag"]), [ag])
+    t = 0.0
+    while True:
+        try:
+            s.doStep(t, h)
+        except FMICallException:
+            break
+        t += h
+    assert s.getBooleanStatus(fmi2Terminated)
+    t_ov = s.getRealStatus(fmi2LastSuccessfulTime)
+    s.terminate()
+    s.freeInstance()
+    return t_ov
+
+
+@pytest.mark.parametrize("early", [False, True])
+def test_overturning_ends_the_run_at_the_2_0_time(fmu_path, fmu3_path, early):
+    """A rigid block under a constant ag of twice g tan(alpha) overturns;
+    3.0 ends the run with terminateSimulation at the time 2.0 discards at
+    (bit for bit without early return, where the steps are the same)."""
+    params = start_values(rigid_block(theta_over_alpha=0.0))
+    ag, h = 2 * 9.81 * 0.25, 0.05
+    t_ov2 = _overturn_2_0(fmu_path, params, ag, h)
+    s, md, messages = _slave3(fmu3_path, eventModeUsed=early, earlyReturnAllowed=early)
+    s.enterInitializationMode(startTime=0.0)
+    for name, value in params.items():
+        (s.setInt64 if isinstance(value, int) else s.setFloat64)(_vr(md, [name]), [value])
+    s.exitInitializationMode()
+    if early:
+        s.updateDiscreteStates()
+        s.enterStepMode()
+    s.setFloat64(_vr(md, ["ag"]), [ag])
+    t, returns = 0.0, []
+    while True:
+        event, terminate, early_return, last = s.doStep(t, h)
+        if terminate:
+            break
+        if early_return:  # uplift at the start
+            returns.append(last)
+            s.enterEventMode()
+            s.updateDiscreteStates()
+            s.enterStepMode()
+        t = last
+    assert s.getBoolean(_vr(md, ["overturned"]))[0]
+    s.terminate()
+    s.freeInstance()
+    if early:
+        assert abs(last - t_ov2) < 1e-9 * t_ov2
+    else:
+        assert last == t_ov2 and returns == []
+
+
+def test_shear_frame_3_0_is_bit_for_bit_its_2_0(fmu_path):
+    """ShearFrame 3.0 co-simulation (scalars Fx[i], u[i]... as in 2.0):
+    validates, and a 3-storey frame under a step of ag gives the 2.0
+    trajectories bit for bit."""
+    two = FMU.parent / "ShearFrame.fmu"
+    three = FMU.parent / "fmi3" / "ShearFrame.fmu"
+    assert validate_fmu(str(three)) == []
+    start = {"n": 3, "ag": 1.5, "zeta": 0.05}
+    out = [f"{x}[{i}]" for x in ("u", "v", "a") for i in (1, 2, 3)]
+    a, b = (simulate_fmu(str(p), start_values=start, stop_time=2.0, output_interval=0.01, output=out)
+            for p in (two, three))
+    assert np.abs(a["u[3]"]).max() > 0
+    for name in ["time"] + out:
+        assert a[name].tobytes() == b[name].tobytes(), name
