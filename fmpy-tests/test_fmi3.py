@@ -310,3 +310,21 @@ def test_shear_frame_3_0_is_bit_for_bit_its_2_0(fmu_path):
     assert np.abs(a["u[3]"]).max() > 0
     for name in ["time"] + out:
         assert a[name].tobytes() == b[name].tobytes(), name
+
+
+def test_co_simulation_reads_every_float64_as_a_recording_host_does(fmu3_path):
+    """fmusim reads every Float64 variable of a co-simulation instance to record it; the
+    event indicators answer there too: indicator 2 is thetaOv - |theta| (no av)."""
+    s, md, messages = _slave3(fmu3_path)
+    floats = [v for v in md.modelVariables if v.type == "Float64"]
+    vrs = [v.valueReference for v in floats]
+    s.enterInitializationMode(startTime=0.0)
+    s.setFloat64(_vr(md, CASE), list(CASE.values()))
+    s.exitInitializationMode()
+    for k in range(30):
+        s.setFloat64(_vr(md, ["ag"]), [_ground(k * 0.01)])
+        s.doStep(k * 0.01, 0.01)
+        values = dict(zip((v.name for v in floats), s.getFloat64(vrs)))
+        assert values["eventIndicator2"] == values["thetaOv"] - abs(values["theta"]), messages
+    s.terminate()
+    s.freeInstance()

@@ -141,6 +141,16 @@ impl<S: Slave> Inner<S> {
         Ok(Status::Ok)
     }
 
+    /// The event indicators read as variables (FMI 3.0 lists them among the
+    /// model's variables, which a host may read in a co-simulation instance
+    /// too, e.g. to record every `Float64`): the model's indicators at the
+    /// current state and inputs, in any interface.
+    pub fn event_indicators_as_variables(&mut self, z: &mut [f64]) -> Res<Status> {
+        self.check_len("ni", z.len(), self.event_indicator_count())?;
+        self.me_call("eventIndicator", |s, i, _| s.event_indicators(i, z))?;
+        Ok(Status::Ok)
+    }
+
     pub fn get_event_indicators(&mut self, z: &mut [f64]) -> Res<Status> {
         self.check_me(mask::fmi2GetEventIndicators)?;
         self.check_len("ni", z.len(), self.event_indicator_count())?;

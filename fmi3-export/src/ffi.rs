@@ -190,14 +190,18 @@ fn float64s<S: Slave>(i: &mut Inner<S>, vrs: &[u32], out: &mut [f64]) -> Res<Sta
     if vrs.iter().all(|&vr| added(i.md, vr).is_none()) {
         return i.get_real(vrs, out);
     }
-    let mut z = vec![0.0; i.event_indicator_count()];
+    let mut z: Option<Vec<f64>> = None;
     let mut status = Status::Ok;
     for (k, &vr) in vrs.iter().enumerate() {
         out[k] = match added(i.md, vr) {
             Some(Added::Time) => i.time,
             Some(Added::EventIndicator(j)) => {
-                status = status.max(i.get_event_indicators(&mut z)?);
-                z[j]
+                if z.is_none() {
+                    let mut all = vec![0.0; i.event_indicator_count()];
+                    status = status.max(i.event_indicators_as_variables(&mut all)?);
+                    z = Some(all);
+                }
+                z.as_ref().expect("filled above")[j]
             }
             None => {
                 status = status.max(i.get_real(&[vr], &mut out[k..=k])?);
