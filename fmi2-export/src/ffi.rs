@@ -229,16 +229,26 @@ pub unsafe fn set_debug_logging<S: Slave>(
     categories: *const fmi2String,
 ) -> fmi2Status {
     call::<S>(c, "fmi2SetDebugLogging", |i| {
-        let cats = unsafe { slice(categories, n, "categories") }?;
-        let mut names = Vec::with_capacity(cats.len());
-        for &p in cats {
-            match unsafe { c_str(p) } {
-                Some(s) => names.push(s),
-                None => return error("a category is NULL"),
-            }
-        }
+        let names = unsafe { category_names(categories, n) }?;
         i.set_debug_logging(logging_on != fmi2False, &names)
     })
+}
+
+/// The `n` log category names a host passes to `fmiXSetDebugLogging`
+/// (FMI 2.0 and 3.0 alike); a NULL name is refused.
+///
+/// # Safety
+/// `categories` points to `n` C strings, or is NULL with `n` = 0.
+pub unsafe fn category_names(categories: *const fmi2String, n: usize) -> Res<Vec<String>> {
+    let cats = unsafe { slice(categories, n, "categories") }?;
+    let mut names = Vec::with_capacity(cats.len());
+    for &p in cats {
+        match unsafe { c_str(p) } {
+            Some(s) => names.push(s),
+            None => return error("a category is NULL"),
+        }
+    }
+    Ok(names)
 }
 
 pub unsafe fn setup_experiment<S: Slave>(

@@ -13,7 +13,7 @@ use std::ptr;
 use std::sync::Mutex;
 
 use fmi2_export::fail::{error, Res};
-use fmi2_export::ffi::{c_str, call, owned_strings, slice, slice_mut};
+use fmi2_export::ffi::{c_str, call, category_names, owned_strings, slice, slice_mut};
 use fmi2_export::instance::{Inner, Instance, INSTANCE_MAGIC};
 use fmi2_export::logging::{Callback, Logger};
 use fmi2_export::machine::Machine;
@@ -105,14 +105,7 @@ pub unsafe fn set_debug_logging<S: Slave>(
     categories: *const fmi3String,
 ) -> fmi3Status {
     call::<S>(c, "fmi3SetDebugLogging", |i| {
-        let cats = unsafe { slice(categories, n, "categories") }?;
-        let mut names = Vec::with_capacity(cats.len());
-        for &p in cats {
-            match unsafe { c_str(p) } {
-                Some(s) => names.push(s),
-                None => return error("a category is NULL"),
-            }
-        }
+        let names = unsafe { category_names(categories, n) }?;
         i.set_debug_logging(logging_on, &names)
     })
 }
