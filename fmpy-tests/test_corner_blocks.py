@@ -165,3 +165,24 @@ def test_study_table_only_runs_no_dem_case(tmp_path):
     assert all(lam > 0 for lam in columns["LP free"])
     assert not list(tmp_path.glob("dem_*.json"))
     assert "| DEM free |" in (tmp_path / "table.md").read_text().splitlines()[0]
+
+
+def test_the_lp_bounds_every_dem_case_of_the_study():
+    """The committed study (data/corner-blocks, `rocking corner-blocks study --methods lp,dem`):
+    the associative LP is at least the DEM's collapse level in every case it ran, and every
+    DEM case collapsed above its start (none at its first level)."""
+    import json
+    from pathlib import Path
+
+    folder = Path(__file__).resolve().parents[1] / "data" / "corner-blocks"
+    cases = 0
+    for path in sorted(folder.glob("dem_*_mu0.66_*.json")):
+        dem = json.loads(path.read_text())
+        if dem.get("lam") is None:
+            assert "outOfPlane" in path.name and "skipped" in dem  # off the axes: not run
+            continue
+        lp_case = json.loads((folder / path.name.replace("dem_", "lp_")).read_text())
+        assert dem["collapsed"] and len(dem["history"]) > 1, path.name
+        assert lp_case["lam"] >= dem["lam"] - 1e-9, (path.name, lp_case["lam"], dem["lam"])
+        cases += 1
+    assert cases == 11
