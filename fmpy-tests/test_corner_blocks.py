@@ -186,3 +186,21 @@ def test_the_lp_bounds_every_dem_case_of_the_study():
         assert lp_case["lam"] >= dem["lam"] - 1e-9, (path.name, lp_case["lam"], dem["lam"])
         cases += 1
     assert cases == 11
+
+
+def test_rocking_corner_runs_each_method(capsys):
+    from rocking.cli import main
+
+    args = ["--courses", "3", "--blocks", "3", "--ends", "free", "--alpha", "0.785398"]
+    assert main(["corner", "--method", "lp", *args]) == 0
+    via_corner = capsys.readouterr().out
+    assert main(["corner-blocks", "lp", *args]) == 0
+    assert via_corner == capsys.readouterr().out  # the same command, by another name
+    lam = lp.solve(Assembly.from_specimen(Specimen(courses=3, blocks=3, ends="free")), 0.785398).lam
+    assert f"lambda {lam:.4f}" in via_corner
+    with pytest.raises(SystemExit) as done:  # argparse's --help exits
+        main(["corner", "--method=dem", "--help"])
+    assert done.value.code == 0 and "--step" in capsys.readouterr().out
+    for bad, name in ((["--method", "fem"], "--method"), (["--ends", "free", "--alpha", "0.7"], "--ends")):
+        assert main(["corner", *bad]) == 2
+        assert name in capsys.readouterr().err

@@ -1,4 +1,7 @@
-"""`rocking corner ARGS...`: the arguments forwarded untouched to the Rust binary rocking-corner.
+"""`rocking corner ARGS...`: the arguments forwarded untouched to the Rust binary rocking-corner
+(the macroblock limit analysis, `--method la`, the default). `--method lp` and `--method dem`
+run the same specimen block by block instead: `rocking corner-blocks lp|dem` with the other
+arguments (docs/corner-blocks.md), e.g. `rocking corner --method dem --ends free --alpha 1.5708`.
 
 The body file the binary writes (`--body FILE`) is then made one-sided on the
 macroblock's collapse side (docs/corner.md §10): restraint = oneSided, side = 1
@@ -26,8 +29,39 @@ def corner_binary():
     return shutil.which("rocking-corner")
 
 
+METHODS = ("la", "lp", "dem")
+
+
+def method_of(argv):
+    """(the method of `--method M` / `--method=M`, default la; argv without it)."""
+    rest, method = [], "la"
+    i = 0
+    while i < len(argv):
+        if argv[i] == "--method":
+            if i + 1 >= len(argv):
+                raise CLIError("--method: a value is needed (la, lp or dem)")
+            method, i = argv[i + 1], i + 2
+            continue
+        if argv[i].startswith("--method="):
+            method = argv[i].split("=", 1)[1]
+        else:
+            rest.append(argv[i])
+        i += 1
+    if method not in METHODS:
+        raise CLIError(f"invalid --method: la (macroblock), lp (block LP) or dem (LMGC90), got {method}")
+    return method, rest
+
+
 def forward(argv):
-    """Run rocking-corner on argv as given (argparse never sees it); its exit status."""
+    """Run rocking-corner on argv as given (argparse never sees it), or with `--method lp|dem`
+    the block-by-block command; its exit status."""
+    method, argv = method_of(argv)
+    if method != "la":
+        from .main import main
+        return main(["corner-blocks", method, *argv])
+    if any(a == "--ends" or a.startswith("--ends=") for a in argv):
+        raise CLIError("invalid --ends: the macroblock analysis (--method la) has its walls clamped at "
+                       "their ends; --ends is for --method lp or dem")
     exe = corner_binary()
     if exe is None:
         raise CLIError("rocking-corner not found (target/release of the repository, PATH): "
@@ -72,4 +106,6 @@ def one_sided(path):
 
 def register(sub, common):
     """Add the subcommand to `sub` (argparse subparsers); `common` is the parent parser of --debug."""
-    sub.add_parser("corner", help="forward the arguments to the Rust binary rocking-corner", add_help=False)
+    sub.add_parser("corner", add_help=False,
+                   help="the corner's collapse multiplier: --method la (default; the arguments go to the Rust "
+                        "binary rocking-corner), lp or dem (as `corner-blocks lp|dem`)")
