@@ -1,7 +1,7 @@
 """The DEM tilting test of the paper's corner under changes of its protocol and friction,
 at one orientation and end condition (docs/corner-blocks.md, "Sensitivity"):
 
-    .venv/bin/python examples/corner_dem_sensitivity.py [--out data/corner-blocks-study/sensitivity]
+    .venv/bin/python examples/corner_dem_sensitivity.py [--out data/corner-blocks/sensitivity]
         [--alpha pi/2] [--ends fixed] [--workers 2]
 
 The base is the study's own case; each variant changes one thing of its protocol (step 0.01 from 0.6 x the LP
@@ -41,9 +41,9 @@ def stricter(result, displacement):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--study", default="data/corner-blocks-study",
+    ap.add_argument("--study", default="data/corner-blocks",
                     help="the study's folder, whose case at --alpha and --ends is the base (rocking corner-blocks study)")
-    ap.add_argument("--out", default="data/corner-blocks-study/sensitivity")
+    ap.add_argument("--out", default="data/corner-blocks/sensitivity")
     ap.add_argument("--alpha", default="pi/2", choices=[lab for _, lab in ORIENTATIONS])
     ap.add_argument("--ends", default="fixed", choices=["fixed", "free"])
     ap.add_argument("--workers", type=int, default=2)
