@@ -146,15 +146,17 @@ impl<S: Slave> Inner<S> {
     /// too, e.g. to record every `Float64`): the model's indicators at the
     /// current state and inputs, in any interface.
     pub fn event_indicators_as_variables(&mut self, z: &mut [f64]) -> Res<Status> {
-        self.check_len("ni", z.len(), self.event_indicator_count())?;
-        self.me_call("eventIndicator", |s, i, _| s.event_indicators(i, z))?;
-        Ok(Status::Ok)
+        self.indicators("eventIndicator", z)
     }
 
     pub fn get_event_indicators(&mut self, z: &mut [f64]) -> Res<Status> {
         self.check_me(mask::fmi2GetEventIndicators)?;
+        self.indicators("fmi2GetEventIndicators", z)
+    }
+
+    fn indicators(&mut self, what: &str, z: &mut [f64]) -> Res<Status> {
         self.check_len("ni", z.len(), self.event_indicator_count())?;
-        self.me_call("fmi2GetEventIndicators", |s, i, _| s.event_indicators(i, z))?;
+        self.me_call(what, |s, i, _| s.event_indicators(i, z))?;
         Ok(Status::Ok)
     }
 
