@@ -136,15 +136,18 @@ def test_model_exchange_is_declared_and_valid(fmu_path, model_description):
     md = model_description
     assert validate_fmu(fmu_path) == []
     assert md.modelExchange.modelIdentifier == md.coSimulation.modelIdentifier == "RockingBlock"
-    assert md.numberOfEventIndicators == 10  # docs/model-exchange.md: 9 and the range of N under av
+    # docs/model-exchange.md: 9, the range of N under av, two kinks of I(phi, W)
+    assert md.numberOfEventIndicators == 12
     states = {d.variable.derivative.name: (d.variable.name, {x.name for x in d.dependencies})
               for d in md.derivatives}
-    assert states == {"theta": ("der(theta)", {"omega"}),
-                      "omega": ("der(omega)", {"theta", "omega", "ag", "av"})}
+    assert states == {"theta": ("der(theta)", {"theta", "omegaW", "av"}),
+                      "omegaW": ("der(omegaW)", {"theta", "omegaW", "ag", "av"})}
     vr = {v.name: v.valueReference for v in md.modelVariables}
-    assert vr["der(theta)"] == 43 and vr["der(omega)"] == 44
+    assert vr["der(theta)"] == 43 and vr["der(omegaW)"] == 44 and vr["omegaW"] == 52
     initial = {u.variable.name for u in md.initialUnknowns}
-    assert {"der(theta)", "der(omega)"} <= initial
+    assert {"der(theta)", "der(omegaW)", "omegaW"} <= initial
+    outputs = {u.variable.name: {x.name for x in u.dependencies} for u in md.outputs}
+    assert outputs["omega"] == {"av"} and outputs["theta"] == set()
 
 
 def test_rigid_free_rocking_matches_the_exact_impact_times(fmu_path):

@@ -404,10 +404,18 @@ fn model_exchange_q_form_balances_the_energy() {
         &|_, _, omega| omega,
         &|_, _, omega| omega,
     );
+    let r = |t: f64, theta: f64| sim.weight_referral(theta, av_of(t)).unwrap_or(1.0);
+    let omega_w_form = rk4_energy_error(
+        &m,
+        &|t, y| sim.derivatives_weight_referred(&at(y[0], y[1]), 0.0, av_of(t)),
+        &|t, theta, omega| omega * r(t, theta),
+        &|t, theta, omega_w| omega_w / r(t, theta),
+    );
     println!(
-        "Model Exchange forms by RK4 over 0.5 s: q {q_form:.2e}, omega (naive) {omega_form:.2e}"
+        "Model Exchange forms by RK4 over 0.5 s: q {q_form:.2e}, omegaW {omega_w_form:.2e}, omega (naive) {omega_form:.2e}"
     );
     assert!(q_form <= 1e-6, "q form {q_form:e}");
+    assert!(omega_w_form <= 1e-6, "omegaW form {omega_w_form:e}");
     assert!(
         omega_form >= 1e3 * q_form.max(1e-9),
         "omega form {omega_form:e}"
@@ -419,9 +427,12 @@ fn model_exchange_q_form_balances_the_energy() {
 /// co-simulation integrator at rtol 1e-12, both under the same line (the
 /// 1.4 Hz, 0.3 g sine sampled every 10 ms), the soft elastic block rocking
 /// freely from 0.3 thetaOv (eta = 1: the crossings change nothing, the
-/// host needs no event handling). Measured over 2 s: 1.0e-10 rad; the
-/// `omega` form, which Model Exchange integrates without input
-/// derivatives (the naive form), 5.4e-4 rad.
+/// host needs no event handling). Measured over 2 s: 1.0e-10 rad; Model
+/// Exchange's state `(theta, omegaW)`, 3.1e-9 rad (the steps cross
+/// `theta = 0` unlocated, where `dJ/dphi` changes sign: its difference from
+/// the `q` form 0.1 s after the first crossing falls from 1.6e-10 to
+/// 4.7e-11 rad at half the step, measured); the naive `omega` form, 5.4e-4
+/// rad.
 #[test]
 fn model_exchange_q_form_follows_co_simulation_under_a_varying_av() {
     let m = soft_block();
@@ -438,9 +449,11 @@ fn model_exchange_q_form_follows_co_simulation_under_a_varying_av() {
     let q_form =
         |t: f64, y: [f64; 2]| sim.derivatives_q(&at(y[0], y[1] / sq(t, y[0])), 0.0, line(t));
     let omega_form = |t: f64, y: [f64; 2]| sim.derivatives_vertical(&at(y[0], y[1]), 0.0, line(t));
+    let omega_w_form =
+        |t: f64, y: [f64; 2]| sim.derivatives_weight_referred(&at(y[0], y[1]), 0.0, line(t));
     let mut st = sim.initial_state(theta0, 0.0);
-    let (mut yq, mut yw) = ([theta0, 0.0], [theta0, 0.0]);
-    let (mut worst_q, mut worst_w) = (0.0f64, 0.0f64);
+    let (mut yq, mut yw, mut yr) = ([theta0, 0.0], [theta0, 0.0], [theta0, 0.0]);
+    let (mut worst_q, mut worst_w, mut worst_r) = (0.0f64, 0.0f64, 0.0f64);
     let mut crossings = 0;
     for k in 0..200 {
         let t0 = k as f64 * dt;
@@ -455,16 +468,19 @@ fn model_exchange_q_form_follows_co_simulation_under_a_varying_av() {
             let t = t0 + j as f64 * dt / 100.0;
             yq = rk4(&q_form, t, yq, dt / 100.0);
             yw = rk4(&omega_form, t, yw, dt / 100.0);
+            yr = rk4(&omega_w_form, t, yr, dt / 100.0);
         }
         worst_q = worst_q.max((yq[0] - st.theta).abs());
         worst_w = worst_w.max((yw[0] - st.theta).abs());
+        worst_r = worst_r.max((yr[0] - st.theta).abs());
     }
     println!(
-        "2 s, {crossings} crossings: max |theta_ME - theta_CS| = {worst_q:.1e} rad (q form), {worst_w:.1e} rad (omega form); thetaOv {:.1e}",
+        "2 s, {crossings} crossings: max |theta_ME - theta_CS| = {worst_q:.1e} rad (q form), {worst_r:.1e} rad (omegaW form), {worst_w:.1e} rad (omega form); thetaOv {:.1e}",
         m.theta_ov
     );
     assert!(crossings >= 2);
     assert!(worst_q <= 1e-8, "q form {worst_q:e}");
+    assert!(worst_r <= 1e-8, "omegaW form {worst_r:e}");
     assert!(worst_w >= 1e3 * worst_q, "omega form {worst_w:e}");
 }
 
@@ -943,4 +959,63 @@ fn rigid_output_derivatives_under_av_match_differences() {
     assert!(flexible
         .output_rates_vertical(&st, GroundInput::default(), v)
         .is_none());
+}
+
+/// Model Exchange's state `omegaW` is `omega` bit for bit wherever the
+/// model makes the factor 1 (`av = 0`; the rigid law; `costa`), so those
+/// runs integrate the same numbers as before the state existed.
+#[test]
+fn omega_w_is_omega_where_the_inertia_does_not_depend_on_n() {
+    let costa = Params {
+        formulation: rocking::model::Formulation::Costa,
+        ..Params {
+            interface: LawKind::Elastic,
+            kn: 1e8,
+            ..Params::default()
+        }
+    }
+    .build()
+    .unwrap();
+    for (m, av) in [
+        (soft_block(), 0.0),
+        (rigid_block(0.4, 2.0), 2.5),
+        (rigid_block(0.4, 2.0), -3.0),
+        (costa, 2.5),
+    ] {
+        let sim = Simulator::new(m, 1e-10);
+        for (theta, omega) in [(1e-4, 0.02), (-3e-3, -0.1), (0.5 * m.theta_ov, 0.3)] {
+            let c = sim.continuous(theta, omega, 0.0);
+            assert_eq!(sim.weight_referral(theta, av), None);
+            assert_eq!(sim.to_weight_referred(c, av), c);
+            assert_eq!(
+                sim.derivatives_weight_referred(&c, 0.7, av)
+                    .map(f64::to_bits),
+                sim.derivatives_vertical(&c, 0.7, av).map(f64::to_bits)
+            );
+        }
+    }
+}
+
+/// `omegaW` does not move when `av` jumps: it carries the co-simulation's
+/// zero-order-hold jump rule (`Simulator::vertical_jump`, which keeps
+/// `I omega²/2`) with no code of its own.
+#[test]
+fn omega_w_carries_the_jump_rule_of_a_held_av() {
+    let m = soft_block();
+    let sim = Simulator::new(m, 1e-10);
+    for (theta, omega, before, after) in [
+        (2e-4, 0.05, 0.0, 2.9),
+        (-1e-3, -0.2, -1.5, 3.0),
+        (0.4 * m.theta_ov, 0.1, 4.0, -4.0),
+    ] {
+        let c = sim.continuous(theta, omega, 0.0);
+        let mut jumped = c;
+        sim.vertical_jump(&mut jumped.state, before, after);
+        let w_before = sim.to_weight_referred(c, before).state.omega;
+        let w_after = sim.to_weight_referred(jumped, after).state.omega;
+        assert!(
+            (w_after - w_before).abs() <= 4.0 * f64::EPSILON * w_before.abs(),
+            "{w_before} -> {w_after}"
+        );
+    }
 }

@@ -267,6 +267,7 @@ impl<S: Slave> Inner<S> {
                 tolerance,
                 start_time,
                 stop_time,
+                model_exchange: self.model_exchange,
             },
             time,
             last_successful_time,

@@ -74,6 +74,7 @@ impl<S: Slave> Inner<S> {
                 tolerance: None,
                 start_time: 0.0,
                 stop_time: None,
+                model_exchange,
             },
             time: 0.0,
             last_successful_time: 0.0,
@@ -97,6 +98,7 @@ impl<S: Slave> Inner<S> {
             tolerance: None,
             start_time: 0.0,
             stop_time: None,
+            model_exchange: self.model_exchange,
         };
         self.time = 0.0;
         self.last_successful_time = 0.0;
@@ -239,6 +241,7 @@ impl<S: Slave> Inner<S> {
             tolerance,
             start_time,
             stop_time,
+            model_exchange: self.model_exchange,
         };
         self.time = start_time;
         self.last_successful_time = start_time;

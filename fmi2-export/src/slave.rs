@@ -119,13 +119,17 @@ impl<'a> Inputs<'a> {
     }
 }
 
-/// Experiment settings from `fmi2SetupExperiment`.
+/// Experiment settings from `fmi2SetupExperiment`, and the interface the
+/// instance was created for.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Setup {
     /// Relative tolerance, if the master defined one.
     pub tolerance: Option<f64>,
     pub start_time: f64,
     pub stop_time: Option<f64>,
+    /// The instance is of fmuType fmi2ModelExchange (the host's solver
+    /// integrates the continuous states).
+    pub model_exchange: bool,
 }
 
 /// Messages a slave reports during a call: events (category `logEvents`,

@@ -28,6 +28,7 @@ static VARIABLES: &[Variable] = &[
         },
         depends_on: &[],
         derivative: None,
+        run_depends_on: &[],
     },
     Variable {
         name: "u",
@@ -45,6 +46,7 @@ static VARIABLES: &[Variable] = &[
         },
         depends_on: &[],
         derivative: None,
+        run_depends_on: &[],
     },
     Variable {
         name: "x",
@@ -62,6 +64,7 @@ static VARIABLES: &[Variable] = &[
         },
         depends_on: &[],
         derivative: None,
+        run_depends_on: &[],
     },
 ];
 

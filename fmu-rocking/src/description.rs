@@ -12,10 +12,10 @@ use model_description::*;
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 
 /// Event indicators of the Model Exchange interface: the zero crossing of
-/// theta, overturning, uplift from rest, six kinks of af and the range of
-/// the apparent weight (`rocking::dynamics::continuous::EVENT_INDICATORS`,
-/// checked by the FMU).
-pub const EVENT_INDICATORS: u32 = 10;
+/// theta, overturning, uplift from rest, six kinks of af, the range of the
+/// apparent weight and two kinks of the inertia at the weight
+/// (`rocking::dynamics::continuous::EVENT_INDICATORS`, checked by the FMU).
+pub const EVENT_INDICATORS: u32 = 12;
 
 /// Declares the value-reference constants ([`vr`]) and the variable table
 /// ([`VARIABLES`]) from one list.
@@ -333,6 +333,8 @@ variables! {
         description: "Angular velocity dtheta/dt; its start value is the initial angular velocity",
         causality: Output, variability: Continuous, initial: Some(Exact),
         ty: real(Some("rad/s"), Some("deg/s"), Some(0.0)),
+        // Model Exchange: omegaW sqrt(I(phi, W)/I(phi, N)) at the present av
+        run_depends_on: &["theta", "omegaW", "av"],
     }
     ANGULAR_ACCELERATION = 22 => {
         name: "angularAcceleration",
@@ -484,14 +486,16 @@ variables! {
         ty: real(Some("rad/s"), Some("deg/s"), None),
         depends_on: &["omega"],
         derivative: Some("theta"),
+        run_depends_on: &["theta", "omegaW", "av"],
     }
-    DER_OMEGA = 44 => {
-        name: "der(omega)",
-        description: "Model Exchange: derivative of the continuous state omega, the angular acceleration of the equation of motion (0 while a rigid body rests and after overturning)",
+    DER_OMEGA_W = 44 => {
+        name: "der(omegaW)",
+        description: "Model Exchange: derivative of the continuous state omegaW; the angular acceleration of the equation of motion where omegaW is omega (0 while a rigid body rests and after overturning)",
         causality: Local, variability: Continuous, initial: Some(Calculated),
         ty: real(Some("rad/s2"), Some("deg/s2"), None),
         depends_on: D_DYNAMIC,
-        derivative: Some("omega"),
+        derivative: Some("omegaW"),
+        run_depends_on: &["theta", "omegaW", "ag", "av"],
     }
     AV = 45 => {
         name: "av",
@@ -536,6 +540,14 @@ variables! {
         description: "Friction coefficient of the base for the sliding check: the first time frictionDemand exceeds it, a warning names the time (0: no check; >= 0)",
         causality: Parameter, variability: Fixed, initial: Some(Exact),
         ty: real(Some("1"), None, Some(0.0)),
+    }
+    OMEGA_W = 52 => {
+        name: "omegaW",
+        description: "Angular velocity referred to the inertia at the weight, omega sqrt(I(phi, N)/I(phi, W)): Model Exchange's continuous state beside theta, exact under a varying av with no derivative of it; equal to omega when av = 0, for interface = rigid and for formulation = costa",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("rad/s"), Some("deg/s"), None),
+        depends_on: D_DYNAMIC,
+        run_depends_on: &["av"],
     }
 }
 

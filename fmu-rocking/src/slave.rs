@@ -53,6 +53,9 @@ pub struct RockingSlave {
     /// state keeps it): a host that holds its inputs makes it jump.
     av_end: Option<f64>,
     sliding: SlidingCheck,
+    /// Model Exchange: `state.omega` is the host's state `omegaW`, not
+    /// `omega` (docs/model-exchange.md, "The state omegaW").
+    me: bool,
 }
 
 /// The sliding check (docs/model.md §5, "Friction demand"): the base's
@@ -93,7 +96,7 @@ impl RockingSlave {
         match self.cache {
             Some((a, v, o)) if (a, v) == (ag.to_bits(), av.to_bits()) => o,
             _ => {
-                let o = self.sim.outputs_vertical(&self.state, ag, av);
+                let o = self.sim.outputs_vertical(&self.motion(av), ag, av);
                 self.cache = Some((ag.to_bits(), av.to_bits(), o));
                 o
             }
@@ -106,7 +109,9 @@ impl RockingSlave {
         match self.rates {
             Some((k, r)) if k == key => Some(r),
             _ => {
-                let r = self.sim.output_rates_vertical(&self.state, input, v)?;
+                let r = self
+                    .sim
+                    .output_rates_vertical(&self.motion(v.av), input, v)?;
                 self.rates = Some((key, r));
                 Some(r)
             }
@@ -339,6 +344,9 @@ impl Slave for RockingSlave {
         });
         let mut c = sim.continuous(p.theta0, p.omega0, values.real(vr::AG));
         c.state.t = setup.start_time;
+        if setup.model_exchange {
+            c = sim.to_weight_referred(c, values.real(vr::AV));
+        }
         Ok(RockingSlave {
             sim,
             state: c.state,
@@ -349,6 +357,7 @@ impl Slave for RockingSlave {
             terminal: None,
             av_end: None,
             sliding: SlidingCheck { mu, warned: false },
+            me: setup.model_exchange,
         })
     }
 
@@ -359,7 +368,8 @@ impl Slave for RockingSlave {
         let av = inputs.real(vr::AV);
         let x = match r {
             vr::THETA => self.state.theta,
-            vr::OMEGA => self.state.omega,
+            vr::OMEGA => self.motion(av).omega,
+            vr::OMEGA_W => self.omega_w(av),
             vr::THETA_OVER_ALPHA => self.state.theta / b.alpha,
             vr::MASS => b.mass,
             vr::WEIGHT => b.weight,
@@ -378,7 +388,7 @@ impl Slave for RockingSlave {
             vr::FZ => self.outputs(ag, av).fz,
             vr::APPARENT_WEIGHT => self.outputs(ag, av).apparent_weight,
             vr::FRICTION_DEMAND => self.outputs(ag, av).friction_demand(),
-            vr::DER_THETA | vr::DER_OMEGA => self.me_derivative(r, inputs)?,
+            vr::DER_THETA | vr::DER_OMEGA_W => self.me_derivative(r, inputs)?,
             _ => return Err(format!("no computed Real with value reference {r}")),
         };
         // thetaC is +inf without crushing, frictionDemand where Fz <= 0;

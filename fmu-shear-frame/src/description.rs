@@ -89,6 +89,7 @@ fn build_variables() -> Vec<Variable> {
         ty,
         depends_on: &[],
         derivative: None,
+        run_depends_on: &[],
     };
     let mut v = vec![
         param(
@@ -134,6 +135,7 @@ fn build_variables() -> Vec<Variable> {
             ty: real("m/s2", Some("g"), Some(0.0)),
             depends_on: &[],
             derivative: None,
+            run_depends_on: &[],
         },
     ];
     let (m, k, fx, fz) = (names("m"), names("k"), names("Fx"), names("Fz"));
@@ -196,6 +198,7 @@ fn build_variables() -> Vec<Variable> {
                 ty: real("N", Some("kN"), Some(0.0)),
                 depends_on: &[],
                 derivative: None,
+                run_depends_on: &[],
             });
         }
     }
@@ -213,6 +216,7 @@ fn build_variables() -> Vec<Variable> {
             ty: real("m", Some("mm"), Some(0.0)),
             depends_on: &[],
             derivative: None,
+            run_depends_on: &[],
         });
     }
     for (i, &name) in vel.iter().enumerate() {
@@ -229,6 +233,7 @@ fn build_variables() -> Vec<Variable> {
             ty: real("m/s", None, Some(0.0)),
             depends_on: &[],
             derivative: None,
+            run_depends_on: &[],
         });
     }
     for i in 0..MAX_STOREYS {
@@ -252,6 +257,7 @@ fn build_variables() -> Vec<Variable> {
             ty: real("m/s2", Some("g"), None),
             depends_on: Box::leak(deps.into_boxed_slice()),
             derivative: None,
+            run_depends_on: &[],
         });
     }
     for i in 0..MAX_STOREYS {
@@ -275,6 +281,7 @@ fn build_variables() -> Vec<Variable> {
             ty: real("m", Some("mm"), None),
             depends_on: Box::leak(deps.into_boxed_slice()),
             derivative: None,
+            run_depends_on: &[],
         });
     }
     for (i, name) in period.iter().enumerate() {
@@ -291,6 +298,7 @@ fn build_variables() -> Vec<Variable> {
             ty: real("s", None, None),
             depends_on: modal,
             derivative: None,
+            run_depends_on: &[],
         });
     }
     v

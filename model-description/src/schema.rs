@@ -187,6 +187,13 @@ pub struct Variable {
     /// listed in `ModelStructure/Derivatives`, with the inputs and states
     /// of `depends_on` as its dependencies.
     pub derivative: Option<&'static str>,
+    /// The inputs and continuous states it depends on in continuous-time and
+    /// event mode and at communication points (`ModelStructure/Outputs`,
+    /// `Derivatives`), where those of `depends_on` are not: an output whose
+    /// start value is exact that depends on an input afterwards, a derivative
+    /// that depends on a state whose start is calculated. Empty: the inputs
+    /// and states of `depends_on`.
+    pub run_depends_on: &'static [&'static str],
 }
 
 impl Variable {
@@ -201,7 +208,18 @@ impl Variable {
         ty: Type::REAL,
         depends_on: &[],
         derivative: None,
+        run_depends_on: &[],
     };
+
+    /// The names its `ModelStructure/Outputs` or `Derivatives` entry draws
+    /// on (see `run_depends_on`), before keeping inputs (and states).
+    pub fn run_dependencies(&self) -> &'static [&'static str] {
+        if self.run_depends_on.is_empty() {
+            self.depends_on
+        } else {
+            self.run_depends_on
+        }
+    }
 
     /// The effective `initial` (FMI 2.0 Table on p. 50: defaults when absent).
     pub fn effective_initial(&self) -> Option<Initial> {
@@ -508,6 +526,18 @@ impl ModelDescription {
                         "{} is the derivative of {x}, which is no continuous real",
                         v.name
                     )),
+                }
+            }
+            for d in v.run_depends_on {
+                let known = self.variable(d).is_some_and(|k| {
+                    k.causality == Causality::Input
+                        || self.variables.iter().any(|x| x.derivative == Some(k.name))
+                });
+                if !known {
+                    p.push(format!(
+                        "{} depends on {d} in a run, which is no input or continuous state",
+                        v.name
+                    ));
                 }
             }
             for d in v.depends_on {

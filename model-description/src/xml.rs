@@ -140,11 +140,11 @@ fn structure(md: &ModelDescription) -> XStructure {
         if v.derivative.is_some() {
             derivatives.push(XUnknown {
                 index: i + 1,
-                dependencies: indices(md, v.depends_on.iter().copied().filter(is_known)),
+                dependencies: indices(md, v.run_dependencies().iter().copied().filter(is_known)),
             });
         }
         if v.causality == Causality::Output {
-            let inputs = v.depends_on.iter().copied().filter(|d| {
+            let inputs = v.run_dependencies().iter().copied().filter(|d| {
                 md.variable(d)
                     .is_some_and(|k| k.causality == Causality::Input)
             });

@@ -153,12 +153,12 @@ fn structure(e: &mut El, md: &ModelDescription) {
             e,
             "Output",
             v,
-            vrs(md, v.depends_on.iter().copied().filter(is_input)),
+            vrs(md, v.run_dependencies().iter().copied().filter(is_input)),
         );
     }
     for v in md.variables.iter().filter(|v| v.derivative.is_some()) {
         let deps = v
-            .depends_on
+            .run_dependencies()
             .iter()
             .copied()
             .filter(|d| is_input(d) || is_state(d));

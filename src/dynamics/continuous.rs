@@ -15,6 +15,7 @@
 //! | 2 | `g tan(alpha) - abs(ag)` while a rigid body rests, else 1 | uplift from rest |
 //! | 3.. | `abs(theta) - level` per kink of `af` ([`KINK_SLOTS`], unused ones 1) | none: the solver restarts at the kink |
 //! | 9 | the smallest relative margin of `N = W + m av` to its limits (1 without `av`) | the input left the model's range (docs/model.md §6.5): the run ends |
+//! | 10, 11 | `abs(theta) - level` for joint opening and crushing onset at `N = W` on a flexible law with `shiftingPivot` (else 1) | none: the slope of `I(phi, W)`, to which the state `omegaW` is referred, changes there |
 //!
 //! Under a vertical input `av` (docs/model.md §6) the uplift threshold is
 //! `(g + av) tan(alpha)` and, for a flexible law, indicator 1 is
@@ -27,6 +28,7 @@
 //! not fire again.
 
 use crate::interface::Law;
+use crate::model::Formulation;
 
 use super::eom::Eom;
 use super::events::count_crossing;
@@ -36,11 +38,15 @@ use super::{Events, GroundInput, OutOfRange, Simulator, State, VerticalInput};
 /// `thetaC`, and up to two corners of the width function, each passed by the
 /// contact edge and by the plastic edge).
 pub const KINK_SLOTS: usize = 6;
-/// Number of event indicators: crossing, overturning, uplift, kinks, and the
-/// range of the apparent weight (docs/model.md §6.5).
-pub const EVENT_INDICATORS: usize = 4 + KINK_SLOTS;
+/// Number of event indicators: crossing, overturning, uplift, kinks, the
+/// range of the apparent weight (docs/model.md §6.5), and the two kinks of
+/// the inertia at the weight that the state `omegaW` is referred to.
+pub const EVENT_INDICATORS: usize = 6 + KINK_SLOTS;
 /// The slot of the range indicator.
 const RANGE: usize = 3 + KINK_SLOTS;
+/// The first of the slots for joint opening and crushing onset at N = W
+/// under a vertical input ([`Simulator::weight_referral`]).
+const REFERRED: usize = RANGE + 1;
 
 /// The state of a run under Model Exchange: the co-simulation [`State`]
 /// (its `theta`, `omega` are the continuous states; `t` the host's time;
@@ -162,6 +168,69 @@ impl Simulator {
         ]
     }
 
+    /// `sqrt(I(phi, N)/I(phi, W))` at `theta` under `av` (m/s²): the factor
+    /// from `omega` to Model Exchange's velocity state `omegaW` (docs/
+    /// model-exchange.md, "The state omegaW"). `None` where the model makes
+    /// it 1, so that `omegaW` is `omega` bit for bit: `av = 0`, the rigid
+    /// law (`IO` does not depend on N) and `costa` (whose `omega` form has no
+    /// `dN/dt` term to carry).
+    pub fn weight_referral(&self, theta: f64, av: f64) -> Option<f64> {
+        if av == 0.0 || !self.inertia_moves_with_n() {
+            return None;
+        }
+        Some((self.inertia_at(theta, av).0 / self.inertia_at(theta, 0.0).0).sqrt())
+    }
+
+    /// The equation's inertia term depends on N: a flexible law with
+    /// `shiftingPivot`.
+    fn inertia_moves_with_n(&self) -> bool {
+        !self.is_rigid() && self.model.formulation == Formulation::ShiftingPivot
+    }
+
+    /// `c`, whose `state.omega` is the state `omegaW`, with `omega` there
+    /// instead, under `av` (m/s²).
+    pub fn from_weight_referred(&self, mut c: Continuous, av: f64) -> Continuous {
+        if let Some(r) = self.weight_referral(c.state.theta, av) {
+            c.state.omega /= r;
+        }
+        c
+    }
+
+    /// `c`, whose `state.omega` is `omega`, with the state `omegaW` there
+    /// instead, under `av` (m/s²).
+    pub fn to_weight_referred(&self, mut c: Continuous, av: f64) -> Continuous {
+        if let Some(r) = self.weight_referral(c.state.theta, av) {
+            c.state.omega *= r;
+        }
+        c
+    }
+
+    /// `[theta', omegaW']` at `cw` (whose `state.omega` is `omegaW`) under
+    /// `ag`, `av` (m/s²): Model Exchange's right-hand side, exact for any
+    /// `av(t)` with no derivative of it. `omegaW = q/sqrt(J)` with the power
+    /// form's `q = sqrt(I) omega` ([`derivatives_q`](Self::derivatives_q))
+    /// and `J = I(phi, W)`, which does not depend on `av`, so
+    /// `omegaW' = q'/sqrt(J) - omegaW s (dJ/dphi) theta'/(2 J)`. Where
+    /// [`weight_referral`](Self::weight_referral) is `None` this is
+    /// [`derivatives_vertical`](Self::derivatives_vertical), bit for bit.
+    pub fn derivatives_weight_referred(&self, cw: &Continuous, ag: f64, av: f64) -> [f64; 2] {
+        let c = self.from_weight_referred(*cw, av);
+        if self.weight_referral(c.state.theta, av).is_none() {
+            return self.derivatives_vertical(&c, ag, av);
+        }
+        let [theta_dot, q_dot] = self.derivatives_q(&c, ag, av);
+        let (j, dj) = self.inertia_at(c.state.theta, 0.0);
+        let s = if c.state.theta != 0.0 {
+            c.state.theta.signum()
+        } else {
+            c.side
+        };
+        [
+            theta_dot,
+            q_dot / j.sqrt() - 0.5 * cw.state.omega * s * dj * theta_dot / j,
+        ]
+    }
+
     /// The event indicators at `c` under `ag` (see the module doc).
     pub fn event_indicators(&self, c: &Continuous, ag: f64) -> [f64; EVENT_INDICATORS] {
         self.event_indicators_vertical(c, ag, 0.0)
@@ -215,6 +284,18 @@ impl Simulator {
                 Some([_, toe]) if level == cr => toe,
                 _ => phi - level,
             };
+        }
+        if self.inertia_moves_with_n() {
+            // `omegaW`'s inertia I(phi, W) changes slope where the bed
+            // opens and crushes at the weight, which under av != 0 are no
+            // kinks of the motion: the solver restarts there too. At av = 0
+            // these are slots 3, 4 over again (the same values: the same
+            // events), so that av leaving 0 flips no indicator.
+            for (zi, level) in z[REFERRED..].iter_mut().zip([jo, cr]) {
+                if level.is_finite() {
+                    *zi = phi - level;
+                }
+            }
         }
         z
     }

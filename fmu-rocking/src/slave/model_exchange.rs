@@ -1,9 +1,12 @@
 //! The rocking model under Model Exchange: the host's solver integrates
-//! `(theta, omega)`; derivatives, event indicators and the event update come
-//! from `rocking::dynamics::continuous` (docs/model-exchange.md).
+//! `(theta, omegaW)` (`omegaW` is `omega` referred to the inertia at the
+//! weight: the same number unless a vertical input acts on a flexible
+//! law); derivatives, event indicators and the event update come from
+//! `rocking::dynamics::continuous` (docs/model-exchange.md).
 
 use fmi2_export::{EventLog, Inputs, Update};
 use rocking::dynamics::continuous::{Continuous, EVENT_INDICATORS};
+use rocking::dynamics::State;
 
 use super::{RockingSlave, MAX_GROUND_ACCELERATION};
 use crate::description::{vr, EVENT_INDICATORS as DECLARED};
@@ -19,6 +22,31 @@ impl RockingSlave {
             side: self.side,
             left_with: self.left_with,
         }
+    }
+
+    /// The motion under `av` (m/s²), with `omega` where Model Exchange's
+    /// state holds `omegaW`.
+    pub(crate) fn motion(&self, av: f64) -> State {
+        if self.me {
+            self.sim.from_weight_referred(self.continuous(), av).state
+        } else {
+            self.state
+        }
+    }
+
+    /// The state with `omegaW` in place of `omega` under `av` (m/s²):
+    /// Model Exchange's own, or computed from co-simulation's `omega`.
+    fn referred(&self, av: f64) -> Continuous {
+        if self.me {
+            self.continuous()
+        } else {
+            self.sim.to_weight_referred(self.continuous(), av)
+        }
+    }
+
+    /// `omegaW` under `av` (m/s²).
+    pub(crate) fn omega_w(&self, av: f64) -> f64 {
+        self.referred(av).state.omega
     }
 
     pub(crate) fn store(&mut self, c: Continuous) {
@@ -69,7 +97,9 @@ impl RockingSlave {
         dx: &mut [f64],
     ) -> Result<(), String> {
         let (ag, av) = Self::ground(&inputs)?;
-        let d = self.sim.derivatives_vertical(&self.continuous(), ag, av);
+        let d = self
+            .sim
+            .derivatives_weight_referred(&self.referred(av), ag, av);
         if let Some(x) = d.iter().find(|x| !x.is_finite()) {
             return Err(self.overflow(*x, ag));
         }
@@ -83,11 +113,8 @@ impl RockingSlave {
         z: &mut [f64],
     ) -> Result<(), String> {
         let (ag, av) = Self::ground(&inputs)?;
-        z.copy_from_slice(
-            &self
-                .sim
-                .event_indicators_vertical(&self.continuous(), ag, av),
-        );
+        let c = self.sim.from_weight_referred(self.continuous(), av);
+        z.copy_from_slice(&self.sim.event_indicators_vertical(&c, ag, av));
         Ok(())
     }
 
@@ -97,9 +124,9 @@ impl RockingSlave {
         log: &mut EventLog,
     ) -> Result<Update, String> {
         let (ag, av) = Self::ground(&inputs)?;
-        let mut c = self.continuous();
+        let mut c = self.sim.from_weight_referred(self.continuous(), av);
         let u = self.sim.event_update_vertical(&mut c, ag, av);
-        self.store(c);
+        self.store(self.sim.to_weight_referred(c, av));
         let t = c.state.t;
         if u.uplift {
             log.event(format!("uplift at t = {t}: the body starts rocking"));
@@ -149,7 +176,7 @@ impl RockingSlave {
         Ok(())
     }
 
-    /// `der(theta)`, `der(omega)` (docs/model-exchange.md).
+    /// `der(theta)`, `der(omegaW)` (docs/model-exchange.md).
     pub(crate) fn me_derivative(&mut self, r: u32, inputs: Inputs<'_>) -> Result<f64, String> {
         let mut d = [0.0; 2];
         self.me_derivatives(inputs, &mut d)?;
