@@ -537,6 +537,20 @@ variables! {
         causality: Parameter, variability: Fixed, initial: Some(Exact),
         ty: real(Some("1"), None, Some(0.0)),
     }
+    FX_SUPPORT = 52 => {
+        name: "FxSupport",
+        description: "Horizontal force of the body on its support, -Fx: the load to apply to the support, with no sign change in the connection",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("N"), Some("kN"), None),
+        depends_on: D_DYNAMIC,
+    }
+    FZ_SUPPORT = 53 => {
+        name: "FzSupport",
+        description: "Vertical force of the body on its support, -Fz (positive up: -W at rest): the load to apply to the support, with no sign change in the connection",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("N"), Some("kN"), None),
+        depends_on: D_DYNAMIC,
+    }
 }
 
 const fn base(kg: i32, m: i32, s: i32, rad: i32) -> BaseUnit {
@@ -908,6 +922,8 @@ mod tests {
             "overturned",
             "Fx",
             "Fz",
+            "FxSupport",
+            "FzSupport",
             "mass",
             "weight",
             "R0",
