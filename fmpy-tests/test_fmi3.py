@@ -90,22 +90,28 @@ def _vr(md, names):
     return [v[n] for n in names]
 
 
-def _co_simulate(path, slave_class, n=300, h=0.01):
-    """One host loop for both standards: inputs held over each step."""
+def _initialized(path, slave_class, name):
+    """A co-simulation instance of CASE out of initialization, either standard:
+    (slave, model description, its setter and getter of Float64/Real)."""
     md = read_model_description(path)
-    unzipped = extract(path)
-    s = slave_class(guid=md.guid if md.fmiVersion == "2.0" else md.instantiationToken,
-                    unzipDirectory=unzipped, modelIdentifier="RockingBlock", instanceName="cs")
+    two = md.fmiVersion == "2.0"
+    s = slave_class(guid=md.guid if two else md.instantiationToken, unzipDirectory=extract(path),
+                    modelIdentifier="RockingBlock", instanceName=name)
     s.instantiate()
-    real = s.setReal if md.fmiVersion == "2.0" else s.setFloat64
-    get = s.getReal if md.fmiVersion == "2.0" else s.getFloat64
-    if md.fmiVersion == "2.0":
+    real, get = (s.setReal, s.getReal) if two else (s.setFloat64, s.getFloat64)
+    if two:
         s.setupExperiment(startTime=0.0)
         s.enterInitializationMode()
     else:
         s.enterInitializationMode(startTime=0.0)
     real(_vr(md, CASE), list(CASE.values()))
     s.exitInitializationMode()
+    return s, md, real, get
+
+
+def _co_simulate(path, slave_class, n=300, h=0.01):
+    """One host loop for both standards: inputs held over each step."""
+    s, md, real, get = _initialized(path, slave_class, "cs")
     ag, out = _vr(md, ["ag"]), _vr(md, OUT)
     rows = []
     for k in range(n):
@@ -122,20 +128,8 @@ def _support_forces(path, slave_class, n=150, h=0.01):
     """Fx, Fz, FxSupport, FzSupport and their output derivatives of order 1 and
     2 after each step, a block rocking on the crushing joint (no av: the
     flexible laws give output derivatives without it only)."""
-    md = read_model_description(path)
-    two = md.fmiVersion == "2.0"
-    s = slave_class(guid=md.guid if two else md.instantiationToken, unzipDirectory=extract(path),
-                    modelIdentifier="RockingBlock", instanceName="forces")
-    s.instantiate()
-    real, get = (s.setReal, s.getReal) if two else (s.setFloat64, s.getFloat64)
-    rates = s.getRealOutputDerivatives if two else s.getOutputDerivatives
-    if two:
-        s.setupExperiment(startTime=0.0)
-        s.enterInitializationMode()
-    else:
-        s.enterInitializationMode(startTime=0.0)
-    real(_vr(md, CASE), list(CASE.values()))
-    s.exitInitializationMode()
+    s, md, real, get = _initialized(path, slave_class, "forces")
+    rates = s.getRealOutputDerivatives if md.fmiVersion == "2.0" else s.getOutputDerivatives
     ag, out = _vr(md, ["ag"]), _vr(md, ["Fx", "Fz", "FxSupport", "FzSupport"])
     rows = []
     for k in range(n):
@@ -170,19 +164,7 @@ def _ramps(path, slave_class, rates, n=120, h=0.01):
     communication points with their slopes over the step (`rates`: "2.0" by
     fmi2SetRealInputDerivatives after the values, "3.0" by the der(x) inputs
     set before the values in the same fmi3SetFloat64 call, None: held)."""
-    md = read_model_description(path)
-    two = md.fmiVersion == "2.0"
-    s = slave_class(guid=md.guid if two else md.instantiationToken, unzipDirectory=extract(path),
-                    modelIdentifier="RockingBlock", instanceName="ramps")
-    s.instantiate()
-    real, get = (s.setReal, s.getReal) if two else (s.setFloat64, s.getFloat64)
-    if two:
-        s.setupExperiment(startTime=0.0)
-        s.enterInitializationMode()
-    else:
-        s.enterInitializationMode(startTime=0.0)
-    real(_vr(md, CASE), list(CASE.values()))
-    s.exitInitializationMode()
+    s, md, real, get = _initialized(path, slave_class, "ramps")
     inputs, out = _vr(md, ["ag", "av"]), _vr(md, ["theta", "omega", "Fx", "Fz"])
     ground = lambda t: [_ground(t), 0.3 * _ground(t + 0.1)]
     rows = []
