@@ -401,6 +401,47 @@ def test_shear_frame_3_0_is_bit_for_bit_its_2_0(fmu_path):
         assert a[name].tobytes() == b[name].tobytes(), name
 
 
+def _shear_frame_ramps(path, slave_class, n=100, h=0.01):
+    """ShearFrame, 3 storeys, under ag and Fx[3] ramps given with their slopes
+    (2.0: fmi2SetRealInputDerivatives; 3.0: the der(x) inputs): a[1..3]."""
+    md = read_model_description(path)
+    two = md.fmiVersion == "2.0"
+    s = slave_class(guid=md.guid if two else md.instantiationToken, unzipDirectory=extract(path),
+                    modelIdentifier="ShearFrame", instanceName="frame")
+    s.instantiate()
+    if two:
+        s.setupExperiment(startTime=0.0)
+        s.enterInitializationMode()
+        s.setInteger(_vr(md, ["n"]), [3])
+    else:
+        s.enterInitializationMode(startTime=0.0)
+        s.setInt32(_vr(md, ["n"]), [3])
+    real, get = (s.setReal, s.getReal) if two else (s.setFloat64, s.getFloat64)
+    s.exitInitializationMode()
+    inputs, out = _vr(md, ["ag", "Fx[3]"]), _vr(md, ["a[1]", "a[2]", "a[3]"])
+    rows = []
+    for k in range(n):
+        x0, x1 = ([_ground(t), 1e4 * _ground(t + 0.2)] for t in (k * h, (k + 1) * h))
+        slope = [(b - a) / h for a, b in zip(x0, x1)]
+        real(inputs, x0)
+        if two:
+            s.setRealInputDerivatives(inputs, [1, 1], slope)
+        else:
+            real(_vr(md, ["der(ag)", "der(Fx[3])"]), slope)
+        s.doStep(k * h, h)
+        rows.append(get(out))
+    s.terminate()
+    s.freeInstance()
+    return np.array(rows)
+
+
+def test_shear_frame_input_derivatives_in_3_0_are_the_2_0_ones():
+    two = _shear_frame_ramps(str(FMU.parent / "ShearFrame.fmu"), FMU2Slave)
+    three = _shear_frame_ramps(str(FMU.parent / "fmi3" / "ShearFrame.fmu"), FMU3Slave)
+    assert np.abs(two).max() > 0.1
+    assert two.tobytes() == three.tobytes()
+
+
 def test_co_simulation_reads_every_float64_as_a_recording_host_does(fmu3_path):
     """fmusim reads every Float64 variable of a co-simulation instance to record it; the
     event indicators answer there too: indicator 2 is thetaOv - |theta| (no av)."""
