@@ -270,6 +270,23 @@ def test_every_host_agrees_with_the_master_within_the_coupling_error(hosts_vs_re
         assert diff <= 1.5 * coupling
 
 
+def test_fmpy_ssp_is_the_jacobi_loop_with_the_ground_one_step_late(hosts_vs_reference, tmp_path):
+    """fmpy's simulate_ssp on the SSP file with the support forces: the C host's
+    loop (the frame fed -Fx, -Fz of the same point, no extra force lag) given
+    the ground of the previous communication point. Not bit for bit only because
+    fmpy evaluates the input at its own times, which add h step by step."""
+    h = 0.005
+    case = convergence_case()
+    ground = case["ground"]
+    late = dict(case, ground=lambda t: np.where(np.asarray(t) >= h / 2, ground(np.asarray(t) - h), 0.0))
+    loop = hosts.run_c_host(late, h, tmp_path, hosts.build_c_host(tmp_path))
+    got = hosts_vs_reference[h]["fmpy-ssp"][0]
+    assert np.array_equal(loop.time, got.time)
+    assert np.abs(loop.theta).max() > 0.1
+    assert np.abs(loop.theta - got.theta).max() <= 1e-12
+    assert np.abs(loop.a_floor - got.a_floor).max() <= 1e-10
+
+
 def test_opensees_with_extrapolated_inputs_converges_faster(reference, hosts_vs_reference):
     """hostloop's hold="linear": the block's force passed with its output derivative,
     the floor acceleration with its last difference."""
