@@ -47,8 +47,17 @@ def test_the_archive_validates_and_declares_the_2_0_variables(fmu_path, fmu3_pat
         return {v.name: (v.valueReference, v.causality, v.variability, v.unit, v.start)
                 for v in md.modelVariables if v.name not in skip}
 
-    added = {"time"} | {f"eventIndicator{i + 1}" for i in range(md2.numberOfEventIndicators)}
+    rates = {f"der({v.name})": v for v in md2.modelVariables
+             if v.causality == "input" and v.variability == "continuous" and v.type == "Real"}
+    assert set(rates) == {"der(ag)", "der(av)"}
+    added = {"time"} | {f"eventIndicator{i + 1}" for i in range(md2.numberOfEventIndicators)} | set(rates)
     assert table(md3, added) == table(md2)
+    # each input's first derivative: an input of its own, declared with `derivative`
+    for name, x in rates.items():
+        v = next(v for v in md3.modelVariables if v.name == name)
+        assert (v.causality, v.variability, float(v.start)) == ("input", "continuous", 0.0)
+        derivative = v.derivative if isinstance(v.derivative, str) else v.derivative.valueReference
+        assert int(derivative) == x.valueReference
     # the same binaries under 3.0's platform names: the 2.0 archive's checks
     # (glibc 2.17 baseline, the win64 host under wine) hold for them
     two, three = _binaries(fmu_path), _binaries(fmu3_path)
@@ -81,22 +90,28 @@ def _vr(md, names):
     return [v[n] for n in names]
 
 
-def _co_simulate(path, slave_class, n=300, h=0.01):
-    """One host loop for both standards: inputs held over each step."""
+def _initialized(path, slave_class, name):
+    """A co-simulation instance of CASE out of initialization, either standard:
+    (slave, model description, its setter and getter of Float64/Real)."""
     md = read_model_description(path)
-    unzipped = extract(path)
-    s = slave_class(guid=md.guid if md.fmiVersion == "2.0" else md.instantiationToken,
-                    unzipDirectory=unzipped, modelIdentifier="RockingBlock", instanceName="cs")
+    two = md.fmiVersion == "2.0"
+    s = slave_class(guid=md.guid if two else md.instantiationToken, unzipDirectory=extract(path),
+                    modelIdentifier="RockingBlock", instanceName=name)
     s.instantiate()
-    real = s.setReal if md.fmiVersion == "2.0" else s.setFloat64
-    get = s.getReal if md.fmiVersion == "2.0" else s.getFloat64
-    if md.fmiVersion == "2.0":
+    real, get = (s.setReal, s.getReal) if two else (s.setFloat64, s.getFloat64)
+    if two:
         s.setupExperiment(startTime=0.0)
         s.enterInitializationMode()
     else:
         s.enterInitializationMode(startTime=0.0)
     real(_vr(md, CASE), list(CASE.values()))
     s.exitInitializationMode()
+    return s, md, real, get
+
+
+def _co_simulate(path, slave_class, n=300, h=0.01):
+    """One host loop for both standards: inputs held over each step."""
+    s, md, real, get = _initialized(path, slave_class, "cs")
     ag, out = _vr(md, ["ag"]), _vr(md, OUT)
     rows = []
     for k in range(n):
@@ -107,6 +122,79 @@ def _co_simulate(path, slave_class, n=300, h=0.01):
     s.terminate()
     s.freeInstance()
     return np.array(rows)
+
+
+def _support_forces(path, slave_class, n=150, h=0.01):
+    """Fx, Fz, FxSupport, FzSupport and their output derivatives of order 1 and
+    2 after each step, a block rocking on the crushing joint (no av: the
+    flexible laws give output derivatives without it only)."""
+    s, md, real, get = _initialized(path, slave_class, "forces")
+    rates = s.getRealOutputDerivatives if md.fmiVersion == "2.0" else s.getOutputDerivatives
+    ag, out = _vr(md, ["ag"]), _vr(md, ["Fx", "Fz", "FxSupport", "FzSupport"])
+    rows = []
+    for k in range(n):
+        t = k * h
+        real(ag, [_ground(t)])
+        s.doStep(t, h)
+        rows.append(get(out) + rates(out, [1] * 4) + rates(out, [2] * 4))
+    s.terminate()
+    s.freeInstance()
+    return np.array(rows)
+
+
+def test_support_forces_are_exactly_the_opposite_of_fx_fz(fmu_path, fmu3_path):
+    """FxSupport = -Fx and FzSupport = -Fz bit for bit along a run, values and
+    output derivatives, in 2.0 and 3.0 co-simulation and in 2.0 Model Exchange."""
+    for path, slave in [(fmu_path, FMU2Slave), (fmu3_path, FMU3Slave)]:
+        r = _support_forces(path, slave)
+        assert np.abs(r[:, 0]).max() > 1e3  # the block rocks and pushes
+        for j in (0, 4, 8):  # value, first and second derivative
+            assert (-r[:, j:j + 2]).tobytes() == r[:, j + 2:j + 4].tobytes(), (path, j)
+    me = simulate_fmu(fmu_path, fmi_type="ModelExchange", stop_time=1.0, output_interval=0.01,
+                      start_values=dict(CASE), input=np.array([(0.0, 4.0), (1.0, -4.0)],
+                                                               dtype=[("time", float), ("ag", float)]),
+                      output=["Fx", "Fz", "FxSupport", "FzSupport"])
+    assert np.abs(me["Fx"]).max() > 1e3
+    assert (-me["Fx"]).tobytes() == me["FxSupport"].tobytes()
+    assert (-me["Fz"]).tobytes() == me["FzSupport"].tobytes()
+
+
+def _ramps(path, slave_class, rates, n=120, h=0.01):
+    """theta, omega, Fx, Fz after each step under ag and av given at the
+    communication points with their slopes over the step (`rates`: "2.0" by
+    fmi2SetRealInputDerivatives after the values, "3.0" by the der(x) inputs
+    set before the values in the same fmi3SetFloat64 call, None: held)."""
+    s, md, real, get = _initialized(path, slave_class, "ramps")
+    inputs, out = _vr(md, ["ag", "av"]), _vr(md, ["theta", "omega", "Fx", "Fz"])
+    ground = lambda t: [_ground(t), 0.3 * _ground(t + 0.1)]
+    rows = []
+    for k in range(n):
+        t = k * h
+        x0, x1 = ground(t), ground(t + h)
+        slope = [(b - a) / h for a, b in zip(x0, x1)]
+        if rates == "3.0":
+            real(_vr(md, ["der(ag)", "der(av)"]) + inputs, slope + x0)
+            assert get(_vr(md, ["der(ag)", "der(av)"])) == slope
+        else:
+            real(inputs, x0)
+            if rates == "2.0":
+                s.setRealInputDerivatives(inputs, [1, 1], slope)
+        s.doStep(t, h)
+        rows.append(get(out))
+    s.terminate()
+    s.freeInstance()
+    return np.array(rows)
+
+
+def test_input_derivatives_in_3_0_are_the_2_0_ones(fmu_path, fmu3_path):
+    """The der(ag), der(av) inputs of 3.0 co-simulation interpolate the inputs
+    over a step as 2.0's fmi2SetRealInputDerivatives of order 1 does: the same
+    trajectory bit for bit (and not the one with the inputs held)."""
+    two, three = _ramps(fmu_path, FMU2Slave, "2.0"), _ramps(fmu3_path, FMU3Slave, "3.0")
+    held = _ramps(fmu3_path, FMU3Slave, None)
+    assert np.abs(two[:, 0]).max() > 1e-3  # it rocks
+    assert two.tobytes() == three.tobytes()
+    assert np.abs(three[:, 0] - held[:, 0]).max() > 1e-6
 
 
 def test_co_simulation_is_bit_for_bit_the_2_0_trajectory(fmu_path, fmu3_path):
@@ -182,6 +270,7 @@ def test_bad_calls_are_refused_through_the_logger(fmu3_path):
     refused(lambda s, md: s.setInt32(_vr(md, ["shape"]), [1]), "is no Int32 variable")
     refused(lambda s, md: s.setInt64(_vr(md, ["shape"]), [2**40]), "is no item")
     refused(lambda s, md: s.setFloat64(_vr(md, ["time"]), [1.0]), "cannot be set")
+    refused(lambda s, md: s.setFloat64(_vr(md, ["der(ag)"]), [math.inf]), "must be finite")
     refused(lambda s, md: s.enterStepMode(), "eventModeUsed = false")
 
     def bad_width(s, md):
@@ -310,6 +399,47 @@ def test_shear_frame_3_0_is_bit_for_bit_its_2_0(fmu_path):
     assert np.abs(a["u[3]"]).max() > 0
     for name in ["time"] + out:
         assert a[name].tobytes() == b[name].tobytes(), name
+
+
+def _shear_frame_ramps(path, slave_class, n=100, h=0.01):
+    """ShearFrame, 3 storeys, under ag and Fx[3] ramps given with their slopes
+    (2.0: fmi2SetRealInputDerivatives; 3.0: the der(x) inputs): a[1..3]."""
+    md = read_model_description(path)
+    two = md.fmiVersion == "2.0"
+    s = slave_class(guid=md.guid if two else md.instantiationToken, unzipDirectory=extract(path),
+                    modelIdentifier="ShearFrame", instanceName="frame")
+    s.instantiate()
+    if two:
+        s.setupExperiment(startTime=0.0)
+        s.enterInitializationMode()
+        s.setInteger(_vr(md, ["n"]), [3])
+    else:
+        s.enterInitializationMode(startTime=0.0)
+        s.setInt32(_vr(md, ["n"]), [3])
+    real, get = (s.setReal, s.getReal) if two else (s.setFloat64, s.getFloat64)
+    s.exitInitializationMode()
+    inputs, out = _vr(md, ["ag", "Fx[3]"]), _vr(md, ["a[1]", "a[2]", "a[3]"])
+    rows = []
+    for k in range(n):
+        x0, x1 = ([_ground(t), 1e4 * _ground(t + 0.2)] for t in (k * h, (k + 1) * h))
+        slope = [(b - a) / h for a, b in zip(x0, x1)]
+        real(inputs, x0)
+        if two:
+            s.setRealInputDerivatives(inputs, [1, 1], slope)
+        else:
+            real(_vr(md, ["der(ag)", "der(Fx[3])"]), slope)
+        s.doStep(k * h, h)
+        rows.append(get(out))
+    s.terminate()
+    s.freeInstance()
+    return np.array(rows)
+
+
+def test_shear_frame_input_derivatives_in_3_0_are_the_2_0_ones():
+    two = _shear_frame_ramps(str(FMU.parent / "ShearFrame.fmu"), FMU2Slave)
+    three = _shear_frame_ramps(str(FMU.parent / "fmi3" / "ShearFrame.fmu"), FMU3Slave)
+    assert np.abs(two).max() > 0.1
+    assert two.tobytes() == three.tobytes()
 
 
 def test_co_simulation_reads_every_float64_as_a_recording_host_does(fmu3_path):

@@ -143,7 +143,7 @@ def test_model_exchange_is_declared_and_valid(fmu_path, model_description):
     assert states == {"theta": ("der(theta)", {"theta", "omegaW", "av"}),
                       "omegaW": ("der(omegaW)", {"theta", "omegaW", "ag", "av"})}
     vr = {v.name: v.valueReference for v in md.modelVariables}
-    assert vr["der(theta)"] == 43 and vr["der(omegaW)"] == 44 and vr["omegaW"] == 52
+    assert vr["der(theta)"] == 43 and vr["der(omegaW)"] == 44 and vr["omegaW"] == 54
     initial = {u.variable.name for u in md.initialUnknowns}
     assert {"der(theta)", "der(omegaW)", "omegaW"} <= initial
     outputs = {u.variable.name: {x.name for x in u.dependencies} for u in md.outputs}

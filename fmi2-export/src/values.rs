@@ -267,36 +267,23 @@ impl<S: Slave> Inner<S> {
         orders: &[i32],
         values: &[f64],
     ) -> Res<Status> {
-        self.check_state(mask::fmi2SetRealInputDerivatives)?;
-        if !self.md.co_simulation.can_interpolate_inputs {
-            return error("canInterpolateInputs is false");
-        }
-        let mut staged = Vec::new();
+        self.input_derivatives_allowed()?;
+        let mut first = Vec::new();
         let mut ignored = Vec::new();
         for (k, &vr) in vrs.iter().enumerate() {
-            let (i, v) = self.lookup(BaseType::Real, vr)?;
-            if v.causality != Causality::Input || v.variability != Variability::Continuous {
-                return error(format!("{} is no continuous Real input", v.name));
-            }
-            let x = values[k];
             match orders[k] {
-                1 => {
-                    if !x.is_finite() {
-                        return error(format!(
-                            "derivative of {} = {x}: the input derivative must be finite",
-                            v.name
-                        ));
-                    }
-                    staged.push((i, v, x));
+                1 => first.push((vr, values[k])),
+                o if o >= 2 => {
+                    ignored.push(format!("{} (order {o})", self.continuous_input(vr)?.1.name))
                 }
-                o if o >= 2 => ignored.push(format!("{} (order {o})", v.name)),
-                o => return error(format!("{}: derivative order {o} must be >= 1", v.name)),
+                o => {
+                    let name = self.continuous_input(vr)?.1.name;
+                    return error(format!("{name}: derivative order {o} must be >= 1"));
+                }
             }
         }
-        for (i, v, x) in staged {
-            self.trace(|| format!("fmi2SetRealInputDerivatives: d{}/dt = {x}", v.name));
-            self.derivatives[i] = x;
-        }
+        let staged = self.check_input_derivatives(&first)?;
+        self.store_input_derivatives("fmi2SetRealInputDerivatives", &staged);
         if ignored.is_empty() {
             Ok(Status::Ok)
         } else {
@@ -308,6 +295,53 @@ impl<S: Slave> Inner<S> {
                 ),
             );
             Ok(Status::Warning)
+        }
+    }
+
+    /// Input derivatives may be set now, in this FMU.
+    fn input_derivatives_allowed(&self) -> Res<()> {
+        self.check_state(mask::fmi2SetRealInputDerivatives)?;
+        if !self.md.co_simulation.can_interpolate_inputs {
+            return error("canInterpolateInputs is false");
+        }
+        Ok(())
+    }
+
+    /// The continuous Real input `vr`, or the error naming it.
+    fn continuous_input(&self, vr: u32) -> Res<(usize, &'static Variable)> {
+        let (i, v) = self.lookup(BaseType::Real, vr)?;
+        if v.causality != Causality::Input || v.variability != Variability::Continuous {
+            return error(format!("{} is no continuous Real input", v.name));
+        }
+        Ok((i, v))
+    }
+
+    /// First derivatives `(input's value reference, d/dt)` checked as
+    /// `fmi2SetRealInputDerivatives` checks them (a state where inputs are
+    /// set, an FMU that interpolates inputs, continuous Real inputs, finite
+    /// values): `(index, value)` to store, or the first problem. Also FMI
+    /// 3.0's `der(x)` inputs, checked before anything is set.
+    pub fn check_input_derivatives(&self, first: &[(u32, f64)]) -> Res<Vec<(usize, f64)>> {
+        self.input_derivatives_allowed()?;
+        let mut staged = Vec::with_capacity(first.len());
+        for &(vr, x) in first {
+            let (i, v) = self.continuous_input(vr)?;
+            if !x.is_finite() {
+                return error(format!(
+                    "derivative of {} = {x}: the input derivative must be finite",
+                    v.name
+                ));
+            }
+            staged.push((i, x));
+        }
+        Ok(staged)
+    }
+
+    /// Stores what [`Self::check_input_derivatives`] accepted.
+    pub fn store_input_derivatives(&mut self, function: &str, staged: &[(usize, f64)]) {
+        for &(i, x) in staged {
+            self.trace(|| format!("{function}: d{}/dt = {x}", self.md.variables[i].name));
+            self.derivatives[i] = x;
         }
     }
 

@@ -16,7 +16,7 @@ use fmi2_export::fail::{error, Res};
 use fmi2_export::ffi::{c_str, call, category_names, owned_strings, slice, slice_mut};
 use fmi2_export::instance::{Inner, Instance, INSTANCE_MAGIC};
 use fmi2_export::logging::{Callback, Logger};
-use fmi2_export::machine::Machine;
+use fmi2_export::machine::{mask, Machine};
 use fmi2_export::model_description::{BaseType, ModelDescription, Type};
 use fmi2_export::types::Status;
 use fmi2_export::Slave;
@@ -148,13 +148,17 @@ pub unsafe fn reset<S: Slave>(c: fmi3Instance) -> fmi3Status {
 enum Added {
     Time,
     EventIndicator(usize),
+    /// `der(x)`, by the table index of the input `x`.
+    InputDerivative(usize),
 }
 
 fn added(md: &ModelDescription, vr: u32) -> Option<Added> {
     if vr == md.fmi3_time_vr() {
         Some(Added::Time)
+    } else if let Some(j) = md.fmi3_event_indicator_of(vr) {
+        Some(Added::EventIndicator(j))
     } else {
-        md.fmi3_event_indicator_of(vr).map(Added::EventIndicator)
+        md.fmi3_input_derivative_of(vr).map(Added::InputDerivative)
     }
 }
 
@@ -196,6 +200,10 @@ fn float64s<S: Slave>(i: &mut Inner<S>, vrs: &[u32], out: &mut [f64]) -> Res<Sta
                 }
                 z.as_ref().expect("filled above")[j]
             }
+            Some(Added::InputDerivative(x)) => {
+                i.check_state(mask::fmi2GetReal)?;
+                i.derivatives[x]
+            }
             None => {
                 status = status.max(i.get_real(&[vr], &mut out[k..=k])?);
                 out[k]
@@ -231,13 +239,52 @@ pub unsafe fn set_float64<S: Slave>(
         check_n_values(n, n_values)?;
         let vr = unsafe { slice(vr, n, "valueReferences") }?;
         let value = unsafe { slice(value, n, "values") }?;
-        if let Some(&v) = vr.iter().find(|&&v| added(i.md, v).is_some()) {
-            return error(format!(
-                "value reference {v} (time or an event indicator) cannot be set"
-            ));
+        let (mut table, mut rates) = ((vec![], vec![]), vec![]);
+        for (&v, &x) in vr.iter().zip(value) {
+            match added(i.md, v) {
+                None => {
+                    table.0.push(v);
+                    table.1.push(x);
+                }
+                Some(Added::InputDerivative(k)) => rates.push((i.md.variables[k].vr, x)),
+                Some(_) => {
+                    return error(format!(
+                        "value reference {v} (time or an event indicator) cannot be set"
+                    ))
+                }
+            }
         }
-        i.set_real(vr, value)
+        if rates.is_empty() {
+            return i.set_real(vr, value);
+        }
+        set_with_input_derivatives(i, table, &rates)
     })
+}
+
+/// `fmi3SetFloat64` with `der(x)` inputs among the variables: checked first
+/// (a refused call changes nothing), then the table's values, then the
+/// derivatives. `der(x)` is a variable of its own in 3.0: setting `x`
+/// leaves it as it was (2.0 starts a new polynomial at 0 instead).
+fn set_with_input_derivatives<S: Slave>(
+    i: &mut Inner<S>,
+    (vrs, values): (Vec<u32>, Vec<f64>),
+    rates: &[(u32, f64)],
+) -> Res<Status> {
+    if i.model_exchange {
+        return error(
+            "der(x) inputs are for co-simulation: Model Exchange takes the inputs' values only",
+        );
+    }
+    let staged = i.check_input_derivatives(rates)?;
+    let kept = i.derivatives.clone();
+    let status = if vrs.is_empty() {
+        Status::Ok
+    } else {
+        i.set_real(&vrs, &values)?
+    };
+    i.derivatives = kept;
+    i.store_input_derivatives("fmi3SetFloat64", &staged);
+    Ok(status)
 }
 
 fn is_int32(t: &Type) -> bool {

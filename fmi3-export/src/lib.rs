@@ -10,8 +10,10 @@
 //!
 //! What 3.0 adds to the table (`time`, the event indicators as variables)
 //! comes from `model_description::fmi3`; the 3.0 `modelDescription.xml`
-//! from `model_description::xml3`. Input derivatives do not exist in 3.0:
-//! inputs hold over a step. Clocks, binaries, arrays and the types the
+//! from `model_description::xml3`. FMI 3.0 has no function for input
+//! derivatives: the first derivative of each continuous input is an input
+//! `der(x)` of its own (`derivative` attribute), set with `fmi3SetFloat64`
+//! into the store `fmi2SetRealInputDerivatives` fills. Clocks, binaries, arrays and the types the
 //! table has no variable of answer with an error naming the value
 //! reference (or nothing to do, for none).
 

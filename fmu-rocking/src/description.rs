@@ -541,7 +541,21 @@ variables! {
         causality: Parameter, variability: Fixed, initial: Some(Exact),
         ty: real(Some("1"), None, Some(0.0)),
     }
-    OMEGA_W = 52 => {
+    FX_SUPPORT = 52 => {
+        name: "FxSupport",
+        description: "Horizontal force of the body on its support, -Fx: the load to apply to the support, with no sign change in the connection",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("N"), Some("kN"), None),
+        depends_on: D_DYNAMIC,
+    }
+    FZ_SUPPORT = 53 => {
+        name: "FzSupport",
+        description: "Vertical force of the body on its support, -Fz (positive up: -W at rest): the load to apply to the support, with no sign change in the connection",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("N"), Some("kN"), None),
+        depends_on: D_DYNAMIC,
+    }
+    OMEGA_W = 54 => {
         name: "omegaW",
         description: "Angular velocity referred to the inertia at the weight, omega sqrt(I(phi, N)/I(phi, W)): Model Exchange's continuous state beside theta, exact under a varying av with no derivative of it; equal to omega when av = 0, for interface = rigid and for formulation = costa",
         causality: Output, variability: Continuous, initial: Some(Calculated),
@@ -920,6 +934,8 @@ mod tests {
             "overturned",
             "Fx",
             "Fz",
+            "FxSupport",
+            "FzSupport",
             "mass",
             "weight",
             "R0",

@@ -386,6 +386,9 @@ impl Slave for RockingSlave {
             vr::MR => self.outputs(ag, av).mr,
             vr::FX => self.outputs(ag, av).fx,
             vr::FZ => self.outputs(ag, av).fz,
+            // the reaction's opposite, exactly (negation rounds nothing)
+            vr::FX_SUPPORT => -self.outputs(ag, av).fx,
+            vr::FZ_SUPPORT => -self.outputs(ag, av).fz,
             vr::APPARENT_WEIGHT => self.outputs(ag, av).apparent_weight,
             vr::FRICTION_DEMAND => self.outputs(ag, av).friction_demand(),
             vr::DER_THETA | vr::DER_OMEGA_W => self.me_derivative(r, inputs)?,
@@ -449,6 +452,8 @@ impl Slave for RockingSlave {
             vr::MR => rates.mr[k],
             vr::FX => rates.fx[k],
             vr::FZ => rates.fz[k],
+            vr::FX_SUPPORT => -rates.fx[k],
+            vr::FZ_SUPPORT => -rates.fz[k],
             vr::FRICTION_DEMAND => rates.friction_demand()[k],
             vr::APPARENT_WEIGHT => rates.apparent_weight[k],
             _ => return Err(format!("no Real output with value reference {r}")),

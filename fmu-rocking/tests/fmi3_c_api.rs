@@ -336,7 +336,8 @@ impl Run {
                         .iter()
                         .any(|v| v.vr == r && v.ty.base() == BaseType::Real)
                         || r == md.fmi3_time_vr()
-                        || md.fmi3_event_indicator_of(r).is_some();
+                        || md.fmi3_event_indicator_of(r).is_some()
+                        || md.fmi3_input_derivative_of(r).is_some();
                     if !known {
                         self.expect(false, s, m, op);
                     } else if s == ERROR {

@@ -1,8 +1,8 @@
 //! `modelDescription.xml` (FMI 3.0) from the same [`ModelDescription`] as
 //! the FMI 2.0 one. Element order follows the FMI 3.0 XSD; variables and
 //! dependencies are named by value reference, enumerations are `Int64`
-//! when got and set, `time` and the event indicators are added
-//! ([`crate::fmi3`]). The instantiation token is the 2.0 GUID: both files
+//! when got and set, `time`, the event indicators and the inputs'
+//! derivatives are added ([`crate::fmi3`]). The instantiation token is the 2.0 GUID: both files
 //! are functions of one table, and one binary serves both.
 
 use std::fmt::Write;
@@ -355,6 +355,27 @@ pub fn render(md: &ModelDescription, token: &str, generated: Option<&str>) -> St
             ),
             ("causality", s("local")),
             ("variability", s("continuous")),
+        ];
+        e.open("Float64", &attrs, true);
+    }
+    for (k, (_, x)) in md.fmi3_derivative_inputs().enumerate() {
+        let attrs = [
+            ("name", Some(format!("der({})", x.name))),
+            (
+                "valueReference",
+                Some(md.fmi3_input_derivative_vr(k as u32).to_string()),
+            ),
+            (
+                "description",
+                Some(format!(
+                    "Co-simulation: first time derivative of {0} (its unit per second); over a step from t, {0} + der({0}) (t' - t) is the input (as fmi2SetRealInputDerivatives of order 1); kept until set again",
+                    x.name
+                )),
+            ),
+            ("causality", s("input")),
+            ("variability", s("continuous")),
+            ("start", Some(fmt_real(0.0))),
+            ("derivative", Some(x.vr.to_string())),
         ];
         e.open("Float64", &attrs, true);
     }

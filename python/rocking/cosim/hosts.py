@@ -5,14 +5,15 @@
 Hosts, all Jacobi with inputs held over the communication step:
 
 - `master`: rocking.cosim's master (fmpy), `scheme="jacobi", inputs="constant"`;
-- `container`: the system written as an SSP file (ssp.py), the container FMU
-  generated from it by fmu-manipulation-toolbox (its runtime couples the two
-  FMUs and Gain.fmu for the -1 factors), run by fmpy's simulate_fmu;
+- `container`: the system written as an SSP file (ssp.py: the block's
+  FxSupport, FzSupport connected to the frame's loads as they are), the
+  container FMU generated from it by fmu-manipulation-toolbox (its runtime
+  couples the two FMUs), stepped by fmpy;
 - `c-host`: fmu-rocking/tests/c_host/coupled.c, compiled here with `cc`;
 - `opensees`: the frame built in OpenSees (opensees.shear_building, modal
   damping) under RockingBlock.fmu, with the loop of hostloop.py;
-- `fmpy-ssp`: fmpy's own simulate_ssp on the SSP file (Gain.fmu as a
-  component, the bindings passed by hand: see run_fmpy_ssp).
+- `fmpy-ssp`: fmpy's own simulate_ssp on the same SSP file (the bindings
+  passed by hand: see run_fmpy_ssp).
 
 Writes cosim_hosts.png (error against the reference as a function of the
 step) to --out and prints the table of docs/cosimulation-hosts.md. ~1 min.
@@ -116,9 +117,8 @@ def run_container(case, h, work):
 
 
 def run_fmpy_ssp(case, h, work):
-    """fmpy's simulate_ssp on the SSP file with the gain as a component and the
-    bindings passed as its parameter_set (it reads neither LinearTransformations
-    nor ParameterBindings). Its rows: the row labelled t holds the outputs after
+    """fmpy's simulate_ssp on the SSP file, the bindings passed as its
+    parameter_set (it does not read ParameterBindings). Its rows: the row labelled t holds the outputs after
     the step from t, i.e. at t + h; an external input reaches the FMUs one step
     late (connections are applied after the step)."""
     from fmpy.ssp.simulation import simulate_ssp
@@ -127,7 +127,7 @@ def run_fmpy_ssp(case, h, work):
     frame = enumerated(shear_frame_fmu(), case["frame"])
     block = enumerated(paths.default_fmu(), case["block"])
     path = ssp.write_ssp(work / "BlockOnFrame.ssp", shear_frame_fmu(), paths.default_fmu(), frame, block,
-                         case["floor"], h, explicit_gain=True)
+                         case["floor"], h)
     n = int(round(case["stop_time"] / h))
     got = simulate_ssp(str(path), stop_time=(n - 0.5) * h, step_size=h,
                        parameter_set=ssp.fmpy_parameter_set(path), input={"ag": lambda t: float(case["ground"](t))})

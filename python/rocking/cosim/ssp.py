@@ -4,12 +4,16 @@
 two components (ShearFrame.fmu, RockingBlock.fmu under resources/), the
 system's input `ag` and outputs `theta`, `aFloor`, the connections
 
-    frame.a[i]   -> block.ag
-    block.Fx     -> frame.Fx[i]   (LinearTransformation factor -1)
-    block.Fz     -> frame.Fz[i]   (LinearTransformation factor -1)
+    frame.a[i]        -> block.ag
+    block.FxSupport   -> frame.Fx[i]
+    block.FzSupport   -> frame.Fz[i]
 
-and every parameter value as an inline ParameterSet (ssv) in each
-component's ParameterBindings.
+(the force of the body on its support: no sign change, so a host that copies
+values as they are couples them right) and every parameter value as an
+inline ParameterSet (ssv) in each component's ParameterBindings. With
+`forces="negated"` it connects `block.Fx`, `block.Fz` with a
+LinearTransformation of factor -1 instead, the standard's way of saying "the
+opposite" (the form for a block FMU without the support outputs).
 
 `container_from_ssp` reads that description with fmpy's SSD parser (an
 independent reader of the standard) and hands components, connections and
@@ -17,12 +21,10 @@ parameter values to fmu-manipulation-toolbox's `AssemblyNode`, which writes
 the container FMU. The toolbox's runtime copies a connection's value as it
 is: it has no gain, so a connection with a factor other than 1 cannot be
 represented. `signs="refuse"` (the default) raises then; `signs="drop"`
-builds the container with the factors left out (a system with the body's
-reaction acting the wrong way) and returns the dropped connections, which is
-how docs/cosimulation-hosts.md checks the runtime's coupling against our
-master run with the same signs. The toolbox's own `.ssp` reader
-(`Assembly("x.ssp")`) ignores ParameterBindings and LinearTransformations
-alike; this module passes the parameters as the container's start values.
+builds the container with the factors left out and returns the dropped
+connections. The toolbox's own `.ssp` reader (`Assembly("x.ssp")`) ignores
+ParameterBindings and LinearTransformations alike; this module passes the
+parameters as the container's start values.
 """
 
 import io
@@ -71,14 +73,17 @@ def _connection(start, sconn, end, econn, factor=None):
             "    </ssd:Connection>"]
 
 
-def system_structure(frame_parameters, block_parameters, floor, step, explicit_gain=False):
+def system_structure(frame_parameters, block_parameters, floor, step, forces="support"):
     """The text of SystemStructure.ssd for a block on floor `floor` of the frame.
 
-    explicit_gain: the -1 of the force connections as a third component,
-    resources/Gain.fmu (y = -u), instead of LinearTransformations: for hosts
-    that ignore those (fmpy's simulate_ssp).
+    forces: "support" connects the block's FxSupport, FzSupport to the
+    frame's Fx[floor], Fz[floor] as they are; "negated" connects its Fx, Fz
+    through LinearTransformations of factor -1.
     """
+    if forces not in ("support", "negated"):
+        raise ValueError(f"forces = {forces!r}: 'support' or 'negated'")
     a, fx, fz = f"a[{floor}]", f"Fx[{floor}]", f"Fz[{floor}]"
+    out_x, out_z, factor = ("FxSupport", "FzSupport", None) if forces == "support" else ("Fx", "Fz", -1.0)
     rows = ['<?xml version="1.0" encoding="UTF-8"?>',
             f'<ssd:SystemStructureDescription xmlns:ssd="{SSD_NS}" xmlns:ssc="{SSC_NS}" xmlns:ssv="{SSV_NS}"'
             ' version="1.0" name="BlockOnFrame">',
@@ -92,21 +97,13 @@ def system_structure(frame_parameters, block_parameters, floor, step, explicit_g
     rows += _component("frame", "resources/ShearFrame.fmu",
                        [("ag", "input"), (fx, "input"), (fz, "input"), (a, "output")], frame_parameters)
     rows += _component("block", "resources/RockingBlock.fmu",
-                       [("ag", "input"), ("theta", "output"), ("Fx", "output"), ("Fz", "output")],
+                       [("ag", "input"), ("theta", "output"), (out_x, "output"), (out_z, "output")],
                        block_parameters)
-    if explicit_gain:
-        rows += _component("gain", "resources/Gain.fmu",
-                           [("u[1]", "input"), ("u[2]", "input"), ("y[1]", "output"), ("y[2]", "output")],
-                           {"k[1]": -1.0, "k[2]": -1.0})
     rows += ["  </ssd:Elements>", "  <ssd:Connections>"]
     rows += _connection(None, "ag", "frame", "ag")
     rows += _connection("frame", a, "block", "ag")
-    if explicit_gain:
-        rows += _connection("block", "Fx", "gain", "u[1]") + _connection("gain", "y[1]", "frame", fx)
-        rows += _connection("block", "Fz", "gain", "u[2]") + _connection("gain", "y[2]", "frame", fz)
-    else:
-        rows += _connection("block", "Fx", "frame", fx, -1.0)
-        rows += _connection("block", "Fz", "frame", fz, -1.0)
+    rows += _connection("block", out_x, "frame", fx, factor)
+    rows += _connection("block", out_z, "frame", fz, factor)
     rows += _connection("block", "theta", None, "theta")
     rows += _connection("frame", a, None, "aFloor")
     rows += ["  </ssd:Connections>", "  </ssd:System>",
@@ -118,18 +115,13 @@ def system_structure(frame_parameters, block_parameters, floor, step, explicit_g
     return "\n".join(rows)
 
 
-def write_ssp(path, frame_fmu, block_fmu, frame_parameters, block_parameters, floor, step, explicit_gain=False):
-    """Write the SSP archive at `path` (the FMUs copied into its resources/)."""
-    import tempfile
-
+def write_ssp(path, frame_fmu, block_fmu, frame_parameters, block_parameters, floor, step, forces="support"):
+    """Write the SSP archive at `path` (the FMUs copied into its resources/); `forces` as in system_structure."""
     with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
         z.writestr("SystemStructure.ssd",
-                   system_structure(frame_parameters, block_parameters, floor, step, explicit_gain))
+                   system_structure(frame_parameters, block_parameters, floor, step, forces))
         z.write(frame_fmu, "resources/ShearFrame.fmu")
         z.write(block_fmu, "resources/RockingBlock.fmu")
-        if explicit_gain:
-            with tempfile.TemporaryDirectory() as tmp:
-                z.write(gain_fmu(Path(tmp) / "Gain.fmu", [-1.0, -1.0]), "resources/Gain.fmu")
     return Path(path)
 
 
@@ -191,7 +183,7 @@ def _typed(kind, text):
     return text
 
 
-def container_from_ssp(ssp, out_dir, step, signs="gain", name="BlockOnFrame", sequential=False):
+def container_from_ssp(ssp, out_dir, step, signs="refuse", name="BlockOnFrame", sequential=False):
     """Build the container FMU `out_dir/name.fmu` from the SSP archive; returns (path, dropped)."""
     from fmu_manipulation_toolbox.assembly import AssemblyNode
 
@@ -205,15 +197,14 @@ def container_from_ssp(ssp, out_dir, step, signs="gain", name="BlockOnFrame", se
                         sequential=sequential)
     for component in components:
         node.add_fmu(files[component])
-    dropped, gains = [], []
+    if signs not in ("refuse", "drop"):
+        raise ValueError(f"signs = {signs!r}: 'refuse' or 'drop'")
+    dropped = []
     for start, sconn, end, econn, factor in connections:
         if factor != 1.0:
             if signs == "refuse":
                 raise ValueError(f"{ssp}: the connection {start}.{sconn} -> {end}.{econn} has the factor "
                                  f"{factor}; the container runtime copies values as they are")
-            if signs == "gain":
-                gains.append((start, sconn, end, econn, factor))
-                continue
             dropped.append((start, sconn, end, econn, factor))
         if start and end:
             node.add_link(files[start], sconn, files[end], econn)
@@ -221,72 +212,11 @@ def container_from_ssp(ssp, out_dir, step, signs="gain", name="BlockOnFrame", se
             node.add_input(sconn, files[end], econn)
         else:
             node.add_output(files[start], sconn, econn)
-    if gains:
-        gain_fmu(out_dir / "Gain.fmu", [g[4] for g in gains])
-        node.add_fmu("Gain.fmu")
-        for i, (start, sconn, end, econn, _) in enumerate(gains, start=1):
-            node.add_link(files[start], sconn, "Gain.fmu", f"u[{i}]")
-            node.add_link("Gain.fmu", f"y[{i}]", files[end], econn)
-            node.add_start_value("Gain.fmu", f"k[{i}]", repr(gains[i - 1][4]))
     for component, values in parameters.items():
         for key, value in values.items():
             node.add_start_value(files[component], key, _start_text(value))
     node.make_fmu(out_dir)
     return out_dir / f"{name}.fmu", dropped
-
-
-GAIN_C = Path(__file__).with_name("gain") / "gain.c"
-
-
-def gain_fmu(path, factors):
-    """Write Gain.fmu (gain/gain.c, compiled here with `cc`): outputs y[i] = k[i] u[i], k[i] = factors[i].
-
-    linux64 only (the container runtime of this machine); raises RuntimeError
-    without a C compiler.
-    """
-    import shutil
-    import subprocess
-    import tempfile
-
-    cc = shutil.which("cc")
-    if cc is None:
-        raise RuntimeError("Gain.fmu needs a C compiler (cc) to build gain/gain.c")
-    n = len(factors)
-    with tempfile.TemporaryDirectory() as tmp:
-        lib = Path(tmp) / "Gain.so"
-        subprocess.run([cc, "-O2", "-std=c99", "-Wall", "-Werror", "-shared", "-fPIC", "-fvisibility=hidden",
-                        f"-DGAIN_N={n}", "-DGAIN_K={" + ",".join(repr(float(k)) for k in factors) + "}",
-                        "-o", str(lib), str(GAIN_C)], check=True)
-        with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as z:
-            z.writestr("modelDescription.xml", _gain_model_description(factors))
-            z.write(lib, "binaries/linux64/Gain.so")
-            z.write(GAIN_C, "sources/gain.c")
-    return Path(path)
-
-
-def _gain_model_description(factors):
-    n = len(factors)
-    rows = ['<?xml version="1.0" encoding="UTF-8"?>',
-            '<fmiModelDescription fmiVersion="2.0" modelName="Gain" guid="{rocking-gain-%d}"' % n,
-            '  description="y[i] = k[i] u[i]: the factor of an SSP connection" generationTool="rocking.cosim.ssp"'
-            ' variableNamingConvention="structured" numberOfEventIndicators="0">',
-            '  <CoSimulation modelIdentifier="Gain" canHandleVariableCommunicationStepSize="true"/>',
-            "  <ModelVariables>"]
-    for i, k in enumerate(factors, start=1):
-        rows.append(f'    <ScalarVariable name="k[{i}]" valueReference="{i - 1}" causality="parameter" '
-                    f'variability="fixed" initial="exact"><Real start="{float(k)!r}"/></ScalarVariable>')
-    for i in range(1, n + 1):
-        rows.append(f'    <ScalarVariable name="u[{i}]" valueReference="{n + i - 1}" causality="input" '
-                    'variability="continuous"><Real start="0.0"/></ScalarVariable>')
-    for i in range(1, n + 1):
-        rows.append(f'    <ScalarVariable name="y[{i}]" valueReference="{2 * n + i - 1}" causality="output" '
-                    'variability="continuous" initial="calculated"><Real/></ScalarVariable>')
-    rows += ["  </ModelVariables>", "  <ModelStructure>", "    <Outputs>"]
-    deps = [f'      <Unknown index="{2 * n + i}" dependencies="{n + i}" dependenciesKind="constant"/>'
-            for i in range(1, n + 1)]
-    rows += deps + ["    </Outputs>", "    <InitialUnknowns>"] + deps
-    rows += ["    </InitialUnknowns>", "  </ModelStructure>", "</fmiModelDescription>", ""]
-    return "\n".join(rows)
 
 
 def _start_text(value):
