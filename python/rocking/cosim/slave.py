@@ -8,13 +8,26 @@ Messages the FMU logs go to rocking.fmu's process-wide logger.
 
 import shutil
 from ctypes import byref, c_double, c_int, c_uint32
+from dataclasses import dataclass
 from pathlib import Path
 
 import fmpy
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import FMU2Slave, fmi2FMUstate
+from fmpy.fmi2 import FMU2Slave, fmi2Discard, fmi2FMUstate, fmi2LastSuccessfulTime, fmi2Terminated
 
 from .. import fmu as _fmu
+
+
+@dataclass
+class StepEnd:
+    """How one step ended. time: where the FMU is now (s); terminated: the run is over
+    (overturning); early: the step stopped before its end, at an event (FMI 3.0's
+    early return); event: the FMU needs event mode (FMI 3.0, eventModeUsed)."""
+
+    time: float
+    terminated: bool = False
+    early: bool = False
+    event: bool = False
 
 
 class Slave:
@@ -22,6 +35,8 @@ class Slave:
 
     path  the .fmu; extracted to a temporary folder deleted by `close`
     """
+
+    fmi_version = 2
 
     def __init__(self, path, instance_name=None):
         self.path = Path(path)
@@ -129,6 +144,19 @@ class Slave:
         if status > 2:
             self._check(status, "fmi2DoStep")
         return status
+
+    def step(self, t, h):
+        """fmi2DoStep -> StepEnd: the block's overturning (fmi2Discard with fmi2Terminated)
+        ends the run at fmi2LastSuccessfulTime; any other discard raises."""
+        status = self.do_step(t, h)
+        if status != fmi2Discard:
+            return StepEnd(t + h)
+        if self.status(fmi2Terminated, boolean=True):
+            return StepEnd(self.status(fmi2LastSuccessfulTime), terminated=True)
+        raise _fmu.FMUError(f"{self.name}: fmi2DoStep discarded a step without terminating")
+
+    def handle_event(self):
+        """FMI 2.0 co-simulation has no event mode: nothing to do."""
 
     def get_state(self):
         state = fmi2FMUstate()
