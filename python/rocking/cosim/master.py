@@ -388,6 +388,8 @@ class _Loop:
         early return at t_e brings the frame back to t and steps it to t_e."""
         self._set_ground(t, h)
         force, rate = self._block_force()
+        if self.held and self.force_rates and self.two_way:
+            rate, da_floor = self._with_input_rates(force, rate)
         if self.gs:
             a0, _ = self._floor_acc()
             fstate = self._keep_frame()
@@ -397,6 +399,8 @@ class _Loop:
             ag = ([a0], [(a1 - a0) / h]) if self.extrapolate else ([a1], None)
         else:
             a0, da = self._floor_acc()
+            if self.held and self.force_rates and self.two_way:
+                da = da_floor
             fstate = self._keep_frame()
             ag = ([a0], [da] if self.extrapolate else None)
             self._set_frame_force(force, rate, h)
@@ -424,6 +428,28 @@ class _Loop:
         # a[j]' from now on (feedthrough)
         self._set_frame_force(*self._block_force())
         return done
+
+    def _with_input_rates(self, force, rate):
+        """FMI 3.0: the rates of the force on the floor and of a[j], with the terms the
+        FMUs' output derivatives leave out because 3.0 gives them no input rates. Both
+        outputs feed through (a[j] from the force, the block's force from its ag), so
+            a' = a'_0 + (da/df) f',   f' = f'_0 + (df/dag) a'
+        with f'_0, a'_0 the FMUs' output derivatives and the two gains measured by
+        changing each input by a small amount and back (both outputs are linear in
+        those inputs at a given state). Returns (f', a')."""
+        a0 = self.frame.get(self.r_a)[0]
+        da0 = self.frame.get_der(self.r_a)[0]
+        df = 1e-6 * (1.0 + abs(force[0]))
+        self.frame.set(self.r_force, [force[0] + df, force[1]])
+        ga = (self.frame.get(self.r_a)[0] - a0) / df
+        self.frame.set(self.r_force, force)
+        dag = 1e-6 * (1.0 + abs(a0))
+        self.block.set(self.r_bag, [a0])
+        f0 = self.block.get(self.r_bf)
+        self.block.set(self.r_bag, [a0 + dag])
+        gf = [-(x - y) / dag for x, y in zip(self.block.get(self.r_bf), f0)]
+        da = (da0 + ga * rate[0]) / (1.0 - ga * gf[0])
+        return [r + g * da for r, g in zip(rate, gf)], da
 
     # -- early return and overturning: the frame is brought to the block's time --
     def _keep_frame(self):
