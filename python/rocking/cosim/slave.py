@@ -30,15 +30,14 @@ class StepEnd:
     event: bool = False
 
 
-class Slave:
-    """An extracted FMU, loaded once; `instantiate` / `free` around each run.
+class Extracted:
+    """An FMU's archive extracted and its model description read: what an FMI 2.0 and
+    an FMI 3.0 slave share (variables by name, enumeration items, clean-up).
 
     path  the .fmu; extracted to a temporary folder deleted by `close`
     """
 
-    fmi_version = 2
-
-    def __init__(self, path, instance_name=None):
+    def __init__(self, path):
         self.path = Path(path)
         if not self.path.is_file():
             raise FileNotFoundError(f"{self.path} does not exist: build it with `cargo xtask fmu`")
@@ -50,13 +49,6 @@ class Slave:
                              for v in md.modelVariables
                              if v.type == "Enumeration" and v.declaredType is not None}
         self.capabilities = md.coSimulation
-        self._slave = FMU2Slave(guid=md.guid, unzipDirectory=str(self.unzipdir),
-                                modelIdentifier=md.coSimulation.modelIdentifier,
-                                instanceName=instance_name or md.modelName)
-        raw = self._slave._functions
-        self._get_real, self._set_real = raw["fmi2GetReal"], raw["fmi2SetReal"]
-        self._set_der, self._get_der = raw["fmi2SetRealInputDerivatives"], raw["fmi2GetRealOutputDerivatives"]
-        self._do_step = raw["fmi2DoStep"]
         self.component = None
 
     def close(self):
@@ -66,6 +58,40 @@ class Slave:
         except Exception:  # noqa: BLE001 - already unloaded
             pass
         shutil.rmtree(self.unzipdir, ignore_errors=True)
+
+    def free(self):
+        raise NotImplementedError
+
+    def start_value(self, name, value):
+        """(the variable `name`, `value` with an enumeration item's name replaced by its value)."""
+        if name not in self.variables:
+            raise KeyError(f"{name!r} is not a variable of {self.name}.fmu")
+        if name in self.enumerations and isinstance(value, str):
+            items = self.enumerations[name]
+            if value not in items:
+                raise ValueError(f"{name} = {value!r}: not one of {sorted(items)}")
+            value = items[value]
+        return self.variables[name], value
+
+
+class Slave(Extracted):
+    """An extracted FMI 2.0 FMU, loaded once; `instantiate` / `free` around each run.
+
+    path  the .fmu; extracted to a temporary folder deleted by `close`
+    """
+
+    fmi_version = 2
+
+    def __init__(self, path, instance_name=None):
+        super().__init__(path)
+        md = self.model_description
+        self._slave = FMU2Slave(guid=md.guid, unzipDirectory=str(self.unzipdir),
+                                modelIdentifier=md.coSimulation.modelIdentifier,
+                                instanceName=instance_name or md.modelName)
+        raw = self._slave._functions
+        self._get_real, self._set_real = raw["fmi2GetReal"], raw["fmi2SetReal"]
+        self._set_der, self._get_der = raw["fmi2SetRealInputDerivatives"], raw["fmi2GetRealOutputDerivatives"]
+        self._do_step = raw["fmi2DoStep"]
 
     # -- life of an instance ------------------------------------------------
     def instantiate(self, params, start_time, stop_time, rtol=None):
@@ -89,14 +115,7 @@ class Slave:
             self.component = None
 
     def set_start(self, name, value):
-        if name not in self.variables:
-            raise KeyError(f"{name!r} is not a variable of {self.name}.fmu")
-        v = self.variables[name]
-        if name in self.enumerations and isinstance(value, str):
-            items = self.enumerations[name]
-            if value not in items:
-                raise ValueError(f"{name} = {value!r}: not one of {sorted(items)}")
-            value = items[value]
+        v, value = self.start_value(name, value)
         vr = [v.valueReference]
         if v.type == "Real":
             self._slave.setReal(vr, [float(value)])

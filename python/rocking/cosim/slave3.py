@@ -13,15 +13,12 @@ What differs from 2.0, and what the master must know:
 """
 
 import os
-import shutil
-from pathlib import Path
 
-import fmpy
 from fmpy.fmi3 import (FMU3Slave, fmi3Boolean, fmi3InstanceEnvironment, fmi3IntermediateUpdateCallback,
                        fmi3LogMessageCallback, fmi3ValueReference)
 
 from .. import fmu as _fmu
-from .slave import StepEnd
+from .slave import Extracted, StepEnd
 
 
 def _log(_env, status, category, message):
@@ -36,37 +33,20 @@ _LOGGER = fmi3LogMessageCallback(_log)
 _NO_UPDATE = fmi3IntermediateUpdateCallback()
 
 
-class Slave3:
+class Slave3(Extracted):
     """An extracted FMI 3.0 FMU, loaded once; `instantiate` / `free` around each run."""
 
     fmi_version = 3
 
     def __init__(self, path, instance_name=None):
-        self.path = Path(path)
-        if not self.path.is_file():
-            raise FileNotFoundError(f"{self.path} does not exist: build it with `cargo xtask fmu`")
-        self.unzipdir = Path(fmpy.extract(str(self.path)))
-        md = self.model_description = fmpy.read_model_description(str(self.unzipdir))
+        super().__init__(path)
+        md = self.model_description
         if md.fmiVersion != "3.0" or md.coSimulation is None:
             raise _fmu.FMUError(f"{self.path}: not an FMI 3.0 co-simulation FMU")
-        self.name = md.modelName
-        self.variables = {v.name: v for v in md.modelVariables}
-        self.enumerations = {v.name: {it.name: int(it.value) for it in v.declaredType.items}
-                             for v in md.modelVariables
-                             if v.type == "Enumeration" and v.declaredType is not None}
-        self.capabilities = md.coSimulation
         self._slave = FMU3Slave(guid=md.instantiationToken, unzipDirectory=str(self.unzipdir),
                                 modelIdentifier=md.coSimulation.modelIdentifier,
                                 instanceName=instance_name or md.modelName)
-        self.component, self.event_mode = None, False
-
-    def close(self):
-        self.free()
-        try:
-            self._slave.freeLibrary()
-        except Exception:  # noqa: BLE001 - already unloaded
-            pass
-        shutil.rmtree(self.unzipdir, ignore_errors=True)
+        self.event_mode = False
 
     # -- life of an instance ------------------------------------------------
     def instantiate(self, params, start_time, stop_time, rtol=None, early_return=False):
@@ -104,14 +84,7 @@ class Slave3:
             self.component = None
 
     def set_start(self, name, value):
-        if name not in self.variables:
-            raise KeyError(f"{name!r} is not a variable of {self.name}.fmu")
-        v = self.variables[name]
-        if name in self.enumerations and isinstance(value, str):
-            items = self.enumerations[name]
-            if value not in items:
-                raise ValueError(f"{name} = {value!r}: not one of {sorted(items)}")
-            value = items[value]
+        v, value = self.start_value(name, value)
         setter = {"Float64": self._slave.setFloat64, "Int32": self._slave.setInt32,
                   "Int64": self._slave.setInt64, "Enumeration": self._slave.setInt64,
                   "Boolean": self._slave.setBoolean}.get(v.type)
