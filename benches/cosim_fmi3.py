@@ -158,7 +158,8 @@ RIGID_VARIANTS = [("hosts (held inputs, held ground)", None), ("FMI 2.0, held", 
                   ("FMI 2.0, held + rejection", (2, "constant", True, False)),
                   ("FMI 2.0, extrapolated + rejection", (2, "extrapolate", True, False)),
                   ("FMI 3.0, held + early return", (3, "constant", False, True)),
-                  ("FMI 3.0, midpoint + early return", (3, "extrapolate", False, True))]
+                  ("FMI 3.0, midpoint + early return", (3, "extrapolate", False, True)),
+                  ("FMI 3.0, midpoint + rejection + early return", (3, "extrapolate", True, True))]
 WINDOWS_SPLIT = 2.0  # s: the errors are given over [0, 2] s and (2 s, stop time]
 
 
