@@ -37,8 +37,16 @@ the part holding the event is no longer than h² / 0.1 s (or, with
 `substeps=N`, redone in N equal parts). docs/cosimulation.md §4 measures what
 it buys.
 
+FMI 3.0 (`CoupledFMUs(fmi=3)`: target/fmu/fmi3/): no input derivatives, so every
+input is held over a step, "constant" at the step start's value (bit for bit the
+2.0 master's), "extrapolate" at its extrapolation's midpoint, with the rates the
+3.0 FMUs' output derivatives lack added (`_Loop._with_input_rates`). With
+`early_return=True` the block's fmi3DoStep stops at an impact, uplift or rest and
+the master ends the communication step there for both FMUs (docs/cosimulation.md
+§4b measures what it buys).
+
 Overturning: the block's fmi2DoStep returns fmi2Discard with fmi2Terminated
-true; the frame is brought to the same time (back to the step's start and
+true (3.0: terminateSimulation); the frame is brought to the same time (back to the step's start and
 stepped to the overturning time), the run ends there, and the frame's FMU
 state is returned serialized (`frame_state`) so the structure can go on alone.
 """
