@@ -59,7 +59,7 @@ import numpy as np
 
 from .. import fmu as _fmu
 from .. import paths
-from .slave import Slave
+from .slave import Slave, StepEnd
 from .slave3 import Slave3
 
 SCHEMES = ("jacobi", "gauss-seidel")
@@ -349,7 +349,8 @@ class _Loop:
             self._record(done.time)
             if not done.early:
                 return True
-            self.early_returns.append(done.time)
+            if done.event:  # not the end of a redone part of a step (_block_step)
+                self.early_returns.append(done.time)
             t, h = done.time, end - done.time
 
     def _event_step(self, h):
@@ -417,7 +418,7 @@ class _Loop:
         if self.vertical is not None:  # the ground's av, straight to the block (no vertical DOF in the frame)
             v0, v1 = (float(x) for x in self.vertical(np.array([t, t + h])))
             self._set_input(self.block, self.r_bav, [v0], [(v1 - v0) / h], h)
-        done = self.block.step(t, h)
+        done = self._block_step(t, h, ag)
         if done.terminated or done.early:
             self._frame_to(t, done.time, fstate, force, rate)
         else:
@@ -436,6 +437,26 @@ class _Loop:
         # a[j]' from now on (feedthrough)
         self._set_frame_force(*self._block_force())
         return done
+
+    def _block_step(self, t, h, ag):
+        """The block over [t, t + h]. With inputs held at their midpoint, a step that
+        returns early at t_e is redone from t to t_e with the inputs' midpoint over
+        [t, t_e] (the block stops again at the event, or reaches t_e just before it:
+        the next step then starts at the event)."""
+        redo = self.held and ag[1] is not None and getattr(self.block, "event_mode", False)
+        bstate = self.block.get_state() if redo else None
+        try:
+            done = self.block.step(t, h)
+            if not (redo and done.early) or done.time <= t:
+                return done
+            t_e = done.time
+            self.block.set_state(bstate)
+            self._set_input(self.block, self.r_bag, *ag, t_e - t)
+            again = self.block.step(t, t_e - t)
+            return again if (again.early or again.terminated) else StepEnd(t_e, early=True)
+        finally:
+            if bstate is not None:
+                self.block.free_state(bstate)
 
     def _with_input_rates(self, force, rate):
         """FMI 3.0: the rates of the force on the floor and of a[j], with the terms the
