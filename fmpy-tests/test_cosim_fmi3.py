@@ -135,14 +135,19 @@ def test_overturning_ends_the_3_0_run_where_the_2_0_run_ends(fmus2, fmus3, early
     assert b.t_overturn == a.t_overturn and b.u.tobytes() == a.u.tobytes()
 
 
-def test_midpoint_inputs_converge_at_order_2():
+def test_midpoint_inputs_converge_at_order_2_with_or_without_early_return():
     """inputs="extrapolate" with FMI 3.0 (each input held at its extrapolation's mean
-    over the step): on the elastic case (1.5 s) the error in theta falls 4.6 times from
-    5 to 2.5 ms. With the FMUs' own output derivatives, which leave out the inputs'
-    rates, it fell 1.8 times (order 1): the regression this guards."""
-    case = short_case()
+    over the step), §4's elastic case (3 s): the error in theta falls 3.7 times from
+    5 to 2.5 ms (1.2 times with the FMUs' own output derivatives, which leave out the
+    inputs' rates), and early return leaves it as it is (0.91 times at 2.5 ms; 1.9
+    times when the part of a step before an impact kept the whole step's midpoint
+    inputs). The two regressions this guards."""
+    case = convergence_case()
     ref = Reference(**case)
     with CoupledFMUs(fmi=3) as fmus:
         e = [errors(fmus.run(**case, step=h, inputs="extrapolate", reject=False), ref)["theta"]
              for h in (0.005, 0.0025)]
-    assert e[0] / e[1] > 3.2 and e[1] < 3e-4  # measured 4.6 and 1.4e-4
+        early = fmus.run(**case, step=0.0025, inputs="extrapolate", reject=False, early_return=True)
+    assert e[0] / e[1] > 3.0 and e[1] < 1e-3  # measured 3.7 and 6.3e-4
+    assert len(early.early_returns) == len(ref.impact_times) == 6
+    assert errors(early, ref)["theta"] < 1.3 * e[1]

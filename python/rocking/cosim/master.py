@@ -59,7 +59,7 @@ import numpy as np
 
 from .. import fmu as _fmu
 from .. import paths
-from .slave import Slave, StepEnd
+from .slave import Slave
 from .slave3 import Slave3
 
 SCHEMES = ("jacobi", "gauss-seidel")
@@ -349,8 +349,7 @@ class _Loop:
             self._record(done.time)
             if not done.early:
                 return True
-            if done.event:  # not the end of a redone part of a step (_block_step)
-                self.early_returns.append(done.time)
+            self.early_returns.append(done.time)
             t, h = done.time, end - done.time
 
     def _event_step(self, h):
@@ -440,20 +439,18 @@ class _Loop:
 
     def _block_step(self, t, h, ag):
         """The block over [t, t + h]. With inputs held at their midpoint, a step that
-        returns early at t_e is redone from t to t_e with the inputs' midpoint over
-        [t, t_e] (the block stops again at the event, or reaches t_e just before it:
-        the next step then starts at the event)."""
+        returns early at t_e is redone once from t with the inputs' midpoint over
+        [t, t_e]: the part of the step the block takes then sees its inputs' mean over
+        that part (the event moves by far less than the step)."""
         redo = self.held and ag[1] is not None and getattr(self.block, "event_mode", False)
         bstate = self.block.get_state() if redo else None
         try:
             done = self.block.step(t, h)
             if not (redo and done.early) or done.time <= t:
                 return done
-            t_e = done.time
             self.block.set_state(bstate)
-            self._set_input(self.block, self.r_bag, *ag, t_e - t)
-            again = self.block.step(t, t_e - t)
-            return again if (again.early or again.terminated) else StepEnd(t_e, early=True)
+            self._set_input(self.block, self.r_bag, *ag, done.time - t)
+            return self.block.step(t, h)
         finally:
             if bstate is not None:
                 self.block.free_state(bstate)
