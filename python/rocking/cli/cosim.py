@@ -28,6 +28,10 @@ CASE.toml (or .json, the same tables):
     coupling = "two-way"     # or "one-way"
     reject = true            # step rejection at impacts and contact changes (default)
     rtol = 1e-10             # the block's integrator tolerance
+    early_return = false     # with --fmi 3: end the communication step at each of the block's
+                             # impacts, uplifts and rests (fmi3DoStep's early return)
+    ground_input = "chord"   # the frame's ag over a step: "chord" (FMI 2.0 only, its default),
+                             # "midpoint" (the FMI 3.0 default) or "held" (the step start's value)
 
 Writes DIR/timehistory.csv (time, ag, theta, omega, a_floor, Fx, Fz, u[1..n]),
 DIR/summary.json and DIR/plot.png, and prints a summary.
@@ -43,7 +47,8 @@ from .. import jsonfile
 from .common import CLIError, horizontal_record
 
 SECTIONS = {"frame", "block", "ground", "coupling"}
-COUPLING_KEYS = {"floor", "step", "stop_time", "scheme", "inputs", "coupling", "reject", "substeps", "rtol"}
+COUPLING_KEYS = {"floor", "step", "stop_time", "scheme", "inputs", "coupling", "reject", "substeps", "rtol",
+                 "early_return", "ground_input"}
 
 
 def register(sub, common):
@@ -59,8 +64,13 @@ def register(sub, common):
     p.add_argument("--reference", action="store_true",
                    help="also solve the monolithic coupled equations (elastic solid rectangle only) and "
                         "report the co-simulation's error against them")
-    p.add_argument("--frame-fmu", metavar="PATH", help="default: target/fmu/ShearFrame.fmu")
-    p.add_argument("--block-fmu", metavar="PATH", help="default: target/fmu/RockingBlock.fmu")
+    p.add_argument("--fmi", type=int, choices=(2, 3), default=2,
+                   help="the FMI standard of both FMUs (default 2; 3: the archives in target/fmu/fmi3/, "
+                        "inputs held over each step, [coupling] early_return available)")
+    p.add_argument("--frame-fmu", metavar="PATH", help="default: target/fmu/ShearFrame.fmu (--fmi 3: "
+                                                       "target/fmu/fmi3/ShearFrame.fmu)")
+    p.add_argument("--block-fmu", metavar="PATH", help="default: target/fmu/RockingBlock.fmu (--fmi 3: "
+                                                       "target/fmu/fmi3/RockingBlock.fmu)")
     p.set_defaults(func=cmd_cosim)
 
 
@@ -167,12 +177,15 @@ def cmd_cosim(args, _params):
     opts.setdefault("stop_time", end)
     opts.setdefault("step", 1e-3)
     fmu_dir = paths.target_dir() / "fmu" if paths.REPO is not None else Path(".")
-    frame_fmu = Path(args.frame_fmu) if args.frame_fmu else fmu_dir / "ShearFrame.fmu"
-    block_fmu = Path(args.block_fmu) if args.block_fmu else fmu_dir / "RockingBlock.fmu"
-    for f in (frame_fmu, block_fmu):
+    std_dir = fmu_dir / "fmi3" if args.fmi == 3 else fmu_dir
+    frame_fmu = Path(args.frame_fmu) if args.frame_fmu else std_dir / "ShearFrame.fmu"
+    block_fmu = Path(args.block_fmu) if args.block_fmu else std_dir / "RockingBlock.fmu"
+    # alpha and thetaOv for the summary come from the FMI 2.0 block (the same binary)
+    block_fmu2 = block_fmu if args.fmi == 2 else fmu_dir / "RockingBlock.fmu"
+    for f in (frame_fmu, block_fmu, block_fmu2):
         if not f.is_file():
             raise _error(f"{f}: no such FMU (run `cargo xtask fmu`, or pass --frame-fmu/--block-fmu)")
-    with CoupledFMUs(frame_fmu, block_fmu) as fmus:
+    with CoupledFMUs(frame_fmu, block_fmu, fmi=args.fmi) as fmus:
         try:
             res = fmus.run(frame, block, ground=ground, vertical=av, **opts)
         except TypeError as exc:
@@ -198,7 +211,7 @@ def cmd_cosim(args, _params):
                           **{f"u[{i + 1}]": res.u[:, i] for i in range(n)}})
     table.to_csv(out / "timehistory.csv", index=False)
     k_th, k_a = int(np.argmax(np.abs(res.theta))), int(np.argmax(np.abs(res.a_floor)))
-    with RockingFMU(block_fmu) as rocking_fmu:  # alpha and thetaOv, for theta / alpha
+    with RockingFMU(block_fmu2) as rocking_fmu:  # alpha and thetaOv, for theta / alpha
         calc = rocking_fmu.calculated(block)
     summary = {"case": str(case_path), "ground": ground_facts, "frame": frame, "block": block,
                "options": res.options, "overturned": res.overturned,
@@ -208,14 +221,17 @@ def cmd_cosim(args, _params):
                "peak_theta_over_alpha": float(abs(res.theta[k_th])) / calc["alpha"],
                "peak_a_floor_m_s2": float(abs(res.a_floor[k_a])), "t_peak_a_floor_s": float(res.time[k_a]),
                "peak_roof_displacement_m": float(np.max(np.abs(res.u[:, -1]))),
-               "steps": res.steps, "rejected_steps": res.rejected, "wall_s": res.wall,
+               "steps": res.steps, "rejected_steps": res.rejected, "early_returns_s": res.early_returns,
+               "wall_s": res.wall,
                "error_against_reference": check,
                "files": {"timehistory": "timehistory.csv", "plot": "plot.png"}}
     jsonfile.write(out / "summary.json", summary)
     plot_cosim(out / "plot.png", res, calc["alpha"], calc["thetaOv"])
     outcome = (f"OVERTURNED at t = {res.t_overturn:.4f} s (the frame's state kept at that time)"
                if res.overturned else f"stands until t = {res.time[-1]:g} s")
-    print(f"coupling    {res.options['scheme']}, {res.options['inputs']} inputs, {res.options['coupling']}, "
+    print(f"coupling    FMI {res.options['fmi']}.0, {res.options['scheme']}, {res.options['inputs']} inputs, "
+          f"{res.options['coupling']}"
+          + (f", {len(res.early_returns)} early returns" if res.options["early_return"] else "") + ", "
           f"h = {res.options['step']:g} s, block on floor {res.options['floor']} of {n}\n"
           f"result      {outcome}\n"
           f"peak        |theta| = {summary['peak_theta_rad']:.6g} rad at t = {summary['t_peak_theta_s']:.4f} s, "

@@ -2,8 +2,9 @@
 docs/cosimulation.md).
 
 - `master`: `CoupledFMUs.run` (Jacobi / Gauss-Seidel, constant or extrapolated
-  inputs, one- or two-way, step rejection) -> `CosimResult`; `frame_params`,
-  `sine_ground`, `record_ground`;
+  inputs, one- or two-way, step rejection; FMI 2.0 or 3.0 FMUs, early return
+  with 3.0) -> `CosimResult`; `frame_params`, `sine_ground`, `record_ground`;
+- `slave` / `slave3`: one FMI 2.0 / 3.0 co-simulation FMU by variable name;
 - `reference`: the monolithic coupled equations of an elastic solid-rectangle
   block on the frame, one SciPy integrator at tight tolerance (independent of
   the FMUs) -> `Reference`;

@@ -37,8 +37,16 @@ the part holding the event is no longer than h² / 0.1 s (or, with
 `substeps=N`, redone in N equal parts). docs/cosimulation.md §4 measures what
 it buys.
 
+FMI 3.0 (`CoupledFMUs(fmi=3)`: target/fmu/fmi3/): no input derivatives, so every
+input is held over a step, "constant" at the step start's value (bit for bit the
+2.0 master's), "extrapolate" at its extrapolation's midpoint, with the rates the
+3.0 FMUs' output derivatives lack added (`_Loop._with_input_rates`). With
+`early_return=True` the block's fmi3DoStep stops at an impact, uplift or rest and
+the master ends the communication step there for both FMUs (docs/cosimulation.md
+§4b measures what it buys).
+
 Overturning: the block's fmi2DoStep returns fmi2Discard with fmi2Terminated
-true; the frame is brought to the same time (back to the step's start and
+true (3.0: terminateSimulation); the frame is brought to the same time (back to the step's start and
 stepped to the overturning time), the run ends there, and the frame's FMU
 state is returned serialized (`frame_state`) so the structure can go on alone.
 """
@@ -48,15 +56,19 @@ import time as _time
 from dataclasses import dataclass, field
 
 import numpy as np
-from fmpy.fmi2 import fmi2Discard, fmi2LastSuccessfulTime, fmi2Terminated
 
 from .. import fmu as _fmu
 from .. import paths
 from .slave import Slave
+from .slave3 import Slave3
 
 SCHEMES = ("jacobi", "gauss-seidel")
 INPUTS = ("constant", "extrapolate")
 COUPLINGS = ("two-way", "one-way")
+FMI_VERSIONS = (2, 3)
+#: How the ground acceleration reaches the frame over a step: its chord (value and slope,
+#: FMI 2.0 only), its value at the step's midpoint (the chord's mean) or at its start, held.
+GROUND_INPUTS = ("chord", "midpoint", "held")
 #: A rejected step is bisected until the part holding the event is h² / REJECT_TIME_SCALE.
 REJECT_TIME_SCALE = 0.1  # s
 
@@ -105,6 +117,8 @@ class CosimResult:
     frame_state   the frame's serialized FMU state at the end (fmi2DeSerializeFMUstate
                   it to continue the structure alone)
     steps, rejected  communication steps taken, and rejected (reject=True)
+    early_returns the times at which the block's fmi3DoStep returned early (early_return=True);
+                  each is a communication point of the run
     wall          s
     """
 
@@ -124,24 +138,36 @@ class CosimResult:
     wall: float
     options: dict = field(default_factory=dict)
     messages: list = field(default_factory=list)
+    early_returns: list = field(default_factory=list)
 
 
 class CoupledFMUs:
     """ShearFrame.fmu and RockingBlock.fmu extracted and loaded once; `run` couples them.
 
-    frame_fmu, block_fmu  default: target/fmu/ShearFrame.fmu and RockingBlock.fmu
+    frame_fmu, block_fmu  default: target/fmu/ShearFrame.fmu and RockingBlock.fmu, or with
+                          fmi=3 the FMI 3.0 archives target/fmu/fmi3/ShearFrame.fmu and
+                          RockingBlock.fmu
+    fmi                   2 or 3: the standard of both FMUs
     """
 
-    def __init__(self, frame_fmu=None, block_fmu=None):
+    def __init__(self, frame_fmu=None, block_fmu=None, fmi=2):
+        if fmi not in FMI_VERSIONS:
+            raise ValueError(f"fmi = {fmi!r}: not one of {FMI_VERSIONS}")
+        self.fmi = fmi
         fmu_dir = paths.target_dir() / "fmu" if (frame_fmu is None or block_fmu is None) else None
-        self.frame = Slave(frame_fmu or fmu_dir / "ShearFrame.fmu")
-        self.block = Slave(block_fmu or fmu_dir / "RockingBlock.fmu")
+        if fmu_dir is not None and fmi == 3:
+            fmu_dir = fmu_dir / "fmi3"
+        cls = Slave if fmi == 2 else Slave3
+        self.frame = cls(frame_fmu or fmu_dir / "ShearFrame.fmu")
+        self.block = cls(block_fmu or fmu_dir / "RockingBlock.fmu")
         for s in (self.frame, self.block):
+            if getattr(s, "fmi_version", None) != fmi:
+                raise _fmu.FMUError(f"{s.path}: not an FMI {fmi}.0 FMU")
             cs = s.capabilities
-            if not (cs.canInterpolateInputs and (cs.maxOutputDerivativeOrder or 0) >= 1
+            if not ((cs.canInterpolateInputs or fmi == 3) and (cs.maxOutputDerivativeOrder or 0) >= 1
                     and cs.canGetAndSetFMUstate and cs.canHandleVariableCommunicationStepSize):
-                raise _fmu.FMUError(f"{s.path}: needs canInterpolateInputs, output derivatives, "
-                                    "fmi2Get/SetFMUstate and variable steps")
+                raise _fmu.FMUError(f"{s.path}: needs canInterpolateInputs (FMI 2.0), output derivatives, "
+                                    "get/set FMU state and variable steps")
 
     def __enter__(self):
         return self
@@ -154,7 +180,8 @@ class CoupledFMUs:
         self.block.close()
 
     def run(self, frame, block, floor, ground, stop_time, step, scheme="jacobi",
-            inputs="extrapolate", coupling="two-way", reject=True, substeps=None, rtol=1e-10, vertical=None):
+            inputs="extrapolate", coupling="two-way", reject=True, substeps=None, rtol=1e-10, vertical=None,
+            early_return=False, ground_input=None):
         """Couple the block on floor `floor` (1-based) of the frame from t = 0 to
         `stop_time` with communication step `step`; returns a `CosimResult`.
 
@@ -164,6 +191,15 @@ class CoupledFMUs:
         vertical      av(t), a vectorized callable (m/s2, up) or None: the ground's vertical
                       acceleration, given to the block as its input av as it is (the shear
                       frame has no vertical degree of freedom: its floors move with the ground)
+        early_return  FMI 3.0 only: the block's fmi3DoStep may stop at an impact, uplift or
+                      rest inside the step; the master then ends the communication step there
+                      for both FMUs, runs the block's event mode and goes on from that time
+        ground_input  how the frame gets the ground over a step, one of GROUND_INPUTS
+                      (default: "chord" with FMI 2.0, "midpoint" with 3.0, which has no
+                      input derivatives)
+        With FMI 3.0 every input is held over a step: inputs="constant" holds the value at
+        the step's start (FMI 2.0's "constant" bit for bit), inputs="extrapolate" the
+        extrapolation's value at the step's midpoint (its mean over the step).
         The defaults (Jacobi, extrapolated inputs, step rejection) are the most accurate
         combination measured in docs/cosimulation.md §4.
         """
@@ -173,6 +209,12 @@ class CoupledFMUs:
             raise ValueError(f"inputs = {inputs!r}: not one of {INPUTS}")
         if coupling not in COUPLINGS:
             raise ValueError(f"coupling = {coupling!r}: not one of {COUPLINGS}")
+        ground_input = ground_input or ("chord" if self.fmi == 2 else "midpoint")
+        if ground_input not in GROUND_INPUTS or (ground_input == "chord" and self.fmi == 3):
+            allowed = GROUND_INPUTS if self.fmi == 2 else GROUND_INPUTS[1:]
+            raise ValueError(f"ground_input = {ground_input!r}: not one of {allowed} with FMI {self.fmi}.0")
+        if early_return and self.fmi != 3:
+            raise ValueError("early_return = True needs the FMI 3.0 FMUs (fmi=3)")
         n = int(frame.get("n", 3))
         if not 1 <= int(floor) <= n:
             raise ValueError(f"floor = {floor}: must be a floor of the frame, 1..{n}")
@@ -180,10 +222,14 @@ class CoupledFMUs:
             raise ValueError("step and stop_time must be positive")
         wall = _time.perf_counter()
         loop = _Loop(self.frame, self.block, int(floor), n, ground, scheme, inputs == "extrapolate",
-                     coupling == "two-way", reject, None if substeps is None else int(substeps), vertical)
+                     coupling == "two-way", reject, None if substeps is None else int(substeps), vertical,
+                     ground_input)
         try:
             self.frame.instantiate(frame, 0.0, stop_time)
-            self.block.instantiate(block, 0.0, stop_time, rtol=rtol)
+            if self.fmi == 3:
+                self.block.instantiate(block, 0.0, stop_time, rtol=rtol, early_return=early_return)
+            else:
+                self.block.instantiate(block, 0.0, stop_time, rtol=rtol)
             self.frame.exit_init()
             self.block.exit_init()
             loop.start()
@@ -204,17 +250,21 @@ class CoupledFMUs:
             rejected=loop.rejected, wall=_time.perf_counter() - wall,
             options=dict(floor=floor, stop_time=stop_time, step=step, scheme=scheme, inputs=inputs,
                          coupling=coupling, reject=reject, substeps=substeps, rtol=rtol,
-                         vertical=vertical is not None),
-            messages=list(_fmu._MESSAGES))
+                         vertical=vertical is not None, fmi=self.fmi, early_return=early_return,
+                         ground_input=ground_input),
+            messages=list(_fmu._MESSAGES), early_returns=loop.early_returns)
 
 
 class _Loop:
     """The state of one coupled run between communication points."""
 
-    def __init__(self, frame, block, j, n, ground, scheme, extrapolate, two_way, reject, substeps, vertical=None):
+    def __init__(self, frame, block, j, n, ground, scheme, extrapolate, two_way, reject, substeps, vertical=None,
+                 ground_input="chord"):
         self.frame, self.block, self.ground, self.vertical = frame, block, ground, vertical
         self.gs, self.extrapolate, self.two_way = scheme == "gauss-seidel", extrapolate, two_way
-        self.reject, self.substeps = reject, substeps
+        self.reject, self.substeps, self.ground_input = reject, substeps, ground_input
+        # FMI 3.0 has no input derivatives: every input is held over a step
+        self.held = block.fmi_version == 3
         self.r_ag = frame.refs(["ag"])
         self.r_force = frame.refs([f"Fx[{j}]", f"Fz[{j}]"])
         self.r_a = frame.refs([f"a[{j}]"])
@@ -226,7 +276,7 @@ class _Loop:
         self.force_rates = extrapolate and vertical is None
         self.r_bf = block.refs(["Fx", "Fz"])
         self.r_th = block.refs(["theta", "omega"])
-        self.rows, self.steps, self.rejected = [], 0, 0
+        self.rows, self.steps, self.rejected, self.early_returns = [], 0, 0, []
         self.overturned, self.t_overturn = False, math.nan
 
     # -- the exchanged values at the current communication point --------------
@@ -240,9 +290,28 @@ class _Loop:
         a = self.frame.get(self.r_a)[0]
         return a, (self.frame.get_der(self.r_a)[0] if self.extrapolate else 0.0)
 
-    def _set_frame_force(self, force, rate):
+    def _set_input(self, slave, refs, values, rates, h):
+        """Inputs linear over the next step h: with FMI 2.0 their values and rates (none if
+        all rates are None), with 3.0 held at their mean over the step (the midpoint)."""
+        if not self.held:
+            slave.set(refs, values, rates)
+        elif rates is None:
+            slave.set(refs, values)
+        else:
+            slave.set(refs, [v + 0.5 * r * h for v, r in zip(values, rates)])
+
+    def _set_frame_force(self, force, rate, h=0.0):
         if self.two_way:
-            self.frame.set(self.r_force, force, rate)
+            self._set_input(self.frame, self.r_force, force, rate, h)
+
+    def _set_ground(self, t, h):
+        """The frame's ag over [t, t + h], as ground_input says."""
+        g0, g1 = (float(x) for x in self.ground(np.array([t, t + h])))
+        if self.ground_input == "chord":
+            self.frame.set(self.r_ag, [g0], [(g1 - g0) / h])
+        else:
+            g = 0.5 * (g0 + g1) if self.ground_input == "midpoint" else g0
+            self.frame.set(self.r_ag, [g], None if self.held else [0.0])
 
     def start(self):
         """Consistent values at t = 0: iterate the algebraic loop (a contraction for
@@ -255,7 +324,7 @@ class _Loop:
             a, _ = self._floor_acc()
             self.block.set(self.r_bag, [a])
             force, _ = self._block_force()
-            self._set_frame_force(force, [0.0, 0.0])
+            self._set_frame_force(force, None if self.held else [0.0, 0.0])
             if abs(self._floor_acc()[0] - a) <= 1e-13 * (1 + abs(a)):
                 break
         self._record(0.0)
@@ -268,12 +337,20 @@ class _Loop:
 
     # -- one communication step ------------------------------------------------
     def advance(self, t, h):
-        """Step both FMUs from t to t + h; False once the block has overturned."""
-        ok = self._attempt(t, h, self._event_step(h)) if self.reject else self._step(t, h)
-        self.steps += 1
-        if ok:
-            self._record(t + h)
-        return ok
+        """Step both FMUs from t to t + h; False once the block has overturned. Each early
+        return of the block ends a (shorter) communication step at its time, and the
+        rest of [t, t + h] is stepped from there."""
+        end = t + h
+        while True:
+            done = self._attempt(t, h, self._event_step(h)) if self.reject else self._step(t, h)
+            self.steps += 1
+            if done is None:
+                return False
+            self._record(done.time)
+            if not done.early:
+                return True
+            self.early_returns.append(done.time)
+            t, h = done.time, end - done.time
 
     def _event_step(self, h):
         """How short the part of a rejected step holding the event is made: h² / 0.1 s
@@ -281,17 +358,20 @@ class _Loop:
         return h * h / REJECT_TIME_SCALE if self.substeps is None else h / self.substeps
 
     def _attempt(self, t, h, shortest):
-        """Step [t, t + h]; if the block crossed theta = 0 or changed regime in it and h
-        is above `shortest`, go back (fmi2SetFMUstate) and do both halves the same way:
-        a bisection that ends with the event inside a step no longer than `shortest`.
-        With `substeps` set, the rejected step is redone in that many equal parts."""
+        """Step [t, t + h]; if the block crossed theta = 0 or changed regime in it (not
+        at an early return, which puts the event at the step's end) and h is above
+        `shortest`, go back (get/set FMU state) and do both halves the same way: a
+        bisection that ends with the event inside a step no longer than `shortest`.
+        With `substeps` set, the rejected step is redone in that many equal parts.
+        Returns how the last step taken ended (a StepEnd), None at overturning."""
         fstate, bstate = self.frame.get_state(), self.block.get_state()
         before = (self.block.get_int("zeroCrossings"), self.block.get_int("regime"))
         try:
-            ok = self._step(t, h)
-            event = ok and (self.block.get_int("zeroCrossings"), self.block.get_int("regime")) != before
+            done = self._step(t, h)
+            event = (done is not None and not done.early
+                     and (self.block.get_int("zeroCrossings"), self.block.get_int("regime")) != before)
             if not event or h <= shortest * (1 + 1e-9):
-                return ok
+                return done
             self.frame.set_state(fstate)
             self.block.set_state(bstate)
             self.rejected += 1
@@ -302,47 +382,102 @@ class _Loop:
             hs = h / self.substeps
             for i in range(self.substeps):
                 ts = t + i * hs
-                if not self._step(ts, hs if i + 1 < self.substeps else t + h - ts):
-                    return False
-            return True
-        return self._attempt(t, h / 2, shortest) and self._attempt(t + h / 2, h / 2, shortest)
+                done = self._step(ts, hs if i + 1 < self.substeps else t + h - ts)
+                if done is None or done.early:
+                    return done
+            return done
+        done = self._attempt(t, h / 2, shortest)
+        if done is None or done.early:
+            return done
+        return self._attempt(t + h / 2, h / 2, shortest)
 
     def _step(self, t, h):
-        g0, g1 = (float(x) for x in self.ground(np.array([t, t + h])))
-        self.frame.set(self.r_ag, [g0], [(g1 - g0) / h])
+        """Both FMUs over [t, t + h] -> the block's StepEnd (None at overturning). An
+        early return at t_e brings the frame back to t and steps it to t_e."""
+        self._set_ground(t, h)
         force, rate = self._block_force()
+        if self.held and self.force_rates and self.two_way:
+            rate, da_floor = self._with_input_rates(force, rate)
         if self.gs:
             a0, _ = self._floor_acc()
             fstate = self._keep_frame()
-            self._set_frame_force(force, rate)
-            self.frame.do_step(t, h)
+            self._set_frame_force(force, rate, h)
+            self.frame.step(t, h)
             a1, _ = self._floor_acc()
-            if self.extrapolate:
-                self.block.set(self.r_bag, [a0], [(a1 - a0) / h])
-            else:
-                self.block.set(self.r_bag, [a1])
+            ag = ([a0], [(a1 - a0) / h]) if self.extrapolate else ([a1], None)
         else:
             a0, da = self._floor_acc()
+            if self.held and self.force_rates and self.two_way:
+                da = da_floor
             fstate = self._keep_frame()
-            self.block.set(self.r_bag, [a0], [da] if self.extrapolate else None)
-            self._set_frame_force(force, rate)
-            self.frame.do_step(t, h)
+            ag = ([a0], [da] if self.extrapolate else None)
+            self._set_frame_force(force, rate, h)
+            self.frame.step(t, h)
+        self._set_input(self.block, self.r_bag, *ag, h)
         if self.vertical is not None:  # the ground's av, straight to the block (no vertical DOF in the frame)
             v0, v1 = (float(x) for x in self.vertical(np.array([t, t + h])))
-            self.block.set(self.r_bav, [v0], [(v1 - v0) / h])
-        status = self.block.do_step(t, h)
-        if status == fmi2Discard and self.block.status(fmi2Terminated, boolean=True):
-            self._overturn(t, fstate, force, rate)
-            return False
-        if status == fmi2Discard:
-            raise _fmu.FMUError("RockingBlock: fmi2DoStep discarded a step without terminating")
-        self._release_frame(fstate)
-        # the block's force at t + h and its rate, seen by the frame's a[j] and a[j]'
-        # from now on (feedthrough)
+            self._set_input(self.block, self.r_bav, [v0], [(v1 - v0) / h], h)
+        done = self._block_step(t, h, ag)
+        if done.terminated or done.early:
+            self._frame_to(t, done.time, fstate, force, rate)
+        else:
+            self._release_frame(fstate)
+        if done.terminated:
+            self.overturned, self.t_overturn = True, done.time
+            self._record(done.time)
+            return None
+        if done.event:
+            self.block.handle_event()
+        if self.held and ag[1] is not None:
+            # the block's feedthrough (Fx from ag) at the step's end sees the input's
+            # end value, as an FMI 2.0 input continued along its rate does
+            self.block.set(self.r_bag, [ag[0][0] + ag[1][0] * (done.time - t)])
+        # the block's force at the step's end and its rate, seen by the frame's a[j] and
+        # a[j]' from now on (feedthrough)
         self._set_frame_force(*self._block_force())
-        return True
+        return done
 
-    # -- overturning: the frame is brought to the overturning time -------------
+    def _block_step(self, t, h, ag):
+        """The block over [t, t + h]. With inputs held at their midpoint, a step that
+        returns early at t_e is redone once from t with the inputs' midpoint over
+        [t, t_e]: the part of the step the block takes then sees its inputs' mean over
+        that part (the event moves by far less than the step)."""
+        redo = self.held and ag[1] is not None and getattr(self.block, "event_mode", False)
+        bstate = self.block.get_state() if redo else None
+        try:
+            done = self.block.step(t, h)
+            if not (redo and done.early) or done.time <= t:
+                return done
+            self.block.set_state(bstate)
+            self._set_input(self.block, self.r_bag, *ag, done.time - t)
+            return self.block.step(t, h)
+        finally:
+            if bstate is not None:
+                self.block.free_state(bstate)
+
+    def _with_input_rates(self, force, rate):
+        """FMI 3.0: the rates of the force on the floor and of a[j], with the terms the
+        FMUs' output derivatives leave out because 3.0 gives them no input rates. Both
+        outputs feed through (a[j] from the force, the block's force from its ag), so
+            a' = a'_0 + (da/df) f',   f' = f'_0 + (df/dag) a'
+        with f'_0, a'_0 the FMUs' output derivatives and the two gains measured by
+        changing each input by a small amount and back (both outputs are linear in
+        those inputs at a given state). Returns (f', a')."""
+        a0 = self.frame.get(self.r_a)[0]
+        da0 = self.frame.get_der(self.r_a)[0]
+        df = 1e-6 * (1.0 + abs(force[0]))
+        self.frame.set(self.r_force, [force[0] + df, force[1]])
+        ga = (self.frame.get(self.r_a)[0] - a0) / df
+        self.frame.set(self.r_force, force)
+        dag = 1e-6 * (1.0 + abs(a0))
+        self.block.set(self.r_bag, [a0])
+        f0 = self.block.get(self.r_bf)
+        self.block.set(self.r_bag, [a0 + dag])
+        gf = [-(x - y) / dag for x, y in zip(self.block.get(self.r_bf), f0)]
+        da = (da0 + ga * rate[0]) / (1.0 - ga * gf[0])
+        return [r + g * da for r, g in zip(rate, gf)], da
+
+    # -- early return and overturning: the frame is brought to the block's time --
     def _keep_frame(self):
         return self.frame.get_state()
 
@@ -350,17 +485,14 @@ class _Loop:
         if fstate is not None:
             self.frame.free_state(fstate)
 
-    def _overturn(self, t, fstate, force, rate):
-        t_ov = self.block.status(fmi2LastSuccessfulTime)
+    def _frame_to(self, t, t_end, fstate, force, rate):
+        """Back to the step's start t and on to t_end with the same inputs."""
         self.frame.set_state(fstate)
         self._release_frame(fstate)
-        g0, g1 = (float(x) for x in self.ground(np.array([t, t_ov])))
-        if t_ov > t:
-            self.frame.set(self.r_ag, [g0], [(g1 - g0) / (t_ov - t)])
-            self._set_frame_force(force, rate)
-            self.frame.do_step(t, t_ov - t)
-        self.overturned, self.t_overturn = True, t_ov
-        self._record(t_ov)
+        if t_end > t:
+            self._set_ground(t, t_end - t)
+            self._set_frame_force(force, rate, t_end - t)
+            self.frame.step(t, t_end - t)
 
     def frame_serialized(self):
         state = self.frame.get_state()

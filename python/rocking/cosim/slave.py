@@ -8,22 +8,36 @@ Messages the FMU logs go to rocking.fmu's process-wide logger.
 
 import shutil
 from ctypes import byref, c_double, c_int, c_uint32
+from dataclasses import dataclass
 from pathlib import Path
 
 import fmpy
 from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import FMU2Slave, fmi2FMUstate
+from fmpy.fmi2 import FMU2Slave, fmi2Discard, fmi2FMUstate, fmi2LastSuccessfulTime, fmi2Terminated
 
 from .. import fmu as _fmu
 
 
-class Slave:
-    """An extracted FMU, loaded once; `instantiate` / `free` around each run.
+@dataclass
+class StepEnd:
+    """How one step ended. time: where the FMU is now (s); terminated: the run is over
+    (overturning); early: the step stopped before its end, at an event (FMI 3.0's
+    early return); event: the FMU needs event mode (FMI 3.0, eventModeUsed)."""
+
+    time: float
+    terminated: bool = False
+    early: bool = False
+    event: bool = False
+
+
+class Extracted:
+    """An FMU's archive extracted and its model description read: what an FMI 2.0 and
+    an FMI 3.0 slave share (variables by name, enumeration items, clean-up).
 
     path  the .fmu; extracted to a temporary folder deleted by `close`
     """
 
-    def __init__(self, path, instance_name=None):
+    def __init__(self, path):
         self.path = Path(path)
         if not self.path.is_file():
             raise FileNotFoundError(f"{self.path} does not exist: build it with `cargo xtask fmu`")
@@ -35,13 +49,6 @@ class Slave:
                              for v in md.modelVariables
                              if v.type == "Enumeration" and v.declaredType is not None}
         self.capabilities = md.coSimulation
-        self._slave = FMU2Slave(guid=md.guid, unzipDirectory=str(self.unzipdir),
-                                modelIdentifier=md.coSimulation.modelIdentifier,
-                                instanceName=instance_name or md.modelName)
-        raw = self._slave._functions
-        self._get_real, self._set_real = raw["fmi2GetReal"], raw["fmi2SetReal"]
-        self._set_der, self._get_der = raw["fmi2SetRealInputDerivatives"], raw["fmi2GetRealOutputDerivatives"]
-        self._do_step = raw["fmi2DoStep"]
         self.component = None
 
     def close(self):
@@ -51,6 +58,40 @@ class Slave:
         except Exception:  # noqa: BLE001 - already unloaded
             pass
         shutil.rmtree(self.unzipdir, ignore_errors=True)
+
+    def free(self):
+        raise NotImplementedError
+
+    def start_value(self, name, value):
+        """(the variable `name`, `value` with an enumeration item's name replaced by its value)."""
+        if name not in self.variables:
+            raise KeyError(f"{name!r} is not a variable of {self.name}.fmu")
+        if name in self.enumerations and isinstance(value, str):
+            items = self.enumerations[name]
+            if value not in items:
+                raise ValueError(f"{name} = {value!r}: not one of {sorted(items)}")
+            value = items[value]
+        return self.variables[name], value
+
+
+class Slave(Extracted):
+    """An extracted FMI 2.0 FMU, loaded once; `instantiate` / `free` around each run.
+
+    path  the .fmu; extracted to a temporary folder deleted by `close`
+    """
+
+    fmi_version = 2
+
+    def __init__(self, path, instance_name=None):
+        super().__init__(path)
+        md = self.model_description
+        self._slave = FMU2Slave(guid=md.guid, unzipDirectory=str(self.unzipdir),
+                                modelIdentifier=md.coSimulation.modelIdentifier,
+                                instanceName=instance_name or md.modelName)
+        raw = self._slave._functions
+        self._get_real, self._set_real = raw["fmi2GetReal"], raw["fmi2SetReal"]
+        self._set_der, self._get_der = raw["fmi2SetRealInputDerivatives"], raw["fmi2GetRealOutputDerivatives"]
+        self._do_step = raw["fmi2DoStep"]
 
     # -- life of an instance ------------------------------------------------
     def instantiate(self, params, start_time, stop_time, rtol=None):
@@ -74,14 +115,7 @@ class Slave:
             self.component = None
 
     def set_start(self, name, value):
-        if name not in self.variables:
-            raise KeyError(f"{name!r} is not a variable of {self.name}.fmu")
-        v = self.variables[name]
-        if name in self.enumerations and isinstance(value, str):
-            items = self.enumerations[name]
-            if value not in items:
-                raise ValueError(f"{name} = {value!r}: not one of {sorted(items)}")
-            value = items[value]
+        v, value = self.start_value(name, value)
         vr = [v.valueReference]
         if v.type == "Real":
             self._slave.setReal(vr, [float(value)])
@@ -129,6 +163,19 @@ class Slave:
         if status > 2:
             self._check(status, "fmi2DoStep")
         return status
+
+    def step(self, t, h):
+        """fmi2DoStep -> StepEnd: the block's overturning (fmi2Discard with fmi2Terminated)
+        ends the run at fmi2LastSuccessfulTime; any other discard raises."""
+        status = self.do_step(t, h)
+        if status != fmi2Discard:
+            return StepEnd(t + h)
+        if self.status(fmi2Terminated, boolean=True):
+            return StepEnd(self.status(fmi2LastSuccessfulTime), terminated=True)
+        raise _fmu.FMUError(f"{self.name}: fmi2DoStep discarded a step without terminating")
+
+    def handle_event(self):
+        """FMI 2.0 co-simulation has no event mode: nothing to do."""
 
     def get_state(self):
         state = fmi2FMUstate()
