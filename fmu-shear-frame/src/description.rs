@@ -10,6 +10,7 @@
 use std::sync::LazyLock;
 
 use model_description::common;
+use model_description::fmi3::Arrays3;
 use model_description::*;
 
 /// Length of every per-floor array: the most storeys a frame may have.
@@ -408,6 +409,24 @@ pub static LOG_CATEGORIES: &[LogCategory] = &[
     },
 ];
 
+/// FMI 3.0: each per-floor variable is one array of `n` elements
+/// (`Fx[i]` is element `i` of `Fx`), `n` a structural parameter.
+pub const ARRAYS3: Arrays3 = Arrays3 {
+    size: "n",
+    len: MAX_STOREYS,
+    arrays: &[
+        ("m", "Mass of each floor, floor 1 first"),
+        ("k", "Lateral stiffness of each storey (storey i between floor i-1 and floor i)"),
+        ("Fx", "Horizontal external force on each floor, +x"),
+        ("Fz", "Vertical external force on each floor, up (accepted for coupling; no effect on the lateral model)"),
+        ("u", "Displacement of each floor relative to the ground, +x; its start value is the initial displacement"),
+        ("v", "Velocity of each floor relative to the ground, du/dt; its start value is the initial velocity"),
+        ("a", "Absolute acceleration of each floor (ground plus relative), +x"),
+        ("drift", "Drift of each storey: u[i] - u[i-1] (u[0] = 0, the ground)"),
+        ("period", "Natural period of each mode (descending)"),
+    ],
+};
+
 pub static SHEAR_FRAME: LazyLock<ModelDescription> = LazyLock::new(|| {
     ModelDescription {
     model_name: "ShearFrame",
@@ -430,6 +449,7 @@ pub static SHEAR_FRAME: LazyLock<ModelDescription> = LazyLock::new(|| {
     },
     variables: Box::leak(build_variables().into_boxed_slice()),
     documentation: include_str!("description.html"),
+    arrays3: Some(ARRAYS3),
 }
 });
 
