@@ -13,7 +13,8 @@
 //! from `model_description::xml3`. FMI 3.0 has no function for input
 //! derivatives: the first derivative of each continuous input is an input
 //! `der(x)` of its own (`derivative` attribute), set with `fmi3SetFloat64`
-//! into the store `fmi2SetRealInputDerivatives` fills. Clocks, binaries, arrays and the types the
+//! into the store `fmi2SetRealInputDerivatives` fills. Arrays sized by a
+//! structural parameter map onto the 2.0 scalars ([`arrays`]). Clocks, binaries and the types the
 //! table has no variable of answer with an error naming the value
 //! reference (or nothing to do, for none).
 

@@ -30,6 +30,8 @@ unsafe extern "C" fn collect(env: *mut c_void, _s: i32, _c: *const c_char, m: *c
 /// One co-simulation instance and its log.
 struct Frame {
     c: *mut c_void,
+    // boxed: the FMU holds its address, which must survive moves of `Frame`
+    #[allow(clippy::box_collection)]
     log: Box<Vec<String>>,
 }
 
