@@ -87,32 +87,31 @@ pub fn scalars<S: Slave>(i: &Inner<S>, vrs: &[u32], n_values: usize) -> Res<Vec<
     ))
 }
 
+/// From state `from` only, to `to`.
+fn move_state<S: Slave>(i: &mut Inner<S>, from: Machine, to: Machine) -> Res<Status> {
+    if i.machine() != from {
+        return error(format!(
+            "not allowed in state {} (only in {})",
+            i.machine().name(),
+            from.name()
+        ));
+    }
+    i.machine = to;
+    Ok(Status::Ok)
+}
+
 pub unsafe fn enter_configuration_mode<S: Slave>(c: fmi3Instance) -> fmi3Status {
     call::<S>(c, "fmi3EnterConfigurationMode", |i| {
         if i.md.arrays3.is_none() {
             return error("this FMU has no structural parameter (not provided)");
         }
-        if i.machine() != Machine::Instantiated {
-            return error(format!(
-                "not allowed in state {} (only in instantiated)",
-                i.machine().name()
-            ));
-        }
-        i.machine = Machine::ConfigurationMode;
-        Ok(Status::Ok)
+        move_state(i, Machine::Instantiated, Machine::ConfigurationMode)
     })
 }
 
 pub unsafe fn exit_configuration_mode<S: Slave>(c: fmi3Instance) -> fmi3Status {
     call::<S>(c, "fmi3ExitConfigurationMode", |i| {
-        if i.machine() != Machine::ConfigurationMode {
-            return error(format!(
-                "not allowed in state {} (only in configurationMode)",
-                i.machine().name()
-            ));
-        }
-        i.machine = Machine::Instantiated;
-        Ok(Status::Ok)
+        move_state(i, Machine::ConfigurationMode, Machine::Instantiated)
     })
 }
 

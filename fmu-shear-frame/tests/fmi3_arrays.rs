@@ -68,7 +68,10 @@ impl Frame {
             assert_eq!(fmi3EnterConfigurationMode(f.c), OK);
             assert_eq!(fmi3SetUInt64(f.c, &vr::N, 1, &n, 1), OK, "{:?}", f.log);
             assert_eq!(fmi3ExitConfigurationMode(f.c), OK);
-            assert_eq!(fmi3EnterInitializationMode(f.c, false, 0.0, 0.0, false, 0.0), OK);
+            assert_eq!(
+                fmi3EnterInitializationMode(f.c, false, 0.0, 0.0, false, 0.0),
+                OK
+            );
             assert_eq!(fmi3ExitInitializationMode(f.c), OK, "{:?}", f.log);
         }
         f
@@ -76,14 +79,21 @@ impl Frame {
 
     fn get(&self, vrs: &[u32], n_values: usize) -> (i32, Vec<f64>) {
         let mut out = vec![0.0; n_values];
-        let s = unsafe {
-            fmi3GetFloat64(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr(), n_values)
-        };
+        let s =
+            unsafe { fmi3GetFloat64(self.c, vrs.as_ptr(), vrs.len(), out.as_mut_ptr(), n_values) };
         (s, out)
     }
 
     fn set(&self, vrs: &[u32], values: &[f64]) -> i32 {
-        unsafe { fmi3SetFloat64(self.c, vrs.as_ptr(), vrs.len(), values.as_ptr(), values.len()) }
+        unsafe {
+            fmi3SetFloat64(
+                self.c,
+                vrs.as_ptr(),
+                vrs.len(),
+                values.as_ptr(),
+                values.len(),
+            )
+        }
     }
 
     /// The one line the last refused call logged.
@@ -108,7 +118,12 @@ fn arrays_have_n_elements_and_wrong_counts_are_refused_by_name() {
     let mut values = vec![0.5];
     values.extend(forces);
     values.extend([0.0; 4]);
-    assert_eq!(f.set(&[vr::AG, first(vr::FX), DER_FX], &values), OK, "{:?}", f.log);
+    assert_eq!(
+        f.set(&[vr::AG, first(vr::FX), DER_FX], &values),
+        OK,
+        "{:?}",
+        f.log
+    );
     let (s, got) = f.get(&[first(vr::FX), vr::AG], 5);
     assert_eq!(s, OK);
     assert_eq!(got, [forces.as_slice(), &[0.5]].concat());
@@ -120,7 +135,11 @@ fn arrays_have_n_elements_and_wrong_counts_are_refused_by_name() {
         (vec![first(vr::A)], 3, "a has 4 elements"),
         (vec![first(vr::A)], 5, "a has 4 elements"),
         (vec![vr::AG, first(vr::U)], 4, "u has 4 elements"),
-        (vec![first(vr::U), first(vr::V)], 4, "u has 4, v has 4 elements"),
+        (
+            vec![first(vr::U), first(vr::V)],
+            4,
+            "u has 4, v has 4 elements",
+        ),
         (vec![DER_FX], 1, "der(Fx) has 4 elements"),
     ] {
         let f = Frame::with(4);
@@ -137,7 +156,10 @@ fn arrays_have_n_elements_and_wrong_counts_are_refused_by_name() {
     let f = Frame::with(4);
     assert_eq!(f.get(&[vr::at(vr::FX, 2)], 1).0, ERROR);
     let line = f.refused(0);
-    assert!(line.contains("element 2 of Fx") && line.contains("301"), "{line}");
+    assert!(
+        line.contains("element 2 of Fx") && line.contains("301"),
+        "{line}"
+    );
 }
 
 #[test]
@@ -151,7 +173,9 @@ fn n_is_set_in_configuration_mode_only_within_1_to_20() {
     for bad in [0, 21] {
         let before = f.log.len();
         assert_eq!(set(bad), ERROR);
-        assert!(f.refused(before).contains(&format!("n = {bad}: must be 1 to 20")));
+        assert!(f
+            .refused(before)
+            .contains(&format!("n = {bad}: must be 1 to 20")));
         unsafe { assert_eq!(fmi3Reset(f.c), OK) };
         unsafe { assert_eq!(fmi3EnterConfigurationMode(f.c), OK) };
     }
@@ -172,9 +196,7 @@ fn n_is_set_in_configuration_mode_only_within_1_to_20() {
 #[test]
 fn a_null_values_pointer_is_refused_not_dereferenced() {
     let f = Frame::with(3);
-    let s = unsafe {
-        fmi3GetFloat64(f.c, &vr::at(vr::A, 1), 1, ptr::null_mut(), 3)
-    };
+    let s = unsafe { fmi3GetFloat64(f.c, &vr::at(vr::A, 1), 1, ptr::null_mut(), 3) };
     assert_eq!(s, ERROR);
     assert!(f.refused(0).contains("values"), "{:?}", f.log);
 }
