@@ -12,9 +12,28 @@ use std::ptr;
 
 use fmu_shear_frame::description::vr;
 use fmu_shear_frame::*;
+use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
 
 const OK: i32 = 0;
 const ERROR: i32 = 3;
+/// `ag`, `time`, `der(ag)`: one value each.
+const SCALARS: [u32; 3] = [vr::AG, vr::PERIOD + 21, vr::PERIOD + 22];
+/// The nine arrays and `der(Fx)`, `der(Fz)`: n values each.
+const ARRAYS: [u32; 11] = [
+    vr::M + 1,
+    vr::K + 1,
+    vr::FX + 1,
+    vr::FZ + 1,
+    vr::U + 1,
+    vr::V + 1,
+    vr::A + 1,
+    vr::DRIFT + 1,
+    vr::PERIOD + 1,
+    DER_FX,
+    DER_FX + 20,
+];
+
 /// `time` is one past the table's largest value reference (`period[20]`);
 /// `der(ag)` follows, then `der(Fx)` (its 20 elements), then `der(Fz)`.
 const DER_FX: u32 = vr::PERIOD + 20 + 3;
@@ -199,4 +218,68 @@ fn a_null_values_pointer_is_refused_not_dereferenced() {
     let s = unsafe { fmi3GetFloat64(f.c, &vr::at(vr::A, 1), 1, ptr::null_mut(), 3) };
     assert_eq!(s, ERROR);
     assert!(f.refused(0).contains("values"), "{:?}", f.log);
+}
+
+/// A value reference the host may pass: a scalar, an array, or an array's
+/// element past the first (no 3.0 variable), by index into the lists above.
+#[derive(Clone, Copy, Debug)]
+enum Ref {
+    Scalar(usize),
+    Array(usize),
+    Element(usize, u32),
+}
+
+fn any_ref() -> impl Strategy<Value = Ref> {
+    prop_oneof![
+        1 => (0..SCALARS.len()).prop_map(Ref::Scalar),
+        4 => (0..ARRAYS.len()).prop_map(Ref::Array),
+        1 => ((0..ARRAYS.len()), 1..20u32).prop_map(|(a, k)| Ref::Element(a, k)),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 256,
+        rng_seed: RngSeed::Fixed(0x5348_4652),
+        ..ProptestConfig::default()
+    })]
+
+    /// fmi3GetFloat64 on random lists: `fmi3OK` exactly when no element is
+    /// among them and nValues is the count the standard gives (n per array,
+    /// 1 per scalar), else `fmi3Error` with one logged line; never a crash.
+    /// With the right count, `Fx` reads back what was set, element by element.
+    #[test]
+    fn get_float64_counts_n_per_array(
+        n in 1..=20u64,
+        refs in proptest::collection::vec(any_ref(), 0..6),
+        off in prop_oneof![3 => Just(0i64), 1 => -3..=3i64],
+    ) {
+        let f = Frame::with(n);
+        let forces: Vec<f64> = (1..=n).map(|i| 100.0 * i as f64).collect();
+        prop_assert_eq!(f.set(&[vr::FX + 1], &forces), OK);
+        let (mut vrs, mut count, mut element) = (vec![], 0usize, false);
+        for r in &refs {
+            match *r {
+                Ref::Scalar(i) => { vrs.push(SCALARS[i]); count += 1 }
+                Ref::Array(i) => { vrs.push(ARRAYS[i]); count += n as usize }
+                Ref::Element(i, k) => { vrs.push(ARRAYS[i] + k); element = true }
+            }
+        }
+        let n_values = (count as i64 + off).max(0) as usize;
+        let (s, got) = f.get(&vrs, n_values);
+        if element || n_values != count {
+            prop_assert_eq!(s, ERROR);
+            prop_assert_eq!(f.log.len(), 1, "{:?}", f.log);
+        } else {
+            prop_assert_eq!(s, OK, "{:?}", f.log);
+            let mut at = 0;
+            for &r in &vrs {
+                let len = if ARRAYS.contains(&r) { n as usize } else { 1 };
+                if r == vr::FX + 1 {
+                    prop_assert_eq!(&got[at..at + len], forces.as_slice());
+                }
+                at += len;
+            }
+        }
+    }
 }
