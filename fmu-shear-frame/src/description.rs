@@ -494,6 +494,43 @@ mod tests {
         assert_eq!(SHEAR_FRAME.variables.len(), 6 + 9 * MAX_STOREYS);
     }
 
+    /// FMI 3.0: `x[i]` is element `i` of the array `x`, whose value
+    /// reference is `x[1]`'s; elements past the first are no variables.
+    #[test]
+    fn fmi3_arrays_are_the_2_0_scalars() {
+        use model_description::fmi3::ArrayAt;
+        let md = &*SHEAR_FRAME;
+        assert_eq!(md.fmi3_type(md.variable("n").unwrap()), "UInt64");
+        assert_eq!(md.fmi3_type(md.variable("Fx[3]").unwrap()), "Float64");
+        for (name, base) in [("Fx", vr::FX), ("u", vr::U), ("period", vr::PERIOD)] {
+            for i in [1, 7, MAX_STOREYS] {
+                let element = format!("{name}[{i}]");
+                assert_eq!(md.fmi3_vr(&element), Some(vr::at(base, 1)), "{element}");
+                let at = md.fmi3_array_at(vr::at(base, i));
+                let want = ArrayAt {
+                    array: md.fmi3_element(&element).unwrap().0,
+                    derivative: false,
+                    element: i,
+                };
+                assert_eq!(at, Some(want));
+                assert_eq!(want.array, name);
+            }
+        }
+        for bad in ["Fx[0]", "Fx[21]", "Fx", "x[1]", "Fx[1", "ag"] {
+            assert!(md.fmi3_element(bad).is_none(), "{bad}");
+        }
+        assert_eq!(md.fmi3_vr("ag"), Some(vr::AG));
+        assert!(
+            md.fmi3_array_at(vr::AG).is_none() && md.fmi3_array_at(md.fmi3_time_vr()).is_none()
+        );
+        // der(Fx[i]): the inputs' derivatives in table order after der(ag)
+        let der_fx = md.fmi3_input_derivative_vr(1);
+        let at = md.fmi3_array_at(der_fx + 4).unwrap();
+        assert_eq!((at.array, at.derivative, at.element), ("Fx", true, 5));
+        let at = md.fmi3_array_at(der_fx + MAX_STOREYS as u32).unwrap();
+        assert_eq!((at.array, at.derivative, at.element), ("Fz", true, 1));
+    }
+
     #[test]
     fn floor_acceleration_feeds_through_only_its_own_force() {
         let a3 = SHEAR_FRAME.variable("a[3]").unwrap();
