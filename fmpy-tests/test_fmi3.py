@@ -7,6 +7,7 @@ block against Housner's closed form (test_model_exchange.Exact)."""
 
 import math
 import pathlib
+import re
 import subprocess
 import sys
 
@@ -385,50 +386,106 @@ def test_overturning_ends_the_run_at_the_2_0_time(fmu_path, fmu3_path, early):
         assert last == t_ov2 and returns == []
 
 
+SHEAR2, SHEAR3 = FMU.parent / "ShearFrame.fmu", FMU.parent / "fmi3" / "ShearFrame.fmu"
+PER_FLOOR = ("m", "k", "Fx", "Fz", "u", "v", "a", "drift", "period")
+
+
+def _by_name(md):
+    return {v.name: v for v in md.modelVariables}
+
+
+def test_shear_frame_3_0_declares_arrays_sized_by_n():
+    """3.0: n is a UInt64 structural parameter; each per-floor variable of
+    2.0 (Fx[1] ... Fx[20]) is one array (Fx) whose Dimension is n, with the
+    value reference, causality, unit and start of its 2.0 element 1."""
+    assert validate_fmu(str(SHEAR3)) == []
+    cli = subprocess.run([sys.executable, "-m", "fmpy.cli", "validate", str(SHEAR3)],
+                         capture_output=True, text=True)
+    assert cli.returncode == 0, cli.stdout + cli.stderr
+    two, three = (_by_name(read_model_description(str(p), validate=True)) for p in (SHEAR2, SHEAR3))
+    n = three["n"]
+    assert (n.type, n.causality, n.variability, int(n.start)) == ("UInt64", "structuralParameter", "fixed", 3)
+    assert n.valueReference == two["n"].valueReference
+    import zipfile
+
+    with zipfile.ZipFile(SHEAR3) as z:  # fmpy 0.3.32 reads no min/max of a UInt64
+        xml = z.read("modelDescription.xml").decode()
+    assert re.search(r'<UInt64 name="n"[^>]* min="1" max="20"', xml)
+    for name in PER_FLOOR:
+        v, first = three[name], two[f"{name}[1]"]
+        assert [int(d.valueReference) for d in v.dimensions] == [n.valueReference] and v.shape == (3,)
+        assert (v.valueReference, v.causality, v.variability, v.unit, v.start) == \
+               (first.valueReference, first.causality, first.variability, first.unit, first.start), name
+    for name in ("Fx", "Fz"):
+        der = three[f"der({name})"]
+        derivative = der.derivative if isinstance(der.derivative, str) else der.derivative.valueReference
+        assert int(derivative) == three[name].valueReference and der.shape == (3,)
+    assert not [x for x in three if "[" in x]
+    assert set(three) == {"time", "n", "damping", "zeta", "rayleighAlpha", "rayleighBeta", "ag", "der(ag)",
+                          *PER_FLOOR, "der(Fx)", "der(Fz)"}
+
+
 def test_shear_frame_3_0_is_bit_for_bit_its_2_0(fmu_path):
-    """ShearFrame 3.0 co-simulation (scalars Fx[i], u[i]... as in 2.0):
-    validates, and a 3-storey frame under a step of ag gives the 2.0
-    trajectories bit for bit."""
-    two = FMU.parent / "ShearFrame.fmu"
-    three = FMU.parent / "fmi3" / "ShearFrame.fmu"
-    assert validate_fmu(str(three)) == []
-    start = {"n": 3, "ag": 1.5, "zeta": 0.05}
+    """A 3-storey frame under a step of ag (fmpy's simulate_fmu; n left at
+    its start 3: fmpy sets start values in the instantiated state, where 3.0
+    forbids setting a structural parameter): the 3.0 arrays u, v, a are the
+    2.0 scalars u[i], v[i], a[i] bit for bit."""
+    start = {"ag": 1.5, "zeta": 0.05}
     out = [f"{x}[{i}]" for x in ("u", "v", "a") for i in (1, 2, 3)]
-    a, b = (simulate_fmu(str(p), start_values=start, stop_time=2.0, output_interval=0.01, output=out)
-            for p in (two, three))
-    assert np.abs(a["u[3]"]).max() > 0
-    for name in ["time"] + out:
-        assert a[name].tobytes() == b[name].tobytes(), name
+    a = simulate_fmu(str(SHEAR2), start_values={"n": 3, **start}, stop_time=2.0, output_interval=0.01,
+                     output=out)
+    b = simulate_fmu(str(SHEAR3), start_values=start, stop_time=2.0, output_interval=0.01,
+                     output=["u", "v", "a"])
+    assert np.abs(a["u[3]"]).max() > 0 and b["a"].shape == (201, 3)
+    assert a["time"].tobytes() == b["time"].tobytes()
+    for x in ("u", "v", "a"):
+        two = np.stack([a[f"{x}[{i}]"] for i in (1, 2, 3)], axis=1)
+        assert two.tobytes() == np.ascontiguousarray(b[x]).tobytes(), x
 
 
-def _shear_frame_ramps(path, slave_class, n=100, h=0.01):
-    """ShearFrame, 3 storeys, under ag and Fx[3] ramps given with their slopes
-    (2.0: fmi2SetRealInputDerivatives; 3.0: the der(x) inputs): a[1..3]."""
+def _shear_frame_ramps(path, slave_class, storeys=3, floors=None, n=100, h=0.01):
+    """ShearFrame of `storeys` storeys (masses and stiffnesses `floors`, if
+    given) under ag and Fx[3] ramps given with their slopes (2.0:
+    fmi2SetRealInputDerivatives of scalars; 3.0: n in configuration mode,
+    the arrays Fx, der(Fx), m, k whole): a[1..storeys] after each step."""
     md = read_model_description(path)
     two = md.fmiVersion == "2.0"
     s = slave_class(guid=md.guid if two else md.instantiationToken, unzipDirectory=extract(path),
                     modelIdentifier="ShearFrame", instanceName="frame")
     s.instantiate()
+    per_floor = range(1, storeys + 1)
     if two:
         s.setupExperiment(startTime=0.0)
         s.enterInitializationMode()
-        s.setInteger(_vr(md, ["n"]), [3])
+        s.setInteger(_vr(md, ["n"]), [storeys])
+        real, get = s.setReal, s.getReal
+        inputs, out = _vr(md, ["ag", "Fx[3]"]), _vr(md, [f"a[{i}]" for i in per_floor])
+        m, k = (_vr(md, [f"{x}[{i}]" for i in per_floor]) for x in "mk")
     else:
+        s.enterConfigurationMode()
+        s.setUInt64(_vr(md, ["n"]), [storeys])
+        s.exitConfigurationMode()
         s.enterInitializationMode(startTime=0.0)
-        s.setInt32(_vr(md, ["n"]), [3])
-    real, get = (s.setReal, s.getReal) if two else (s.setFloat64, s.getFloat64)
+        real, get = s.setFloat64, (lambda vrs: s.getFloat64(vrs, nValues=storeys))
+        inputs, out, m, k = _vr(md, ["ag", "Fx"]), _vr(md, ["a"]), _vr(md, ["m"]), _vr(md, ["k"])
+    if floors is not None:
+        real(m, floors[0])
+        real(k, floors[1])
     s.exitInitializationMode()
-    inputs, out = _vr(md, ["ag", "Fx[3]"]), _vr(md, ["a[1]", "a[2]", "a[3]"])
+
+    def values(ag, fx3):  # 3.0: Fx whole, its element 3 set
+        return [ag, fx3] if two else [ag] + [fx3 if i == 3 else 0.0 for i in per_floor]
+
     rows = []
-    for k in range(n):
-        x0, x1 = ([_ground(t), 1e4 * _ground(t + 0.2)] for t in (k * h, (k + 1) * h))
+    for step in range(n):
+        x0, x1 = ([_ground(t), 1e4 * _ground(t + 0.2)] for t in (step * h, (step + 1) * h))
         slope = [(b - a) / h for a, b in zip(x0, x1)]
-        real(inputs, x0)
+        real(inputs, values(*x0))
         if two:
             s.setRealInputDerivatives(inputs, [1, 1], slope)
         else:
-            real(_vr(md, ["der(ag)", "der(Fx[3])"]), slope)
-        s.doStep(k * h, h)
+            real(_vr(md, ["der(ag)", "der(Fx)"]), values(*slope))
+        s.doStep(step * h, h)
         rows.append(get(out))
     s.terminate()
     s.freeInstance()
@@ -436,10 +493,38 @@ def _shear_frame_ramps(path, slave_class, n=100, h=0.01):
 
 
 def test_shear_frame_input_derivatives_in_3_0_are_the_2_0_ones():
-    two = _shear_frame_ramps(str(FMU.parent / "ShearFrame.fmu"), FMU2Slave)
-    three = _shear_frame_ramps(str(FMU.parent / "fmi3" / "ShearFrame.fmu"), FMU3Slave)
-    assert np.abs(two).max() > 0.1
+    two = _shear_frame_ramps(str(SHEAR2), FMU2Slave)
+    three = _shear_frame_ramps(str(SHEAR3), FMU3Slave)
+    assert three.shape == (100, 3) and np.abs(two).max() > 0.1
     assert two.tobytes() == three.tobytes()
+
+
+def test_shear_frame_3_0_at_another_n_is_its_2_0():
+    """n = 5 set in configuration mode, with masses and stiffnesses that
+    differ floor by floor (the arrays m, k set whole): the 2.0 run with
+    n = 5 and the scalars m[i], k[i], bit for bit."""
+    floors = ([2.0e5, 1.8e5, 1.5e5, 1.2e5, 0.9e5], [3.0e8, 2.6e8, 2.2e8, 1.6e8, 1.0e8])
+    two = _shear_frame_ramps(str(SHEAR2), FMU2Slave, storeys=5, floors=floors)
+    three = _shear_frame_ramps(str(SHEAR3), FMU3Slave, storeys=5, floors=floors)
+    assert three.shape == (100, 5) and np.abs(two[:, 4]).max() > 0.1
+    assert two.tobytes() == three.tobytes()
+    assert two.tobytes() != _shear_frame_ramps(str(SHEAR2), FMU2Slave, storeys=5).tobytes()
+
+
+def test_shear_frame_3_0_refuses_a_wrong_count_through_the_logger():
+    """nValues must count an array's n elements: fmpy's default (one value per
+    value reference) for `a` is refused with a logged line naming it."""
+    md = read_model_description(str(SHEAR3))
+    s = FMU3Slave(guid=md.instantiationToken, unzipDirectory=extract(str(SHEAR3)), modelIdentifier="ShearFrame",
+                  instanceName="frame")
+    messages = []
+    s.instantiate(logMessage=lambda env, status, category, message: messages.append(message.decode()))
+    s.enterInitializationMode(startTime=0.0)
+    s.exitInitializationMode()
+    with pytest.raises(FMICallException):
+        s.getFloat64(_vr(md, ["a"]))
+    assert any("nValues = 1" in m and "a has 3 elements" in m for m in messages), messages
+    s.freeInstance()
 
 
 def test_co_simulation_reads_every_float64_as_a_recording_host_does(fmu3_path):

@@ -60,6 +60,7 @@
 //!                    ..Variable::DEFAULT },
 //!     ],
 //!     documentation: "",
+//!     arrays3: None,
 //! };
 //!
 //! struct Gain { k: f64 }

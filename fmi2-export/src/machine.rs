@@ -19,10 +19,13 @@ pub enum Machine {
     Fatal,
     EventMode,
     ContinuousTimeMode,
+    /// FMI 3.0: structural parameters are set here (from and back to
+    /// `Instantiated`); no 2.0 function is allowed.
+    ConfigurationMode,
 }
 
 impl Machine {
-    const ALL: [Machine; 9] = [
+    const ALL: [Machine; 10] = [
         Machine::Instantiated,
         Machine::InitializationMode,
         Machine::StepComplete,
@@ -32,6 +35,7 @@ impl Machine {
         Machine::Fatal,
         Machine::EventMode,
         Machine::ContinuousTimeMode,
+        Machine::ConfigurationMode,
     ];
 
     pub fn name(self) -> &'static str {
@@ -45,6 +49,7 @@ impl Machine {
             Machine::Fatal => "fatal",
             Machine::EventMode => "eventMode",
             Machine::ContinuousTimeMode => "continuousTimeMode",
+            Machine::ConfigurationMode => "configurationMode",
         }
     }
 
@@ -135,7 +140,7 @@ pub mod mask {
         M::EventMode,
         M::ContinuousTimeMode,
     ]);
-    pub const fmi2Reset: Mask = ANY_BUT_FATAL;
+    pub const fmi2Reset: Mask = Mask(ANY_BUT_FATAL.0 | Mask::of(&[M::ConfigurationMode]).0);
 
     pub const fmi2GetReal: Mask = GET;
     pub const fmi2GetInteger: Mask = GET;

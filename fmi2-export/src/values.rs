@@ -28,7 +28,8 @@ fn from_store(v: &Variable) -> bool {
         || v.variability == Variability::Constant
 }
 
-pub(crate) fn start_value(v: &Variable) -> Option<Scalar> {
+/// The value a stored variable starts with (`None`: computed by the model).
+pub fn start_value(v: &Variable) -> Option<Scalar> {
     if !is_stored(v) {
         return None;
     }

@@ -111,6 +111,7 @@ static MD: ModelDescription = ModelDescription {
     },
     variables: VARIABLES,
     documentation: "",
+    arrays3: None,
 };
 
 const GUID: &str = "{mock-model}";

@@ -17,10 +17,13 @@ use fmi2_export::ffi::{c_str, call, category_names, owned_strings, slice, slice_
 use fmi2_export::instance::{Inner, Instance, INSTANCE_MAGIC};
 use fmi2_export::logging::{Callback, Logger};
 use fmi2_export::machine::{mask, Machine};
-use fmi2_export::model_description::{BaseType, ModelDescription, Type};
+use fmi2_export::model_description::{BaseType, ModelDescription};
+
+pub use crate::arrays::{get_uint64, set_uint64};
 use fmi2_export::types::Status;
 use fmi2_export::Slave;
 
+use crate::arrays::scalars;
 use crate::types::*;
 
 pub fn get_version() -> *const c_char {
@@ -162,14 +165,31 @@ fn added(md: &ModelDescription, vr: u32) -> Option<Added> {
     }
 }
 
-/// Every `vr` names a variable of the table whose type `is` accepts.
-fn check_types(md: &ModelDescription, vrs: &[u32], what: &str, is: fn(&Type) -> bool) -> Res<()> {
+/// Every `vr` names a variable of the table whose 3.0 type is `ty`.
+fn check_types(md: &ModelDescription, vrs: &[u32], what: &str, ty: &str) -> Res<()> {
     for &vr in vrs {
-        if !md.variables.iter().any(|v| v.vr == vr && is(&v.ty)) {
+        if !md
+            .variables
+            .iter()
+            .any(|v| v.vr == vr && md.fmi3_type(v) == ty)
+        {
             return error(format!("value reference {vr} is no {what} variable"));
         }
     }
     Ok(())
+}
+
+/// The 2.0 scalars behind the host's value references, one per value
+/// (arrays: [`crate::arrays`]).
+fn element_vrs<S: Slave>(i: &Inner<S>, vrs: &[u32], n_values: usize) -> Res<Vec<u32>> {
+    if i.md.arrays3.is_none() {
+        check_n_values(vrs.len(), n_values)?;
+        return Ok(vrs.to_vec());
+    }
+    Ok(scalars(i, vrs, n_values)?
+        .into_iter()
+        .map(|(r, _)| r)
+        .collect())
 }
 
 /// The host's `nValues` for scalars: as many values as value references.
@@ -221,10 +241,10 @@ pub unsafe fn get_float64<S: Slave>(
     n_values: usize,
 ) -> fmi3Status {
     call::<S>(c, "fmi3GetFloat64", |i| {
-        check_n_values(n, n_values)?;
         let vr = unsafe { slice(vr, n, "valueReferences") }?;
-        let value = unsafe { slice_mut(value, n, "values") }?;
-        float64s(i, vr, value)
+        let all = element_vrs(i, vr, n_values)?;
+        let value = unsafe { slice_mut(value, n_values, "values") }?;
+        float64s(i, &all, value)
     })
 }
 
@@ -236,9 +256,10 @@ pub unsafe fn set_float64<S: Slave>(
     n_values: usize,
 ) -> fmi3Status {
     call::<S>(c, "fmi3SetFloat64", |i| {
-        check_n_values(n, n_values)?;
         let vr = unsafe { slice(vr, n, "valueReferences") }?;
-        let value = unsafe { slice(value, n, "values") }?;
+        let all = element_vrs(i, vr, n_values)?;
+        let vr = &all[..];
+        let value = unsafe { slice(value, n_values, "values") }?;
         let (mut table, mut rates) = ((vec![], vec![]), vec![]);
         for (&v, &x) in vr.iter().zip(value) {
             match added(i.md, v) {
@@ -287,14 +308,6 @@ fn set_with_input_derivatives<S: Slave>(
     Ok(status)
 }
 
-fn is_int32(t: &Type) -> bool {
-    matches!(t, Type::Integer { .. })
-}
-
-fn is_enumeration(t: &Type) -> bool {
-    matches!(t, Type::Enumeration { .. })
-}
-
 pub unsafe fn get_int32<S: Slave>(
     c: fmi3Instance,
     vr: *const fmi3ValueReference,
@@ -306,7 +319,7 @@ pub unsafe fn get_int32<S: Slave>(
         check_n_values(n, n_values)?;
         let vr = unsafe { slice(vr, n, "valueReferences") }?;
         let value = unsafe { slice_mut(value, n, "values") }?;
-        check_types(i.md, vr, "Int32", is_int32)?;
+        check_types(i.md, vr, "Int32", "Int32")?;
         i.get_integer(vr, value)
     })
 }
@@ -322,7 +335,7 @@ pub unsafe fn set_int32<S: Slave>(
         check_n_values(n, n_values)?;
         let vr = unsafe { slice(vr, n, "valueReferences") }?;
         let value = unsafe { slice(value, n, "values") }?;
-        check_types(i.md, vr, "Int32", is_int32)?;
+        check_types(i.md, vr, "Int32", "Int32")?;
         i.set_integer(vr, value)
     })
 }
@@ -339,7 +352,7 @@ pub unsafe fn get_int64<S: Slave>(
         check_n_values(n, n_values)?;
         let vr = unsafe { slice(vr, n, "valueReferences") }?;
         let value = unsafe { slice_mut(value, n, "values") }?;
-        check_types(i.md, vr, "Enumeration (Int64)", is_enumeration)?;
+        check_types(i.md, vr, "Enumeration (Int64)", "Enumeration")?;
         let mut v = vec![0; n];
         let s = i.get_integer(vr, &mut v)?;
         value.iter_mut().zip(v).for_each(|(o, x)| *o = x.into());
@@ -358,7 +371,7 @@ pub unsafe fn set_int64<S: Slave>(
         check_n_values(n, n_values)?;
         let vr = unsafe { slice(vr, n, "valueReferences") }?;
         let value = unsafe { slice(value, n, "values") }?;
-        check_types(i.md, vr, "Enumeration (Int64)", is_enumeration)?;
+        check_types(i.md, vr, "Enumeration (Int64)", "Enumeration")?;
         let mut v = Vec::with_capacity(n);
         for (&r, &x) in vr.iter().zip(value) {
             match i32::try_from(x) {
@@ -481,10 +494,12 @@ pub unsafe fn get_output_derivatives<S: Slave>(
     n_values: usize,
 ) -> fmi3Status {
     call::<S>(c, "fmi3GetOutputDerivatives", |i| {
-        check_n_values(n, n_values)?;
         let vr = unsafe { slice(vr, n, "valueReferences") }?;
         let order = unsafe { slice(order, n, "orders") }?;
-        let value = unsafe { slice_mut(value, n, "values") }?;
-        i.get_real_output_derivatives(vr, order, value)
+        let all = scalars(i, vr, n_values)?;
+        let orders: Vec<i32> = all.iter().map(|&(_, k)| order[k]).collect();
+        let all: Vec<u32> = all.into_iter().map(|(r, _)| r).collect();
+        let value = unsafe { slice_mut(value, n_values, "values") }?;
+        i.get_real_output_derivatives(&all, &orders, value)
     })
 }

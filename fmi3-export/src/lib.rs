@@ -13,10 +13,12 @@
 //! from `model_description::xml3`. FMI 3.0 has no function for input
 //! derivatives: the first derivative of each continuous input is an input
 //! `der(x)` of its own (`derivative` attribute), set with `fmi3SetFloat64`
-//! into the store `fmi2SetRealInputDerivatives` fills. Clocks, binaries, arrays and the types the
+//! into the store `fmi2SetRealInputDerivatives` fills. Arrays sized by a
+//! structural parameter map onto the 2.0 scalars ([`arrays`]). Clocks, binaries and the types the
 //! table has no variable of answer with an error naming the value
 //! reference (or nothing to do, for none).
 
+pub mod arrays;
 pub mod ffi;
 pub mod modes;
 pub mod types;
@@ -241,6 +243,8 @@ macro_rules! export_fmi3 {
             fmi3GetEventIndicators => modes::get_event_indicators(x: *mut f64, n: usize),
             fmi3GetNumberOfContinuousStates => modes::get_number_of_continuous_states(n: *mut usize),
             fmi3GetNumberOfEventIndicators => modes::get_number_of_event_indicators(n: *mut usize),
+            fmi3EnterConfigurationMode => arrays::enter_configuration_mode(),
+            fmi3ExitConfigurationMode => arrays::exit_configuration_mode(),
         );
 
         $crate::__states!($slave,
@@ -266,8 +270,9 @@ macro_rules! export_fmi3 {
             fmi3SetBoolean => set_boolean(*const bool),
             fmi3GetString => get_string(*mut $crate::types::fmi3String),
             fmi3SetString => set_string(*const $crate::types::fmi3String),
+            fmi3GetUInt64 => get_uint64(*mut u64),
+            fmi3SetUInt64 => set_uint64(*const u64),
         );
-
         $crate::__no_such_type!($slave,
             fmi3GetFloat32: *mut f32, fmi3SetFloat32: *const f32,
             fmi3GetInt8: *mut i8, fmi3SetInt8: *const i8,
@@ -275,7 +280,6 @@ macro_rules! export_fmi3 {
             fmi3GetInt16: *mut i16, fmi3SetInt16: *const i16,
             fmi3GetUInt16: *mut u16, fmi3SetUInt16: *const u16,
             fmi3GetUInt32: *mut u32, fmi3SetUInt32: *const u32,
-            fmi3GetUInt64: *mut u64, fmi3SetUInt64: *const u64,
             fmi3GetClock: *mut bool, fmi3SetClock: *const bool,
         );
 
@@ -286,8 +290,6 @@ macro_rules! export_fmi3 {
             fmi3GetVariableDependencies(u32, *mut usize, *mut u32, *mut usize, *mut i32, usize),
             fmi3GetDirectionalDerivative(*const u32, usize, *const u32, usize, *const f64, usize, *mut f64, usize),
             fmi3GetAdjointDerivative(*const u32, usize, *const u32, usize, *const f64, usize, *mut f64, usize),
-            fmi3EnterConfigurationMode(),
-            fmi3ExitConfigurationMode(),
             fmi3GetIntervalDecimal(*const u32, usize, *mut f64, *mut i32),
             fmi3GetIntervalFraction(*const u32, usize, *mut u64, *mut u64, *mut i32),
             fmi3GetShiftDecimal(*const u32, usize, *mut f64),

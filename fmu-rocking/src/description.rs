@@ -824,6 +824,7 @@ pub static ROCKING_BLOCK: ModelDescription = ModelDescription {
     },
     variables: VARIABLES,
     documentation: include_str!("description.html"),
+    arrays3: None,
 };
 
 #[cfg(test)]

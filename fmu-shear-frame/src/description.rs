@@ -10,6 +10,7 @@
 use std::sync::LazyLock;
 
 use model_description::common;
+use model_description::fmi3::Arrays3;
 use model_description::*;
 
 /// Length of every per-floor array: the most storeys a frame may have.
@@ -408,6 +409,24 @@ pub static LOG_CATEGORIES: &[LogCategory] = &[
     },
 ];
 
+/// FMI 3.0: each per-floor variable is one array of `n` elements
+/// (`Fx[i]` is element `i` of `Fx`), `n` a structural parameter.
+pub const ARRAYS3: Arrays3 = Arrays3 {
+    size: "n",
+    len: MAX_STOREYS,
+    arrays: &[
+        ("m", "Mass of each floor, floor 1 first"),
+        ("k", "Lateral stiffness of each storey (storey i between floor i-1 and floor i)"),
+        ("Fx", "Horizontal external force on each floor, +x"),
+        ("Fz", "Vertical external force on each floor, up (accepted for coupling; no effect on the lateral model)"),
+        ("u", "Displacement of each floor relative to the ground, +x; its start value is the initial displacement"),
+        ("v", "Velocity of each floor relative to the ground, du/dt; its start value is the initial velocity"),
+        ("a", "Absolute acceleration of each floor (ground plus relative), +x"),
+        ("drift", "Drift of each storey: u[i] - u[i-1] (u[0] = 0, the ground)"),
+        ("period", "Natural period of each mode (descending)"),
+    ],
+};
+
 pub static SHEAR_FRAME: LazyLock<ModelDescription> = LazyLock::new(|| {
     ModelDescription {
     model_name: "ShearFrame",
@@ -430,6 +449,7 @@ pub static SHEAR_FRAME: LazyLock<ModelDescription> = LazyLock::new(|| {
     },
     variables: Box::leak(build_variables().into_boxed_slice()),
     documentation: include_str!("description.html"),
+    arrays3: Some(ARRAYS3),
 }
 });
 
@@ -472,6 +492,43 @@ mod tests {
             assert!(SHEAR_FRAME.variable(n).is_some(), "{n}");
         }
         assert_eq!(SHEAR_FRAME.variables.len(), 6 + 9 * MAX_STOREYS);
+    }
+
+    /// FMI 3.0: `x[i]` is element `i` of the array `x`, whose value
+    /// reference is `x[1]`'s; elements past the first are no variables.
+    #[test]
+    fn fmi3_arrays_are_the_2_0_scalars() {
+        use model_description::fmi3::ArrayAt;
+        let md = &*SHEAR_FRAME;
+        assert_eq!(md.fmi3_type(md.variable("n").unwrap()), "UInt64");
+        assert_eq!(md.fmi3_type(md.variable("Fx[3]").unwrap()), "Float64");
+        for (name, base) in [("Fx", vr::FX), ("u", vr::U), ("period", vr::PERIOD)] {
+            for i in [1, 7, MAX_STOREYS] {
+                let element = format!("{name}[{i}]");
+                assert_eq!(md.fmi3_vr(&element), Some(vr::at(base, 1)), "{element}");
+                let at = md.fmi3_array_at(vr::at(base, i));
+                let want = ArrayAt {
+                    array: md.fmi3_element(&element).unwrap().0,
+                    derivative: false,
+                    element: i,
+                };
+                assert_eq!(at, Some(want));
+                assert_eq!(want.array, name);
+            }
+        }
+        for bad in ["Fx[0]", "Fx[21]", "Fx", "x[1]", "Fx[1", "ag"] {
+            assert!(md.fmi3_element(bad).is_none(), "{bad}");
+        }
+        assert_eq!(md.fmi3_vr("ag"), Some(vr::AG));
+        assert!(
+            md.fmi3_array_at(vr::AG).is_none() && md.fmi3_array_at(md.fmi3_time_vr()).is_none()
+        );
+        // der(Fx[i]): the inputs' derivatives in table order after der(ag)
+        let der_fx = md.fmi3_input_derivative_vr(1);
+        let at = md.fmi3_array_at(der_fx + 4).unwrap();
+        assert_eq!((at.array, at.derivative, at.element), ("Fx", true, 5));
+        let at = md.fmi3_array_at(der_fx + MAX_STOREYS as u32).unwrap();
+        assert_eq!((at.array, at.derivative, at.element), ("Fz", true, 1));
     }
 
     #[test]

@@ -56,6 +56,7 @@
 //!     default_experiment: DefaultExperiment { start_time: 0.0, stop_time: 1.0, tolerance: 1e-6, step_size: 1e-3 },
 //!     variables: &VARIABLES,
 //!     documentation: "",
+//!     arrays3: None,
 //! };
 //!
 //! GAIN.check().expect("a consistent description");

@@ -397,6 +397,8 @@ pub struct ModelDescription {
     pub variables: &'static [Variable],
     /// HTML fragment for `documentation/index.html`, before the generated tables.
     pub documentation: &'static str,
+    /// FMI 3.0 only: the table's per-element scalars that are arrays there.
+    pub arrays3: Option<crate::fmi3::Arrays3>,
 }
 
 impl ModelDescription {

@@ -53,23 +53,52 @@ fn b(x: bool) -> Option<String> {
     s(if x { "true" } else { "false" })
 }
 
-/// The 3.0 element name of a variable's type.
-fn element(ty: &Type) -> &'static str {
-    match ty {
-        Type::Real { .. } => "Float64",
-        Type::Integer { .. } => "Int32",
-        Type::Boolean { .. } => "Boolean",
-        Type::Enumeration { .. } => "Enumeration",
-        Type::String { .. } => "String",
+/// A variable element, with `<Dimension>` sized by the value reference
+/// `size` for an array.
+fn typed(e: &mut El, tag: &str, attrs: &[(&str, Option<String>)], size: Option<u32>) {
+    match size {
+        None => e.open(tag, attrs, true),
+        Some(vr) => {
+            e.open(tag, attrs, false);
+            e.open(
+                "Dimension",
+                &[("valueReference", Some(vr.to_string()))],
+                true,
+            );
+            e.close(tag);
+        }
+    }
+}
+
+/// Name, description and size (the structural parameter's value
+/// reference) of a table variable in 3.0; `None` for an array element past
+/// the first (the array stands for it).
+fn naming(
+    md: &ModelDescription,
+    v: &Variable,
+) -> Option<(&'static str, &'static str, Option<u32>)> {
+    match md.fmi3_element(v.name) {
+        None => Some((v.name, v.description, None)),
+        Some((name, description, 1)) => Some((name, description, md.fmi3_size().map(|n| n.vr))),
+        Some(_) => None,
     }
 }
 
 fn variable(e: &mut El, md: &ModelDescription, v: &Variable) {
+    let Some((name, description, size)) = naming(md, v) else {
+        return;
+    };
+    let structural = md.fmi3_type(v) == "UInt64";
+    let causality = if structural {
+        "structuralParameter"
+    } else {
+        v.causality.as_str()
+    };
     let mut a = vec![
-        ("name", s(v.name)),
+        ("name", s(name)),
         ("valueReference", Some(v.vr.to_string())),
-        ("description", s(v.description)),
-        ("causality", s(v.causality.as_str())),
+        ("description", s(description)),
+        ("causality", s(causality)),
         ("variability", s(v.variability.as_str())),
         ("initial", v.initial.map(|i| i.as_str().to_string())),
     ];
@@ -96,6 +125,11 @@ fn variable(e: &mut El, md: &ModelDescription, v: &Variable) {
                 }),
             ),
         ]),
+        Type::Integer { start } if structural => a.extend([
+            ("min", s("1")),
+            ("max", md.arrays3.map(|x| x.len.to_string())),
+            ("start", start.map(|x| x.to_string())),
+        ]),
         Type::Integer { start } => a.push(("start", start.map(|x| x.to_string()))),
         Type::Boolean { start } => a.push(("start", start.map(|x| x.to_string()))),
         Type::Enumeration {
@@ -114,17 +148,31 @@ fn variable(e: &mut El, md: &ModelDescription, v: &Variable) {
             return;
         }
     }
-    e.open(element(&v.ty), &a, true);
+    typed(e, md.fmi3_type(v), &a, size);
 }
 
 /// Value references of `names`, sorted, space-separated.
 fn vrs<'a>(md: &ModelDescription, names: impl Iterator<Item = &'a str>) -> String {
     let mut r: Vec<u32> = names
-        .map(|n| md.variable(n).expect("dependency names are checked").vr)
+        .map(|n| md.fmi3_vr(n).expect("dependency names are checked"))
         .collect();
     r.sort_unstable();
     r.dedup();
     r.iter().map(u32::to_string).collect::<Vec<_>>().join(" ")
+}
+
+/// The table variables a 3.0 variable stands for: an array's elements,
+/// the scalar itself, none for an element past the first.
+fn members<'a>(md: &'a ModelDescription, v: &Variable) -> Vec<&'a Variable> {
+    match md.fmi3_element(v.name) {
+        None => vec![md.variable(v.name).expect("a table variable")],
+        Some((array, _, 1)) => md
+            .variables
+            .iter()
+            .filter(|w| md.fmi3_element(w.name).is_some_and(|x| x.0 == array))
+            .collect(),
+        Some(_) => vec![],
+    }
 }
 
 fn structure(e: &mut El, md: &ModelDescription) {
@@ -133,7 +181,13 @@ fn structure(e: &mut El, md: &ModelDescription) {
             .is_some_and(|k| k.causality == Causality::Input)
     };
     let is_state = |d: &&str| md.variables.iter().any(|x| x.derivative == Some(*d));
-    let unknown = |e: &mut El, tag: &str, v: &Variable, deps: String| {
+    // an array's dependencies: its elements' together
+    let unknown = |e: &mut El, tag: &str, v: &Variable, deps: &dyn Fn(&Variable) -> Vec<&str>| {
+        let all = members(md, v);
+        if all.is_empty() {
+            return;
+        }
+        let deps = vrs(md, all.into_iter().flat_map(deps));
         e.open(
             tag,
             &[
@@ -149,28 +203,25 @@ fn structure(e: &mut El, md: &ModelDescription) {
         .iter()
         .filter(|v| v.causality == Causality::Output)
     {
-        unknown(
-            e,
-            "Output",
-            v,
-            vrs(md, v.run_dependencies().iter().copied().filter(is_input)),
-        );
+        unknown(e, "Output", v, &|v| {
+            v.run_dependencies()
+                .iter()
+                .copied()
+                .filter(is_input)
+                .collect()
+        });
     }
     for v in md.variables.iter().filter(|v| v.derivative.is_some()) {
-        let deps = v
-            .run_dependencies()
-            .iter()
-            .copied()
-            .filter(|d| is_input(d) || is_state(d));
-        unknown(e, "ContinuousStateDerivative", v, vrs(md, deps));
+        unknown(e, "ContinuousStateDerivative", v, &|v| {
+            v.run_dependencies()
+                .iter()
+                .copied()
+                .filter(|d| is_input(d) || is_state(d))
+                .collect()
+        });
     }
     for v in md.variables.iter().filter(|v| v.is_initial_unknown()) {
-        unknown(
-            e,
-            "InitialUnknown",
-            v,
-            vrs(md, v.depends_on.iter().copied()),
-        );
+        unknown(e, "InitialUnknown", v, &|v| v.depends_on.to_vec());
     }
     for i in 0..md.event_indicator_count() {
         let vr = md.fmi3_event_indicator_vr(i).to_string();
@@ -359,8 +410,11 @@ pub fn render(md: &ModelDescription, token: &str, generated: Option<&str>) -> St
         e.open("Float64", &attrs, true);
     }
     for (k, (_, x)) in md.fmi3_derivative_inputs().enumerate() {
+        let Some((name, _, size)) = naming(md, x) else {
+            continue;
+        };
         let attrs = [
-            ("name", Some(format!("der({})", x.name))),
+            ("name", Some(format!("der({name})"))),
             (
                 "valueReference",
                 Some(md.fmi3_input_derivative_vr(k as u32).to_string()),
@@ -369,7 +423,7 @@ pub fn render(md: &ModelDescription, token: &str, generated: Option<&str>) -> St
                 "description",
                 Some(format!(
                     "Co-simulation: first time derivative of {0} (its unit per second); over a step from t, {0} + der({0}) (t' - t) is the input (as fmi2SetRealInputDerivatives of order 1); kept until set again",
-                    x.name
+                    name
                 )),
             ),
             ("causality", s("input")),
@@ -377,7 +431,7 @@ pub fn render(md: &ModelDescription, token: &str, generated: Option<&str>) -> St
             ("start", Some(fmt_real(0.0))),
             ("derivative", Some(x.vr.to_string())),
         ];
-        e.open("Float64", &attrs, true);
+        typed(&mut e, "Float64", &attrs, size);
     }
     e.close("ModelVariables");
     structure(&mut e, md);

@@ -9,13 +9,18 @@ What differs from 2.0, and what the master must know:
   `early_return=True` (eventModeUsed and earlyReturnAllowed at instantiation)
   RockingBlock stops at the first impact, uplift, rest or overturning inside
   the step, and `handle_event` runs the event mode that follows;
-- overturning ends the run with terminateSimulation (2.0: fmi2Discard).
+- overturning ends the run with terminateSimulation (2.0: fmi2Discard);
+- ShearFrame's per-floor variables are arrays sized by the structural
+  parameter `n` (`Fx` for 2.0's `Fx[1]` ... `Fx[n]`): `refs` takes the 2.0
+  names and the calls get or set the arrays whole; `n` is set in
+  configuration mode, before initialization.
 """
 
 import os
+import re
 
-from fmpy.fmi3 import (FMU3Slave, fmi3Boolean, fmi3InstanceEnvironment, fmi3IntermediateUpdateCallback,
-                       fmi3LogMessageCallback, fmi3ValueReference)
+from fmpy.fmi3 import (FMU3Slave, fmi3Boolean, fmi3Float64, fmi3InstanceEnvironment, fmi3Int32,
+                       fmi3IntermediateUpdateCallback, fmi3LogMessageCallback, fmi3ValueReference)
 
 from .. import fmu as _fmu
 from .slave import Extracted, StepEnd
@@ -47,6 +52,12 @@ class Slave3(Extracted):
                                 modelIdentifier=md.coSimulation.modelIdentifier,
                                 instanceName=instance_name or md.modelName)
         self.event_mode = False
+        # arrays by name, and the structural parameter that sizes them (ShearFrame: n)
+        self.arrays = {v.name: v for v in md.modelVariables if v.dimensions}
+        self._array_vrs = {v.valueReference for v in self.arrays.values()}
+        sizes = {d.valueReference for v in self.arrays.values() for d in v.dimensions}
+        self.size_name = next((v.name for v in md.modelVariables if v.valueReference in sizes), None)
+        self.size = int(self.variables[self.size_name].start) if self.size_name else 1
 
     # -- life of an instance ------------------------------------------------
     def instantiate(self, params, start_time, stop_time, rtol=None, early_return=False):
@@ -64,10 +75,21 @@ class Slave3(Extracted):
             raise _fmu.FMUError(f"{self.path}: fmi3InstantiateCoSimulation failed (FMU log: "
                                 f"{'; '.join(_fmu._MESSAGES) or 'no message logged'})")
         self._slave.component = self.component
+        params = dict(params)
+        if self.size_name is not None:
+            self.size = int(params.pop(self.size_name, self.variables[self.size_name].start))
+            self._call("fmi3EnterConfigurationMode", self._slave.enterConfigurationMode)
+            self._call(f"setting {self.size_name}", self._slave.setUInt64,
+                       [self.variables[self.size_name].valueReference], [self.size])
+            self._call("fmi3ExitConfigurationMode", self._slave.exitConfigurationMode)
         self._call("fmi3EnterInitializationMode", self._slave.enterInitializationMode,
                    tolerance=rtol, startTime=start_time, stopTime=stop_time)
+        elements = {name: value for name, value in params.items() if name not in self.variables}
         for name, value in params.items():
-            self.set_start(name, value)
+            if name in self.variables:
+                self.set_start(name, value)
+        if elements:
+            self.set(self.refs(list(elements)), [float(x) for x in elements.values()])
 
     def exit_init(self):
         """Leave initialization mode; with event mode, through it to step mode."""
@@ -95,20 +117,54 @@ class Slave3(Extracted):
 
     # -- values by name -----------------------------------------------------
     def refs(self, names):
-        return [self.variables[n].valueReference for n in names]
+        """(value reference, element index or None) of each name; `x[i]` names element
+        i of the array `x` (1-based, as 2.0's scalar)."""
+        return [self._ref(n) for n in names]
+
+    def _ref(self, name):
+        if name in self.variables and name not in self.arrays:
+            return self.variables[name].valueReference, None
+        m = re.fullmatch(r"(.+)\[(\d+)\]", name)
+        if m and m[1] in self.arrays and int(m[2]) >= 1:
+            return self.arrays[m[1]].valueReference, int(m[2]) - 1
+        raise KeyError(f"{name!r} is not a variable of {self.name}.fmu")
+
+    def _layout(self, refs):
+        """The distinct value references of `refs`, their values' total count, and the
+        position of each ref's value among them."""
+        vrs = list(dict.fromkeys(vr for vr, _ in refs))
+        past = [i + 1 for _, i in refs if i is not None and i >= self.size]
+        if past:
+            raise KeyError(f"{self.name}: element {past[0]} of an array of {self.size} ({self.size_name})")
+        first, n = {}, 0
+        for vr in vrs:
+            first[vr] = n
+            n += self.size if vr in self._array_vrs else 1
+        return vrs, n, [first[vr] + (i or 0) for vr, i in refs]
 
     def get(self, refs):
-        return self._call("fmi3GetFloat64", self._slave.getFloat64, refs)
+        vrs, n, at = self._layout(refs)
+        flat = self._call("fmi3GetFloat64", self._slave.getFloat64, vrs, nValues=n)
+        return [flat[k] for k in at]
 
     def get_der(self, refs, order=1):
-        return self._call("fmi3GetOutputDerivatives", self._slave.getOutputDerivatives,
-                          refs, [order] * len(refs))
+        vrs, n, at = self._layout(refs)
+        values = (fmi3Float64 * n)()
+        self._call("fmi3GetOutputDerivatives", self._slave.fmi3GetOutputDerivatives, self.component,
+                   (fmi3ValueReference * len(vrs))(*vrs), len(vrs), (fmi3Int32 * len(vrs))(*[order] * len(vrs)),
+                   values, n)
+        return [values[k] for k in at]
 
     def set(self, refs, values, slopes=None):
-        """Set Float64 inputs, held over the next step (3.0 has no input derivatives)."""
+        """Set Float64 inputs, held over the next step (3.0 has no input derivatives);
+        an array element by setting its array whole."""
         if slopes is not None:
             raise ValueError(f"{self.name}: FMI 3.0 co-simulation takes no input derivatives")
-        self._call("fmi3SetFloat64", self._slave.setFloat64, refs, [float(x) for x in values])
+        vrs, n, at = self._layout(refs)
+        flat = self._call("fmi3GetFloat64", self._slave.getFloat64, vrs, nValues=n) if n > len(refs) else [0.0] * n
+        for k, x in zip(at, values):
+            flat[k] = float(x)
+        self._call("fmi3SetFloat64", self._slave.setFloat64, vrs, flat)
 
     def get_int(self, name):
         return self._call("fmi3GetInt32", self._slave.getInt32, [self.variables[name].valueReference])[0]
