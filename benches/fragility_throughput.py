@@ -18,10 +18,12 @@ timed. Columns:
   loop: all over the plain loop's CPU per run measured just before, minus one (what the
   study costs more than the loop); in-runs against the loop: whether a run itself costs more
   in a worker.
+- Interleaved: a cluster of each size is open at once; each repeat runs, for each size, the
+  loop and then the cluster, so that every size sees the same load.
 - schedule efficiency: the tasks' measured CPU (the sum of their rows' cpu_s) list-scheduled
   in submission order on the workers, total / (workers x makespan): the balance the batching
-  allows, whatever the machine's load. wall-clock efficiency: (runs/s on n workers / n) over
-  runs/s on 1, from the medians (and from the best walls); it needs a quiet machine.
+  allows, whatever the machine's load. wall-clock efficiency: the 1-worker wall over n times
+  the n-worker wall of the same repeat; it needs a quiet machine.
 - idle cluster: its CPU while it waits (measured for IDLE_S before the runs), which grows
   with the wall time that a loaded machine stretches; "net of idle": the overhead without
   it (idle x wall).
@@ -30,6 +32,7 @@ Every row of every cluster run is checked against the loop's outcome for the sam
 """
 
 import argparse
+import contextlib
 import heapq
 import os
 import statistics
@@ -123,21 +126,27 @@ def mismatches(df, outcomes):
     return bad
 
 
-def measure(fmu_path, tasks, workers, repeats, sample):
-    """Interleaved: the loop, then the cluster, `repeats` times; [(figures)] and the idle CPU."""
-    reps = []
-    with cluster.open_client(workers=workers, quiet=True, dashboard=":0") as client:
-        client.wait_for_workers(workers)
-        cluster.register_fmu(client, fmu_path)
-        client.run(lambda: None)
-        idle = idle_cpu(client)
+def measure(fmu_path, tasks, worker_counts, repeats, sample):
+    """{workers: ([figures of each repeat], idle CPU)}: a cluster of each size open at once,
+    and in each repeat, for each size, the loop then the cluster (so that the sizes see the
+    same load, which drifts in minutes on a shared machine)."""
+    with contextlib.ExitStack() as stack:
+        clients = {}
+        for workers in worker_counts:
+            client = clients[workers] = stack.enter_context(
+                cluster.open_client(workers=workers, quiet=True, dashboard=":0"))
+            client.wait_for_workers(workers)
+            cluster.register_fmu(client, fmu_path)
+            client.run(lambda: None)
+        results = {w: ([], idle_cpu(c)) for w, c in clients.items()}
         for _ in range(repeats):
-            with RockingFMU(fmu_path) as fmu:
-                n, loop_cpu, outcomes = serial(fmu, tasks[::sample])
-            fig, df = on_cluster(client, workers, tasks)
-            fig.update(loop=loop_cpu / n, bad=mismatches(df, outcomes), checked=n)
-            reps.append(fig)
-    return reps, idle
+            for workers, client in clients.items():
+                with RockingFMU(fmu_path) as fmu:
+                    n, loop_cpu, outcomes = serial(fmu, tasks[::sample])
+                fig, df = on_cluster(client, workers, tasks)
+                fig.update(loop=loop_cpu / n, bad=mismatches(df, outcomes), checked=n)
+                results[workers][0].append(fig)
+    return results
 
 
 def cell(values, fmt):
@@ -146,16 +155,15 @@ def cell(values, fmt):
 
 def table(title, runs_all, n_tasks, results):
     print(f"\n{title}: {runs_all} runs in {n_tasks} tasks; each cell: median / min of the repeats")
-    print("| configuration | wall (s) | runs/s | CPU per run (ms) | in runs (ms) | loop (ms) | overhead (%) "
+    print("| configuration | wall (s) | CPU per run (ms) | in runs (ms) | loop (ms) | overhead (%) "
           "| overhead net of idle (%) | against the loop (%) | in-runs against the loop (%) "
           "| client CPU per task (ms) | idle cluster (% of a core) | workers busy | schedule efficiency "
           "| rows equal to the loop's |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for workers, (reps, idle) in results.items():
         col = {k: [r[k] for r in reps] for k in reps[0]}
         runs = col["runs"][0]
         print(f"| LocalCluster, {workers} worker(s) | {cell(col['wall'], '{:.2f}')} "
-              f"| {cell([runs / w for w in col['wall']], '{:.1f}')} "
               f"| {cell([1e3 * c / runs for c in col['cpu']], '{:.2f}')} "
               f"| {cell([1e3 * c / runs for c in col['in_runs']], '{:.2f}')} | {cell([1e3 * x for x in col['loop']], '{:.2f}')} "
               f"| {cell([100 * (r['cpu'] / r['in_runs'] - 1) for r in reps], '{:.1f}')} "
@@ -168,9 +176,10 @@ def table(title, runs_all, n_tasks, results):
     one = results.get(1)
     for workers, (reps, _) in results.items():
         if one and workers > 1:
-            w1, wn = [r["wall"] for r in one[0]], [r["wall"] for r in reps]
-            eff = [statistics.median(w1) / statistics.median(wn) / workers, min(w1) / min(wn) / workers]
-            print(f"wall-clock efficiency on {workers} workers: {eff[0]:.3f} (medians), {eff[1]:.3f} (best walls)")
+            pairs = [a["wall"] / b["wall"] / workers for a, b in zip(one[0], reps)]
+            print(f"wall-clock efficiency on {workers} workers (1-worker wall / {workers}-worker wall / "
+                  f"{workers}, each repeat's pair): median {statistics.median(pairs):.3f}, best {max(pairs):.3f}, "
+                  f"all {' '.join(f'{e:.3f}' for e in pairs)}")
 
 
 def main():
@@ -190,8 +199,7 @@ def main():
         st = study(stripes, args.chunk, args.records, args.bodies)
         with RockingFMU(fmu_path) as fmu:
             tasks = st.tasks(fmu, cluster.fmu_digest(fmu_path))
-        results = {w: measure(fmu_path, tasks, w, args.repeats, args.sample)
-                   for w in (int(x) for x in args.workers.split(","))}
+        results = measure(fmu_path, tasks, [int(x) for x in args.workers.split(",")], args.repeats, args.sample)
         table(f"--stripes {stripes}", sum(t[3] for t in tasks), len(tasks), results)
     print(f"\nhost: {os.uname().nodename}, {os.cpu_count()} cores, load average before: "
           f"{' '.join(f'{x:.1f}' for x in load)}, after: {' '.join(f'{x:.1f}' for x in os.getloadavg())}")

@@ -305,6 +305,24 @@ def test_default_batching_gives_every_run_as_a_direct_run(client, fmu_path, loca
         assert t_ov == row["t_overturn"] or (math.isnan(t_ov) and math.isnan(row["t_overturn"]))
 
 
+def test_execute_collects_on_its_own_clients_loop(client, fmu_path, local_fmu, tmp_path, monkeypatch):
+    """The results are collected on the event loop of the client given, not on that of Dask's
+    default client (the last one opened): with two clusters open in one process (the
+    throughput benchmark), the other's loop slowed execute down threefold or hung it."""
+    study = _study("msa", stripes=(1.0,), chunk=4)
+    tasks = study.tasks(local_fmu, cluster.register_fmu(client, fmu_path))
+    loops = []
+    real = cluster.as_completed
+
+    def spy(*args, **kw):
+        loops.append(kw.get("loop"))
+        return real(*args, **kw)
+
+    monkeypatch.setattr(cluster, "as_completed", spy)
+    assert cluster.execute(client, tasks, ResultStore(tmp_path / "runs"))[:2] == (1, 4)
+    assert loops == [client.loop]
+
+
 def test_resume_skips_finished_tasks(client, fmu_path, local_fmu, tmp_path):
     study = _study("msa", stripes=(1.0, 2.0, 4.0, 8.0), chunk=2)
     tasks = study.tasks(local_fmu, cluster.register_fmu(client, fmu_path))

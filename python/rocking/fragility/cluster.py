@@ -176,7 +176,7 @@ def execute(client, tasks, store, progress=None, stop_after=None):
     plugin = RecordsPlugin(f"rocking-records-{call}", {ref.name: rec for ref, rec in records.values()})
     failures, written, finished = {}, 0, 0
     by_future = {}
-    pending = as_completed(with_results=True, raise_errors=False)
+    pending = as_completed(loop=client.loop, with_results=True, raise_errors=False)  # this client's loop, not the default client's
     window = _Window(client)
 
     def fill():
