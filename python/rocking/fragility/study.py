@@ -25,8 +25,8 @@ from .fit import ida_fragility, msa_fragility
 from .hunt import HuntOptions, capacity
 
 
-#: Largest task of runs at fixed intensities (chunk 0), in integration steps: about half a
-#: second of runs (a run of the shipped suite, 9800 steps on average, costs about 10.6 ms of
+#: Largest task of runs at fixed intensities (chunk 0), in integration steps: about a third
+#: of a second of runs (a run of the shipped suite, 9800 steps on average, costs about 10.6 ms of
 #: CPU on an idle core: 1.1 us a step; runs that overturn stop early and cost less).
 STEPS_PER_TASK = 300_000
 
@@ -103,7 +103,7 @@ class Study:
     'msa'; stripes the target intensities (msa); hunt the HuntOptions (ida); grid > 0: IDA on
     a dense grid of that many intensities per record (geometric, the hunt's start to its
     stop) instead of the hunt; tail s simulated after each record's end; chunk runs per task
-    of stripes or grid (0: shrinking_batches, half a second of runs down to 0.04 s); estimator of
+    of stripes or grid (0: shrinking_batches, a third of a second of runs down to 0.04 s); estimator of
     beta ('mle' or 'moments', IDA); beta_modelling the FEMA P-58 modelling dispersion;
     damage_states {name: threshold on peak |theta| / alpha}, each
     fitted beside overturning; by_station: the bootstrap resamples stations (station_of)."""
