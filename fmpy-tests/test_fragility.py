@@ -323,6 +323,14 @@ def test_execute_collects_on_its_own_clients_loop(client, fmu_path, local_fmu, t
     assert loops == [client.loop]
 
 
+def test_local_workers_run_without_the_malloc_trim_threshold(client):
+    """Dask's nannies set MALLOC_TRIM_THRESHOLD_=65536 in their workers by default, which made
+    every run fault its arrays' pages in afresh (168 page faults a run instead of 2-3, +13 %
+    CPU): the LocalCluster's workers run without it, and with the rest of Dask's environment."""
+    env = client.run(lambda: (os.environ.get("MALLOC_TRIM_THRESHOLD_"), os.environ.get("OMP_NUM_THREADS")))
+    assert env and all(v == (None, "1") for v in env.values())
+
+
 def test_resume_skips_finished_tasks(client, fmu_path, local_fmu, tmp_path):
     study = _study("msa", stripes=(1.0, 2.0, 4.0, 8.0), chunk=2)
     tasks = study.tasks(local_fmu, cluster.register_fmu(client, fmu_path))
