@@ -14,6 +14,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from distributed import Future
+
 from rocking import groundmotion as gm
 from rocking.fragility import cluster, fit, hunt, intensity, runner
 from rocking.fragility.store import ResultStore
@@ -254,23 +256,79 @@ def test_worker_killed_mid_sweep_every_run_once(client, fmu_path, local_fmu, tmp
         assert t_ov == row["t_overturn"] or (math.isnan(t_ov) and math.isnan(row["t_overturn"]))
 
 
-def test_each_record_goes_to_the_cluster_once(client, fmu_path, local_fmu, tmp_path, monkeypatch):
-    """4 records x 4 tasks each: the records travel in 4 submissions (a task each that the
-    runs depend on), not inside the 16 runs' tasks."""
+def test_each_record_goes_to_each_worker_once(client, fmu_path, local_fmu, tmp_path, monkeypatch):
+    """4 records x 4 tasks each: the records travel in one worker plugin (once to each
+    worker), not inside the 16 runs' tasks, and the tasks depend on no other task (so the
+    scheduler may give each to any worker); the plugin is gone after the call."""
     study = _study("msa", stripes=tuple(np.linspace(0.5, 6.0, 8)), chunk=2)
     tasks = study.tasks(local_fmu, cluster.register_fmu(client, fmu_path))
-    carried = []
-    submit = client.submit
+    carried, plugins = [], []
+    submit, register = client.submit, client.register_plugin
 
     def spy(fn, *args, **kw):
         values = [x for a in args for x in (a.values() if isinstance(a, dict) else [a])]
-        carried.append(sum(isinstance(x, gm.Record) for x in values))
+        values += [x for a in args if isinstance(a, list) for part in a for x in part[0].values()]
+        carried.append(sum(isinstance(x, (gm.Record, Future)) for x in values))
         return submit(fn, *args, **kw)
 
+    def spy_plugin(plugin, *args, **kw):
+        plugins.append(plugin)
+        return register(plugin, *args, **kw)
+
     monkeypatch.setattr(client, "submit", spy)
+    monkeypatch.setattr(client, "register_plugin", spy_plugin)
     finished, written, failures = cluster.execute(client, tasks, ResultStore(tmp_path / "runs"))
     assert not failures and finished == len(tasks) == 16 and written == 32
-    assert len(carried) == 16 + 4 and sum(carried) == 4 and max(carried) == 1
+    assert len(carried) == 16 and sum(carried) == 0
+    assert len(plugins) == 1 and sorted(map(id, plugins[0].records.values())) == sorted(map(id, study.suite.values()))
+    assert client.run(lambda: len(runner._RECORDS)) == {w: 0 for w in client.nthreads()}
+
+
+def test_default_batching_gives_every_run_as_a_direct_run(client, fmu_path, local_fmu, tmp_path, monkeypatch):
+    """The study's own batching (shrinking tasks, largest first, records by plugin; made
+    small here so that 32 runs make several tasks): every run's row equals, bit for bit, the
+    FMU run directly in this process."""
+    from rocking.fragility import study as study_mod
+    monkeypatch.setattr(study_mod, "STEPS_PER_TASK", 2000)
+    monkeypatch.setattr(study_mod, "SMALLEST_TASK", 600)
+    study = _study("msa", stripes=tuple(np.linspace(0.5, 6.0, 8)))
+    tasks = study.tasks(local_fmu, cluster.register_fmu(client, fmu_path))
+    sizes = [t[3] for t in tasks]
+    assert len(tasks) >= 4 and sizes[0] > sizes[-1]
+    store = ResultStore(tmp_path / "runs")
+    assert cluster.execute(client, tasks, store)[2] == {}
+    df = _check_exactly_once(store, tasks)
+    assert len(df) == 32
+    for _, row in df.iterrows():
+        ov, t_ov, peak, _ = runner.run_once(local_fmu, BLOCK, study.suite[row["record"]], row["scale"], study.opts())
+        assert (ov, peak) == (row["overturned"], row["peak_theta_over_alpha"])
+        assert t_ov == row["t_overturn"] or (math.isnan(t_ov) and math.isnan(row["t_overturn"]))
+
+
+def test_execute_collects_on_its_own_clients_loop(client, fmu_path, local_fmu, tmp_path, monkeypatch):
+    """The results are collected on the event loop of the client given, not on that of Dask's
+    default client (the last one opened): with two clusters open in one process (the
+    throughput benchmark), the other's loop slowed execute down threefold or hung it."""
+    study = _study("msa", stripes=(1.0,), chunk=4)
+    tasks = study.tasks(local_fmu, cluster.register_fmu(client, fmu_path))
+    loops = []
+    real = cluster.as_completed
+
+    def spy(*args, **kw):
+        loops.append(kw.get("loop"))
+        return real(*args, **kw)
+
+    monkeypatch.setattr(cluster, "as_completed", spy)
+    assert cluster.execute(client, tasks, ResultStore(tmp_path / "runs"))[:2] == (1, 4)
+    assert loops == [client.loop]
+
+
+def test_local_workers_run_without_the_malloc_trim_threshold(client):
+    """Dask's nannies set MALLOC_TRIM_THRESHOLD_=65536 in their workers by default, which made
+    every run fault its arrays' pages in afresh (168 page faults a run instead of 2-3, +13 %
+    CPU): the LocalCluster's workers run without it, and with the rest of Dask's environment."""
+    env = client.run(lambda: (os.environ.get("MALLOC_TRIM_THRESHOLD_"), os.environ.get("OMP_NUM_THREADS")))
+    assert env and all(v == (None, "1") for v in env.values())
 
 
 def test_resume_skips_finished_tasks(client, fmu_path, local_fmu, tmp_path):

@@ -358,19 +358,41 @@ def test_margin_ratio_without_a_hazard_curve(tmp_path):
 # ---------------------------------------------------------------------------
 # Section 5: tasks a small study can balance over its workers
 
+def _list_schedule(batches, cost, workers):
+    """Makespan of the batches run in order, each by the first worker free (what the client's
+    submission in order, a few tasks in flight per worker, approaches)."""
+    free = [0.0] * workers
+    for batch in batches:
+        k = free.index(min(free))
+        free[k] += sum(cost(u) for u in batch)
+    return max(free)
+
+
 @pytest.mark.parametrize("costs", [
-    [9800] * 144,                                     # the 144-run study: 5 tasks before
+    [9800] * 144,                                     # the 144-run study
     [int(c) for c in np.random.default_rng(7).integers(500, 40_000, 297)],
-    [300_000] * 3,                                    # fewer units than MIN_TASKS
+    [300_000] * 3,                                    # units above the largest task
     [1000] * 4000,                                    # a large study: STEPS_PER_TASK rules
+    [5000] * 3,                                       # below the smallest task: one batch
 ])
-def test_batches_are_equal_in_cost_and_at_least_min_tasks(costs):
-    from rocking.fragility.study import MIN_TASKS, STEPS_PER_TASK, equal_cost_batches
+def test_batches_shrink_largest_first_within_bounds(costs):
+    from rocking.fragility.study import SHARE, SMALLEST_TASK, STEPS_PER_TASK, shrinking_batches
     units = list(enumerate(costs))
-    batches = equal_cost_batches(units, lambda u: u[1])
+    batches = shrinking_batches(units, lambda u: u[1])
     assert [u for b in batches for u in b] == units  # every run once, in order
+    sizes = [sum(c for _, c in b) for b in batches]
+    big = max(costs)
     total = sum(costs)
-    n = max(MIN_TASKS, math.ceil(total / STEPS_PER_TASK))
-    assert len(batches) == min(n, len(units))
-    heaviest = max(sum(c for _, c in b) for b in batches)
-    assert heaviest <= total / n + max(costs)  # no batch above its share by more than one run
+    assert all(s < STEPS_PER_TASK + big for s in sizes)
+    assert all(s >= SMALLEST_TASK for s in sizes[:-1])  # only the last may be below the smallest
+    assert all(b <= a + big for a, b in zip(sizes, sizes[1:]))  # never larger by more than one run
+    # each batch (but the last) reaches SHARE of what was left, within its bounds
+    left = total
+    for s in sizes[:-1]:
+        assert s >= min(STEPS_PER_TASK, max(SMALLEST_TASK, SHARE * left))
+        left -= s
+    if len(units) > 1 and total > STEPS_PER_TASK:
+        assert sizes[-1] < SMALLEST_TASK + big
+    # two workers taking the batches in order end within the last batches' size of each other
+    makespan = _list_schedule(batches, lambda u: u[1], 2)
+    assert makespan <= total / 2 + max(sizes[-3:] if len(sizes) > 2 else sizes)

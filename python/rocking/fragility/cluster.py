@@ -5,9 +5,14 @@ otherwise, with the same code.
   worker writes and opens it when it starts (also a worker that replaces a lost
   one), so workers need the `rocking` package but neither the repository nor a
   shared file system.
-- Each record travels to the cluster once, as the value of a task of its own that the
-  runs depend on (not inside every task that uses it): the scheduler keeps it, so a
-  worker lost with it costs a recomputation, not the runs.
+- Each record travels once to each worker, in a worker plugin of the call's records
+  (also to a worker that replaces a lost one), not inside every task that uses it; the
+  tasks name their records and have no dependencies, so the scheduler gives each to the
+  least busy worker (a task that depended on a record's task went only to the workers
+  holding it, and one worker ended with the large tasks while the other was idle).
+- The client submits the tasks in their order (the study's come largest first), two per
+  worker thread at a time, and the next as each finishes: the workers take the tasks in
+  that order and end together.
 - Tasks return rows only; as each finishes, its rows go to the ResultStore and
   the future is released: the client holds no results it did not ask for.
 - A task whose key is in the store is not submitted (resume). A task lost with
@@ -18,8 +23,10 @@ otherwise, with the same code.
 import contextlib
 import hashlib
 import importlib.util
+import math
 import os
 import sys
+import time
 import uuid
 from pathlib import Path
 
@@ -31,12 +38,27 @@ from . import runner
 PLUGIN_NAME = "rocking-fmu"
 
 #: Dask settings of the LocalCluster (its workers inherit them through their nannies): no
-#: statistical profiler (it samples every worker's stack every 10 ms) and slower
-#: housekeeping ticks. Idle, a two-worker cluster then costs 2.8 % of a core instead of
-#: 8.2 % (measured over 10 s here), which on a loaded machine, where a study's wall time
-#: stretches, was most of Dask's CPU overhead.
+#: statistical profiler (it samples every worker's stack every 10 ms), slower housekeeping
+#: ticks, and the nannies' memory monitor every second instead of every 100 ms. Idle, a
+#: two-worker cluster then costs 1.7 % of a core instead of 8.2 % (3.5 % with the memory
+#: monitor at 100 ms; each measured over 6-10 s here), which on a loaded machine, where a
+#: study's wall time stretches, was most of Dask's CPU overhead.
 QUIET = {"distributed.worker.profile.enabled": False, "distributed.admin.tick.interval": "500ms",
-         "distributed.admin.system-monitor.interval": "2s"}
+         "distributed.admin.system-monitor.interval": "2s", "distributed.worker.memory.monitor-interval": "1s"}
+
+#: The environment variable that Dask's nannies set in their workers by default
+#: (distributed.nanny.pre-spawn-environ) and the LocalCluster leaves out. Set, it makes glibc
+#: return freed memory to the system at once and fixes its mmap threshold at 128 KiB: every
+#: run's numpy arrays (the grid, the input line, the outputs: over 128 KiB) are then mapped
+#: and unmapped afresh, 168 page faults a run (2-3 a run without it), and a run costs 10-14 %
+#: more CPU in a worker than in a plain loop (docs/fragility.md, "Throughput").
+MALLOC_TRIM = "MALLOC_TRIM_THRESHOLD_"
+
+
+def worker_environ():
+    """Dask's pre-spawn environment of the workers without MALLOC_TRIM (the rest kept)."""
+    env = dask.config.get("distributed.nanny.pre-spawn-environ", {}) or {}
+    return {k: v for k, v in env.items() if k != MALLOC_TRIM}
 
 
 class FMUPlugin(WorkerPlugin):
@@ -66,6 +88,20 @@ class FMUPlugin(WorkerPlugin):
             fmu.close()
 
 
+class RecordsPlugin(WorkerPlugin):
+    """The records of one `execute` call {name: Record}, installed in each worker's runner
+    (runner.RecordRef names them in the tasks) and removed at the call's end."""
+
+    def __init__(self, name, records):
+        self.name, self.records = name, records
+
+    def setup(self, worker):
+        runner.install_records(self.records)
+
+    def teardown(self, worker):
+        runner.remove_records(self.records)
+
+
 def digest_of(fmu_bytes):
     """The name of an FMU in the tasks: a hash of its bytes."""
     return hashlib.sha1(fmu_bytes).hexdigest()[:16]
@@ -86,8 +122,8 @@ def dashboard_text(client):
 def open_client(scheduler=None, workers=None, quiet=False, dashboard=":8787"):
     """A Client on `scheduler` (an address), else on a LocalCluster of `workers` processes
     (default: one per core), one thread each, its dashboard at `dashboard` (another port if
-    that one is taken), with the QUIET settings."""
-    with dask.config.set(QUIET):
+    that one is taken), with the QUIET settings and without MALLOC_TRIM in its workers."""
+    with dask.config.set({**QUIET, "distributed.nanny.pre-spawn-environ": worker_environ()}):
         if scheduler:
             client = Client(scheduler)
             cluster = None
@@ -115,67 +151,99 @@ def register_fmu(client, fmu_path):
     return plugin.digest
 
 
+#: Tasks in flight per worker thread: one running, one waiting in the worker, so that no
+#: worker waits for the client between tasks; the rest stay in the client, which submits the
+#: next (the largest left: the tasks come largest first) as each finishes. Submitted all at
+#: once, tasks were assigned to workers ahead of time (they depend on their records' tasks, so
+#: the scheduler does not queue them) and work stealing did not keep the largest first: one
+#: worker ended with a large task while the other was idle.
+IN_FLIGHT_PER_THREAD = 2
+
+
 def execute(client, tasks, store, progress=None, stop_after=None):
-    """Run `tasks` [(key, function, args, expected_runs)] not yet in `store`; write each
-    one's rows as it finishes. progress(runs_done, row_count, expected_runs) after each task.
-    stop_after: return after that many tasks (tests of resuming). Returns
-    (tasks run, rows written, {key: error} of the tasks that failed)."""
+    """Run `tasks` [(key, function, args, expected_runs)] not yet in `store`, in their order,
+    IN_FLIGHT_PER_THREAD per worker thread at a time; write each one's rows as it finishes.
+    progress(row_count, expected_runs) after each task. stop_after: return after that many
+    tasks (tests of resuming). Returns (tasks run, rows written, {key: error} of the tasks
+    that failed)."""
     done = store.finished(t[0] for t in tasks)
-    todo = [t for t in tasks if t[0] not in done]
-    failures, written, finished = {}, 0, 0
-    if not todo:
-        return 0, 0, failures
-    by_future = {}
     # Dask keys unique to this call: a key cancelled by an earlier, interrupted call may
     # still be cancelling on the scheduler, and would cancel its namesake submitted now.
     call = uuid.uuid4().hex[:8]
     records = {}
-    for key, fn, args, expected in todo:
-        args = tuple(_record_as_future(client, a, records, call) for a in args)
-        fut = client.submit(fn, *args, key=f"rocking-{hashlib.sha1(key.encode()).hexdigest()[:24]}-{call}",
-                            pure=False)
-        by_future[fut] = (key, expected)
-    pending = as_completed(list(by_future))
+    todo = iter([(key, fn, tuple(_record_as_ref(a, records, call) for a in args), expected)
+                 for key, fn, args, expected in tasks if key not in done])
+    plugin = RecordsPlugin(f"rocking-records-{call}", {ref.name: rec for ref, rec in records.values()})
+    failures, written, finished = {}, 0, 0
+    by_future = {}
+    pending = as_completed(loop=client.loop, with_results=True, raise_errors=False)  # this client's loop, not the default client's
+    window = _Window(client)
+
+    def fill():
+        while len(by_future) < window.size():
+            task = next(todo, None)
+            if task is None:
+                return
+            key, fn, args, expected = task
+            fut = client.submit(fn, *args, key=f"rocking-{hashlib.sha1(key.encode()).hexdigest()[:24]}-{call}",
+                                pure=False)
+            by_future[fut] = (key, expected)
+            pending.add(fut)
+
+    if plugin.records:
+        client.register_plugin(plugin)
     try:
-        for fut in pending:
+        fill()
+        for fut, result in pending:
             key, expected = by_future.pop(fut)
-            try:
-                rows = fut.result()
-            except Exception as exc:  # noqa: BLE001 - e.g. KilledWorker: left for a rerun
-                failures[key] = f"{type(exc).__name__}: {exc}"
-                fut.release()
-                continue
+            ok = fut.status == "finished"
             fut.release()
-            store.write(key, rows)
-            written += len(rows)
+            fill()
+            if not ok:  # e.g. KilledWorker: left for a rerun
+                exc = result[1] if isinstance(result, tuple) else result
+                failures[key] = f"{type(exc).__name__}: {exc}"
+                continue
+            store.write(key, result)
+            written += len(result)
             finished += 1
             if progress:
-                progress(len(rows), expected)
+                progress(len(result), expected)
             if stop_after is not None and finished >= stop_after:
                 break
     finally:
         if by_future:
             client.cancel(list(by_future))
-        client.cancel(list(records.values()))
+        if plugin.records:
+            client.unregister_worker_plugin(plugin.name)
     return finished, written, failures
 
 
-def _value(x):
-    return x
+class _Window:
+    """How many tasks to keep in flight: IN_FLIGHT_PER_THREAD per worker thread (at least one
+    thread: workers may still be starting), the threads asked of the scheduler at most every
+    REFRESH_S (each asking is a round trip)."""
+
+    REFRESH_S = 2.0
+
+    def __init__(self, client):
+        self.client, self.checked, self.threads = client, -math.inf, 1
+
+    def size(self):
+        now = time.monotonic()
+        if now - self.checked >= self.REFRESH_S:
+            self.checked = now
+            self.threads = max(1, sum(self.client.nthreads().values()))
+        return IN_FLIGHT_PER_THREAD * self.threads
 
 
-def _record_as_future(client, arg, records, call):
-    """`arg`, a job dict's record (also in lists and tuples of them) replaced by the future of
-    one task per record (`records` {id: future}, filled here): sent once, recomputable if its
-    worker is lost."""
+def _record_as_ref(arg, records, call):
+    """`arg`, a job dict's record (also in lists and tuples of them) replaced by a RecordRef
+    (`records` {id: (ref, record)}, filled here): each record once in the call's plugin."""
     if isinstance(arg, (list, tuple)):
-        return type(arg)(_record_as_future(client, a, records, call) for a in arg)
+        return type(arg)(_record_as_ref(a, records, call) for a in arg)
     if not (isinstance(arg, dict) and "record" in arg):
         return arg
     rec = arg["record"]
-    fut = records.get(id(rec))
-    if fut is None:
-        fut = records[id(rec)] = client.submit(_value, rec, key=f"rocking-record-{len(records)}-{call}",
-                                               pure=False)
-    return dict(arg, record=fut)
-
+    if id(rec) not in records:
+        records[id(rec)] = (runner.RecordRef(f"{call}-{len(records)}"), rec)
+    return dict(arg, record=records[id(rec)][0])

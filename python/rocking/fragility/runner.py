@@ -19,12 +19,48 @@ import time
 from .hunt import HuntOptions, hunt_and_fill, unresolved
 
 _FMUS = {}  # the RockingFMU of this process, by FMU digest
+_RECORDS = {}  # the records of the tasks in flight, by RecordRef name (cluster.RecordsPlugin)
 _LOCK = threading.Lock()  # one run at a time per process (RockingFMU is not thread-safe)
 
 
 def install_fmu(digest, fmu):
     """Make `fmu` (a RockingFMU) the one this process runs for `digest`."""
     _FMUS[digest] = fmu
+
+
+class RecordRef:
+    """A record of the worker's RecordsPlugin, by name, in a task's job in place of the record."""
+
+    __slots__ = ("name",)
+
+    def __init__(self, name):
+        self.name = name
+
+    def __getstate__(self):
+        return self.name
+
+    def __setstate__(self, name):
+        self.name = name
+
+
+def install_records(records):
+    """Make `records` {name: Record} those RecordRef names in this process."""
+    _RECORDS.update(records)
+
+
+def remove_records(records):
+    for name in records:
+        _RECORDS.pop(name, None)
+
+
+def _with_record(job):
+    """`job` with its record itself (a RecordRef looked up in this process's records)."""
+    rec = job["record"]
+    if not isinstance(rec, RecordRef):
+        return job
+    if rec.name not in _RECORDS:
+        raise RuntimeError(f"record {rec.name} is not in this worker (the study's records plugin is missing)")
+    return dict(job, record=_RECORDS[rec.name])
 
 
 def process_fmu(digest, path=None):
@@ -68,6 +104,7 @@ def _row(job, scale, im, phase, fmu, opts):
 def run_stripes(digest, job, stripes, opts, phase="stripe"):
     """Rows of `job` (params, record, meta with im_record) at the intensities `stripes`."""
     fmu = process_fmu(digest, opts.get("fmu_path"))
+    job = _with_record(job)
     return [_row(job, im / job["meta"]["im_record"], im, phase, fmu, opts) for im in stripes]
 
 
@@ -79,6 +116,7 @@ def run_batch(digest, parts, opts, phase="stripe"):
 def run_hunt(digest, job, start, hunt, opts):
     """Rows of one record's search for its first collapse from intensity `start` (HuntOptions fields in `hunt`)."""
     fmu = process_fmu(digest, opts.get("fmu_path"))
+    job = _with_record(job)
     rows = []
 
     def collapses(im):
