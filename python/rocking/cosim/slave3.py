@@ -3,8 +3,10 @@ name: slave.Slave's calls for the 3.0 archives (target/fmu/fmi3/), so that the
 master (master.py) steps either standard.
 
 What differs from 2.0, and what the master must know:
-- 3.0 has no input derivatives: `set` takes no slopes, every input is held
-  over a step;
+- 3.0 has no fmi2SetRealInputDerivatives: `set` passes an input's slope in
+  its der(x) input (a Float64 input whose `derivative` attribute names the
+  input, docs/fmi3.md "Input derivatives"), set in the same fmi3SetFloat64
+  call; `takes_rate` says whether the FMU declares one;
 - `step` returns a `StepEnd` from fmi3DoStep's flags: with
   `early_return=True` (eventModeUsed and earlyReturnAllowed at instantiation)
   RockingBlock stops at the first impact, uplift, rest or overturning inside
@@ -47,6 +49,9 @@ class Slave3(Extracted):
                                 modelIdentifier=md.coSimulation.modelIdentifier,
                                 instanceName=instance_name or md.modelName)
         self.event_mode = False
+        #: value reference of an input -> that of its der(x) input
+        self._rate_of = {v.derivative.valueReference: v.valueReference for v in md.modelVariables
+                         if v.causality == "input" and v.derivative is not None}
 
     # -- life of an instance ------------------------------------------------
     def instantiate(self, params, start_time, stop_time, rtol=None, early_return=False):
@@ -105,10 +110,20 @@ class Slave3(Extracted):
                           refs, [order] * len(refs))
 
     def set(self, refs, values, slopes=None):
-        """Set Float64 inputs, held over the next step (3.0 has no input derivatives)."""
+        """Set Float64 inputs and, when given, their first derivatives through their der(x)
+        inputs in the same call (the input is then linear over the next step, as with
+        2.0's fmi2SetRealInputDerivatives). Without slopes only the values are set: the
+        master sets an input with its slope at every step or never in a run, so a held
+        input's der(x) keeps its start value 0."""
+        values = [float(x) for x in values]
         if slopes is not None:
-            raise ValueError(f"{self.name}: FMI 3.0 co-simulation takes no input derivatives")
-        self._call("fmi3SetFloat64", self._slave.setFloat64, refs, [float(x) for x in values])
+            refs = list(refs) + [self._rate_of[r] for r in refs]
+            values += [float(x) for x in slopes]
+        self._call("fmi3SetFloat64", self._slave.setFloat64, refs, values)
+
+    def takes_rate(self, name):
+        """The input `name` has a der(x) input."""
+        return self.variables[name].valueReference in self._rate_of
 
     def get_int(self, name):
         return self._call("fmi3GetInt32", self._slave.getInt32, [self.variables[name].valueReference])[0]
