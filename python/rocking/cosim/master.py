@@ -341,14 +341,20 @@ class _Loop:
         self.frame.set(self.r_ag, [g])
         if self.vertical is not None:
             self.block.set(self.r_bav, [float(self.vertical(0.0))])
+        self._settle(rates=False)
+        self._record(0.0)
+
+    def _settle(self, rates):
+        """Iterate the algebraic loop at the current point (a contraction for block/floor
+        mass ratios below 1) until the block's ag is the frame's a[j] and the frame's
+        force the block's, with their rates if `rates`."""
         for _ in range(50):
-            a, _ = self._floor_acc()
-            self.block.set(self.r_bag, [a])
-            force, _ = self._block_force()
-            self._set_frame_force(force, None)
+            a, da = self._floor_acc()
+            self.block.set(self.r_bag, [a], [da] if rates else None)
+            force, rate = self._block_force()
+            self._set_frame_force(force, rate if rates else None)
             if abs(self._floor_acc()[0] - a) <= 1e-13 * (1 + abs(a)):
                 break
-        self._record(0.0)
 
     def _record(self, t):
         th = self.block.get(self.r_th)
@@ -456,6 +462,11 @@ class _Loop:
         # the block's force at the step's end and its rate, seen by the frame's a[j] and
         # a[j]' from now on (feedthrough)
         self._set_frame_force(*self._block_force())
+        if done.early and self.two_way:
+            # the block's force jumped at its event (rigid law: impact, uplift), and so
+            # did a[j]: without this the frame would get, over the rest of the step, the
+            # force of the block's ag before the jump, an O(h) impulse per event
+            self._settle(rates=self.extrapolate and not self.midpoint)
         return done
 
     def _block_step(self, t, h, ag):
