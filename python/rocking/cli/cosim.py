@@ -24,14 +24,14 @@ CASE.toml (or .json, the same tables):
     step = 0.001             # communication step (s)
     stop_time = 3.0          # default: the record's end, or the sine's end + 2 s
     scheme = "jacobi"        # or "gauss-seidel"
-    inputs = "extrapolate"   # or "constant"
+    inputs = "extrapolate"   # or "constant", or "midpoint" (each input held at its mean over the step)
     coupling = "two-way"     # or "one-way"
     reject = true            # step rejection at impacts and contact changes (default)
     rtol = 1e-10             # the block's integrator tolerance
     early_return = false     # with --fmi 3: end the communication step at each of the block's
                              # impacts, uplifts and rests (fmi3DoStep's early return)
-    ground_input = "chord"   # the frame's ag over a step: "chord" (FMI 2.0 only, its default),
-                             # "midpoint" (the FMI 3.0 default) or "held" (the step start's value)
+    ground_input = "chord"   # the frame's ag over a step: "chord" (value and slope, the default),
+                             # "midpoint" (the chord's mean) or "held" (the step start's value)
 
 Writes DIR/timehistory.csv (time, ag, theta, omega, a_floor, Fx, Fz, u[1..n]),
 DIR/summary.json and DIR/plot.png, and prints a summary.
@@ -66,7 +66,7 @@ def register(sub, common):
                         "report the co-simulation's error against them")
     p.add_argument("--fmi", type=int, choices=(2, 3), default=2,
                    help="the FMI standard of both FMUs (default 2; 3: the archives in target/fmu/fmi3/, "
-                        "inputs held over each step, [coupling] early_return available)")
+                        "input rates through their der(x) inputs, [coupling] early_return available)")
     p.add_argument("--frame-fmu", metavar="PATH", help="default: target/fmu/ShearFrame.fmu (--fmi 3: "
                                                        "target/fmu/fmi3/ShearFrame.fmu)")
     p.add_argument("--block-fmu", metavar="PATH", help="default: target/fmu/RockingBlock.fmu (--fmi 3: "

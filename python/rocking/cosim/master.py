@@ -22,10 +22,13 @@ Schemes (`scheme`):
   held with inputs="constant").
 
 Inputs (`inputs`): "constant" holds each input over the step (order 1);
-"extrapolate" passes it with its first derivative (fmi2SetRealInputDerivatives),
-taken from the other FMU's fmi2GetRealOutputDerivatives (order 2). The ground
-acceleration is an external input known in advance: always passed as the
-chord between communication points.
+"extrapolate" passes it with its first derivative (fmi2SetRealInputDerivatives;
+FMI 3.0: the input der(x) of each input x), taken from the other FMU's output
+derivatives (order 2); "midpoint" holds it at its extrapolation's value at the
+step's midpoint, with the rates the FMUs' output derivatives then lack added
+(`_Loop._with_input_rates`; the scheme for FMUs with no input derivatives). The
+ground acceleration is an external input known in advance: passed as the chord
+between communication points unless `ground_input` says otherwise.
 
 `coupling="one-way"`: the block's forces are not applied to the frame (the
 frame alone drives the block; what a record-driven study assumes).
@@ -37,10 +40,10 @@ the part holding the event is no longer than h² / 0.1 s (or, with
 `substeps=N`, redone in N equal parts). docs/cosimulation.md §4 measures what
 it buys.
 
-FMI 3.0 (`CoupledFMUs(fmi=3)`: target/fmu/fmi3/): no input derivatives, so every
-input is held over a step, "constant" at the step start's value (bit for bit the
-2.0 master's), "extrapolate" at its extrapolation's midpoint, with the rates the
-3.0 FMUs' output derivatives lack added (`_Loop._with_input_rates`). With
+FMI 3.0 (`CoupledFMUs(fmi=3)`: target/fmu/fmi3/) has no fmi2SetRealInputDerivatives:
+the 3.0 FMUs declare each continuous input's first derivative as an input der(x)
+(`derivative` attribute), set with fmi3SetFloat64 into the store 2.0's call fills,
+so every scheme above runs on them, bit for bit the 2.0 master's. With
 `early_return=True` the block's fmi3DoStep stops at an impact, uplift or rest and
 the master ends the communication step there for both FMUs (docs/cosimulation.md
 §4b measures what it buys).
@@ -63,11 +66,11 @@ from .slave import Slave
 from .slave3 import Slave3
 
 SCHEMES = ("jacobi", "gauss-seidel")
-INPUTS = ("constant", "extrapolate")
+INPUTS = ("constant", "extrapolate", "midpoint")
 COUPLINGS = ("two-way", "one-way")
 FMI_VERSIONS = (2, 3)
-#: How the ground acceleration reaches the frame over a step: its chord (value and slope,
-#: FMI 2.0 only), its value at the step's midpoint (the chord's mean) or at its start, held.
+#: How the ground acceleration reaches the frame over a step: its chord (value and slope),
+#: its value at the step's midpoint (the chord's mean) or at its start, held.
 GROUND_INPUTS = ("chord", "midpoint", "held")
 #: A rejected step is bisected until the part holding the event is h² / REJECT_TIME_SCALE.
 REJECT_TIME_SCALE = 0.1  # s
@@ -195,11 +198,11 @@ class CoupledFMUs:
                       rest inside the step; the master then ends the communication step there
                       for both FMUs, runs the block's event mode and goes on from that time
         ground_input  how the frame gets the ground over a step, one of GROUND_INPUTS
-                      (default: "chord" with FMI 2.0, "midpoint" with 3.0, which has no
-                      input derivatives)
-        With FMI 3.0 every input is held over a step: inputs="constant" holds the value at
-        the step's start (FMI 2.0's "constant" bit for bit), inputs="extrapolate" the
-        extrapolation's value at the step's midpoint (its mean over the step).
+                      (default "chord")
+        With FMI 3.0 an input's rate (inputs="extrapolate", ground_input="chord", and av)
+        goes to its der(x) input: the run is the FMI 2.0 master's bit for bit. 3.0 FMUs
+        that declare no der(x) inputs take inputs="constant" or "midpoint" and
+        ground_input="midpoint" or "held", without av.
         The defaults (Jacobi, extrapolated inputs, step rejection) are the most accurate
         combination measured in docs/cosimulation.md §4.
         """
@@ -209,10 +212,9 @@ class CoupledFMUs:
             raise ValueError(f"inputs = {inputs!r}: not one of {INPUTS}")
         if coupling not in COUPLINGS:
             raise ValueError(f"coupling = {coupling!r}: not one of {COUPLINGS}")
-        ground_input = ground_input or ("chord" if self.fmi == 2 else "midpoint")
-        if ground_input not in GROUND_INPUTS or (ground_input == "chord" and self.fmi == 3):
-            allowed = GROUND_INPUTS if self.fmi == 2 else GROUND_INPUTS[1:]
-            raise ValueError(f"ground_input = {ground_input!r}: not one of {allowed} with FMI {self.fmi}.0")
+        ground_input = ground_input or "chord"
+        if ground_input not in GROUND_INPUTS:
+            raise ValueError(f"ground_input = {ground_input!r}: not one of {GROUND_INPUTS}")
         if early_return and self.fmi != 3:
             raise ValueError("early_return = True needs the FMI 3.0 FMUs (fmi=3)")
         n = int(frame.get("n", 3))
@@ -220,8 +222,9 @@ class CoupledFMUs:
             raise ValueError(f"floor = {floor}: must be a floor of the frame, 1..{n}")
         if not (step > 0 and stop_time > 0):
             raise ValueError("step and stop_time must be positive")
+        self._check_rates(int(floor), inputs, ground_input, coupling == "two-way", vertical is not None)
         wall = _time.perf_counter()
-        loop = _Loop(self.frame, self.block, int(floor), n, ground, scheme, inputs == "extrapolate",
+        loop = _Loop(self.frame, self.block, int(floor), n, ground, scheme, inputs,
                      coupling == "two-way", reject, None if substeps is None else int(substeps), vertical,
                      ground_input)
         try:
@@ -254,17 +257,35 @@ class CoupledFMUs:
                          ground_input=ground_input),
             messages=list(_fmu._MESSAGES), early_returns=loop.early_returns)
 
+    def _check_rates(self, floor, inputs, ground_input, two_way, vertical):
+        """The inputs whose rates the run passes must take them (FMI 3.0: a der(x) input
+        each); a ValueError naming the first that does not."""
+        need = [(self.frame, "ground_input", ground_input, "ag")] if ground_input == "chord" else []
+        if inputs == "extrapolate":
+            need.append((self.block, "inputs", inputs, "ag"))
+            if two_way:
+                need += [(self.frame, "inputs", inputs, f"{x}[{floor}]") for x in ("Fx", "Fz")]
+        if vertical and inputs != "midpoint":
+            need.append((self.block, "inputs", inputs, "av"))
+        for slave, option, value, name in need:
+            if not slave.takes_rate(name):
+                raise ValueError(f"{option} = {value!r} needs the input der({name}) of {slave.path} "
+                                 f"(FMI {self.fmi}.0), which it does not declare: use inputs = 'midpoint' "
+                                 "or 'constant', ground_input = 'midpoint' or 'held'")
+
 
 class _Loop:
     """The state of one coupled run between communication points."""
 
-    def __init__(self, frame, block, j, n, ground, scheme, extrapolate, two_way, reject, substeps, vertical=None,
+    def __init__(self, frame, block, j, n, ground, scheme, inputs, two_way, reject, substeps, vertical=None,
                  ground_input="chord"):
         self.frame, self.block, self.ground, self.vertical = frame, block, ground, vertical
-        self.gs, self.extrapolate, self.two_way = scheme == "gauss-seidel", extrapolate, two_way
+        self.gs, self.two_way = scheme == "gauss-seidel", two_way
         self.reject, self.substeps, self.ground_input = reject, substeps, ground_input
-        # FMI 3.0 has no input derivatives: every input is held over a step
-        self.held = block.fmi_version == 3
+        # the exchanged inputs' rates are used ("extrapolate": passed with the values;
+        # "midpoint": to hold each input at its mean over the step instead)
+        self.extrapolate = inputs != "constant"
+        self.midpoint = inputs == "midpoint"
         self.r_ag = frame.refs(["ag"])
         self.r_force = frame.refs([f"Fx[{j}]", f"Fz[{j}]"])
         self.r_a = frame.refs([f"a[{j}]"])
@@ -273,7 +294,7 @@ class _Loop:
         self.r_bav = block.refs(["av"]) if vertical is not None else None
         # under av the FMU gives output derivatives for a rigid block only (docs/model.md
         # §7.4): with av the block's force reaches the frame constant over a step
-        self.force_rates = extrapolate and vertical is None
+        self.force_rates = self.extrapolate and vertical is None
         self.r_bf = block.refs(["Fx", "Fz"])
         self.r_th = block.refs(["theta", "omega"])
         self.rows, self.steps, self.rejected, self.early_returns = [], 0, 0, []
@@ -281,9 +302,12 @@ class _Loop:
 
     # -- the exchanged values at the current communication point --------------
     def _block_force(self):
-        """The force on the floor, -(Fx, Fz), and its rate (0 unless extrapolating)."""
+        """The force on the floor, -(Fx, Fz), and its rate (None unless extrapolating:
+        the force is then held over the step)."""
         f = self.block.get(self.r_bf)
-        d = self.block.get_der(self.r_bf) if self.force_rates else [0.0, 0.0]
+        if not self.force_rates:
+            return [-f[0], -f[1]], None
+        d = self.block.get_der(self.r_bf)
         return [-f[0], -f[1]], [-d[0], -d[1]]
 
     def _floor_acc(self):
@@ -291,14 +315,12 @@ class _Loop:
         return a, (self.frame.get_der(self.r_a)[0] if self.extrapolate else 0.0)
 
     def _set_input(self, slave, refs, values, rates, h):
-        """Inputs linear over the next step h: with FMI 2.0 their values and rates (none if
-        all rates are None), with 3.0 held at their mean over the step (the midpoint)."""
-        if not self.held:
-            slave.set(refs, values, rates)
-        elif rates is None:
-            slave.set(refs, values)
-        else:
+        """Inputs linear over the next step h: their values and rates (held if rates is
+        None), or with inputs="midpoint" held at their mean over the step."""
+        if self.midpoint and rates is not None:
             slave.set(refs, [v + 0.5 * r * h for v, r in zip(values, rates)])
+        else:
+            slave.set(refs, values, rates)
 
     def _set_frame_force(self, force, rate, h=0.0):
         if self.two_way:
@@ -310,8 +332,7 @@ class _Loop:
         if self.ground_input == "chord":
             self.frame.set(self.r_ag, [g0], [(g1 - g0) / h])
         else:
-            g = 0.5 * (g0 + g1) if self.ground_input == "midpoint" else g0
-            self.frame.set(self.r_ag, [g], None if self.held else [0.0])
+            self.frame.set(self.r_ag, [0.5 * (g0 + g1) if self.ground_input == "midpoint" else g0])
 
     def start(self):
         """Consistent values at t = 0: iterate the algebraic loop (a contraction for
@@ -320,14 +341,20 @@ class _Loop:
         self.frame.set(self.r_ag, [g])
         if self.vertical is not None:
             self.block.set(self.r_bav, [float(self.vertical(0.0))])
+        self._settle(rates=False)
+        self._record(0.0)
+
+    def _settle(self, rates):
+        """Iterate the algebraic loop at the current point (a contraction for block/floor
+        mass ratios below 1) until the block's ag is the frame's a[j] and the frame's
+        force the block's, with their rates if `rates`."""
         for _ in range(50):
-            a, _ = self._floor_acc()
-            self.block.set(self.r_bag, [a])
-            force, _ = self._block_force()
-            self._set_frame_force(force, None if self.held else [0.0, 0.0])
+            a, da = self._floor_acc()
+            self.block.set(self.r_bag, [a], [da] if rates else None)
+            force, rate = self._block_force()
+            self._set_frame_force(force, rate if rates else None)
             if abs(self._floor_acc()[0] - a) <= 1e-13 * (1 + abs(a)):
                 break
-        self._record(0.0)
 
     def _record(self, t):
         th = self.block.get(self.r_th)
@@ -396,7 +423,7 @@ class _Loop:
         early return at t_e brings the frame back to t and steps it to t_e."""
         self._set_ground(t, h)
         force, rate = self._block_force()
-        if self.held and self.force_rates and self.two_way:
+        if self.midpoint and self.force_rates and self.two_way:
             rate, da_floor = self._with_input_rates(force, rate)
         if self.gs:
             a0, _ = self._floor_acc()
@@ -407,7 +434,7 @@ class _Loop:
             ag = ([a0], [(a1 - a0) / h]) if self.extrapolate else ([a1], None)
         else:
             a0, da = self._floor_acc()
-            if self.held and self.force_rates and self.two_way:
+            if self.midpoint and self.force_rates and self.two_way:
                 da = da_floor
             fstate = self._keep_frame()
             ag = ([a0], [da] if self.extrapolate else None)
@@ -428,13 +455,18 @@ class _Loop:
             return None
         if done.event:
             self.block.handle_event()
-        if self.held and ag[1] is not None:
+        if self.midpoint and ag[1] is not None:
             # the block's feedthrough (Fx from ag) at the step's end sees the input's
             # end value, as an FMI 2.0 input continued along its rate does
             self.block.set(self.r_bag, [ag[0][0] + ag[1][0] * (done.time - t)])
         # the block's force at the step's end and its rate, seen by the frame's a[j] and
         # a[j]' from now on (feedthrough)
         self._set_frame_force(*self._block_force())
+        if done.early and self.two_way:
+            # the block's force jumped at its event (rigid law: impact, uplift), and so
+            # did a[j]: without this the frame would get, over the rest of the step, the
+            # force of the block's ag before the jump, an O(h) impulse per event
+            self._settle(rates=self.extrapolate and not self.midpoint)
         return done
 
     def _block_step(self, t, h, ag):
@@ -442,7 +474,7 @@ class _Loop:
         returns early at t_e is redone once from t with the inputs' midpoint over
         [t, t_e]: the part of the step the block takes then sees its inputs' mean over
         that part (the event moves by far less than the step)."""
-        redo = self.held and ag[1] is not None and getattr(self.block, "event_mode", False)
+        redo = self.midpoint and ag[1] is not None and getattr(self.block, "event_mode", False)
         bstate = self.block.get_state() if redo else None
         try:
             done = self.block.step(t, h)
@@ -456,8 +488,8 @@ class _Loop:
                 self.block.free_state(bstate)
 
     def _with_input_rates(self, force, rate):
-        """FMI 3.0: the rates of the force on the floor and of a[j], with the terms the
-        FMUs' output derivatives leave out because 3.0 gives them no input rates. Both
+        """inputs="midpoint": the rates of the force on the floor and of a[j], with the
+        terms the FMUs' output derivatives leave out because they get no input rates. Both
         outputs feed through (a[j] from the force, the block's force from its ag), so
             a' = a'_0 + (da/df) f',   f' = f'_0 + (df/dag) a'
         with f'_0, a'_0 the FMUs' output derivatives and the two gains measured by

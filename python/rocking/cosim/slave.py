@@ -151,6 +151,11 @@ class Slave(Extracted):
             self._check(self._set_der(self.component, refs, n, (c_int * n)(*([1] * n)),
                                       (c_double * n)(*slopes)), "fmi2SetRealInputDerivatives")
 
+    def takes_rate(self, name):
+        """The input `name` takes a first derivative (fmi2SetRealInputDerivatives: every
+        real input of an FMU that canInterpolateInputs, which CoupledFMUs checks)."""
+        return self.variables[name].type == "Real"
+
     def get_int(self, name):
         return self._slave.getInteger([self.variables[name].valueReference])[0]
 

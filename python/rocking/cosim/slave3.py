@@ -3,8 +3,10 @@ name: slave.Slave's calls for the 3.0 archives (target/fmu/fmi3/), so that the
 master (master.py) steps either standard.
 
 What differs from 2.0, and what the master must know:
-- 3.0 has no input derivatives: `set` takes no slopes, every input is held
-  over a step;
+- 3.0 has no fmi2SetRealInputDerivatives: `set` passes an input's slope in
+  its der(x) input (a Float64 input whose `derivative` attribute names the
+  input, docs/fmi3.md "Input derivatives"), set in the same fmi3SetFloat64
+  call; `takes_rate` says whether the FMU declares one;
 - `step` returns a `StepEnd` from fmi3DoStep's flags: with
   `early_return=True` (eventModeUsed and earlyReturnAllowed at instantiation)
   RockingBlock stops at the first impact, uplift, rest or overturning inside
@@ -58,6 +60,9 @@ class Slave3(Extracted):
         sizes = {d.valueReference for v in self.arrays.values() for d in v.dimensions}
         self.size_name = next((v.name for v in md.modelVariables if v.valueReference in sizes), None)
         self.size = int(self.variables[self.size_name].start) if self.size_name else 1
+        #: value reference of an input -> that of its der(x) input
+        self._rate_of = {v.derivative.valueReference: v.valueReference for v in md.modelVariables
+                         if v.causality == "input" and v.derivative is not None}
 
     # -- life of an instance ------------------------------------------------
     def instantiate(self, params, start_time, stop_time, rtol=None, early_return=False):
@@ -156,15 +161,24 @@ class Slave3(Extracted):
         return [values[k] for k in at]
 
     def set(self, refs, values, slopes=None):
-        """Set Float64 inputs, held over the next step (3.0 has no input derivatives);
-        an array element by setting its array whole."""
+        """Set Float64 inputs and, when given, their first derivatives through their der(x)
+        inputs in the same call (the input is then linear over the next step, as with
+        2.0's fmi2SetRealInputDerivatives); an array element by setting its array whole.
+        Without slopes only the values are set: the master sets an input with its slope at
+        every step or never in a run, so a held input's der(x) stays 0."""
+        refs, values = list(refs), [float(x) for x in values]
         if slopes is not None:
-            raise ValueError(f"{self.name}: FMI 3.0 co-simulation takes no input derivatives")
+            refs += [(self._rate_of[vr], i) for vr, i in refs]
+            values += [float(x) for x in slopes]
         vrs, n, at = self._layout(refs)
         flat = self._call("fmi3GetFloat64", self._slave.getFloat64, vrs, nValues=n) if n > len(refs) else [0.0] * n
         for k, x in zip(at, values):
-            flat[k] = float(x)
+            flat[k] = x
         self._call("fmi3SetFloat64", self._slave.setFloat64, vrs, flat)
+
+    def takes_rate(self, name):
+        """The input `name` (an array element: its array) has a der(x) input."""
+        return self._ref(name)[0] in self._rate_of
 
     def get_int(self, name):
         return self._call("fmi3GetInt32", self._slave.getInt32, [self.variables[name].valueReference])[0]
