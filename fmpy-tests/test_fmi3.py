@@ -198,6 +198,27 @@ def test_input_derivatives_in_3_0_are_the_2_0_ones(fmu_path, fmu3_path):
     assert np.abs(three[:, 0] - held[:, 0]).max() > 1e-6
 
 
+def test_setting_an_input_alone_resets_its_der_input(fmu3_path):
+    """Setting ag without der(ag) in the same call resets der(ag) to 0 (2.0's rule: a
+    host that knows nothing of der(x) gets its input held, never a slope left from an
+    earlier step); in the same call, in either order, the slope stands; der(av) in a
+    call does not keep ag's."""
+    s, md, real, get = _initialized(fmu3_path, FMU3Slave, "reset")
+    ag, dag, dav = _vr(md, ["ag"]), _vr(md, ["der(ag)"]), _vr(md, ["der(av)"])
+    real(dag + ag, [2.5, 1.0])
+    assert get(dag) == [2.5]
+    real(ag, [1.5])
+    assert get(dag) == [0.0]
+    real(ag + dag, [1.0, -3.0])
+    assert get(dag) == [-3.0]
+    real(ag + dav, [2.0, 4.0])
+    assert get(dag) == [0.0] and get(dav) == [4.0]
+    real(dag, [7.0])  # der(x) alone: x stays
+    assert get(dag) == [7.0] and get(ag) == [2.0]
+    s.terminate()
+    s.freeInstance()
+
+
 def test_co_simulation_is_bit_for_bit_the_2_0_trajectory(fmu_path, fmu3_path):
     a, b = _co_simulate(fmu_path, FMU2Slave), _co_simulate(fmu3_path, FMU3Slave)
     assert np.abs(a[:, 0]).max() > 1e-3  # it rocks

@@ -284,8 +284,9 @@ pub unsafe fn set_float64<S: Slave>(
 
 /// `fmi3SetFloat64` with `der(x)` inputs among the variables: checked first
 /// (a refused call changes nothing), then the table's values, then the
-/// derivatives. `der(x)` is a variable of its own in 3.0: setting `x`
-/// leaves it as it was (2.0 starts a new polynomial at 0 instead).
+/// derivatives. Setting `x` resets `der(x)` to 0 as in 2.0 (a host that
+/// knows nothing of `der(x)` gets its input held, never a stale slope),
+/// unless `der(x)` is in the same call, in any order.
 fn set_with_input_derivatives<S: Slave>(
     i: &mut Inner<S>,
     (vrs, values): (Vec<u32>, Vec<f64>),
@@ -297,13 +298,11 @@ fn set_with_input_derivatives<S: Slave>(
         );
     }
     let staged = i.check_input_derivatives(rates)?;
-    let kept = i.derivatives.clone();
     let status = if vrs.is_empty() {
         Status::Ok
     } else {
         i.set_real(&vrs, &values)?
     };
-    i.derivatives = kept;
     i.store_input_derivatives("fmi3SetFloat64", &staged);
     Ok(status)
 }

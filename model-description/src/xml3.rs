@@ -422,7 +422,7 @@ pub fn render(md: &ModelDescription, token: &str, generated: Option<&str>) -> St
             (
                 "description",
                 Some(format!(
-                    "Co-simulation: first time derivative of {0} (its unit per second); over a step from t, {0} + der({0}) (t' - t) is the input (as fmi2SetRealInputDerivatives of order 1); kept until set again",
+                    "Co-simulation: first time derivative of {0} (its unit per second); over a step from t, {0} + der({0}) (t' - t) is the input (as fmi2SetRealInputDerivatives of order 1); setting {0} resets it to 0 unless it is set in the same call",
                     name
                 )),
             ),
