@@ -13,8 +13,11 @@ tools/cross-deps.sh --test
 stage "format and lints"
 cargo fmt --all -- --check
 cargo clippy --workspace --all-targets --quiet -- -D warnings
-stage "Rust tests"
-cargo test --workspace --release
+stage "Rust tests (profile ci: release optimisation without LTO or one codegen unit, Cargo.toml)"
+cargo test --workspace --profile ci
+stage "the release binaries the Python tests run: rocking-corner, the Dharahara curves example"
+cargo build --release -p corner
+cargo build --release -p rocking --example dharahara_curves
 stage "the library crates as another FMU author gets them: rustdoc without warnings, and"
 echo "   cargo publish --dry-run (packaged, then built from the package; 33 s cold, a few s warm)"
 crates="-p rocking -p model-description -p fmi2-export -p corner"
