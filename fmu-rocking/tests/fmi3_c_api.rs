@@ -237,7 +237,10 @@ impl Run {
                         );
                         assert!(!early || self.early, "early return not allowed");
                         assert!(!early || term || last < self.t + h);
-                        assert!(!event || (early && self.event_mode));
+                        assert!(
+                            !event || self.event_mode,
+                            "eventHandlingNeeded without event mode"
+                        );
                         if term {
                             self.mode = M::Ended;
                         }
@@ -455,4 +458,128 @@ fn a_forced_run_returns_early_and_handles_its_events() {
         run.mode,
         run.t
     );
+}
+
+/// A started co-simulation instance with event mode and early return.
+fn event_instance() -> Run {
+    let mut run = Run::new(false, true, true);
+    for o in start(false, true) {
+        run.apply(&o);
+    }
+    run
+}
+
+/// The forced run's ground acceleration, held over the step from `t`.
+fn forcing(t: f64) -> f64 {
+    3.0 * (4.0 * std::f64::consts::PI * t).sin()
+}
+
+/// One step of `run` to `end` under the ground acceleration held at `ag`,
+/// with the event mode that follows an event: (end time, returned early,
+/// zero crossings of theta in the step, eventHandlingNeeded).
+fn step_to(run: &mut Run, end: f64, ag: f64) -> (f64, bool, i32, bool) {
+    let (c, t) = (run.c, run.t);
+    let crossings = || {
+        let mut z = 0i32;
+        // SAFETY: one value reference, one value.
+        assert_eq!(
+            unsafe { fmi3GetInt32(c, &vr::ZERO_CROSSINGS, 1, &mut z, 1) },
+            OK
+        );
+        z
+    };
+    let before = crossings();
+    // SAFETY: every pointer is to a live local.
+    let (s, event, early, last) = unsafe {
+        assert_eq!(fmi3SetFloat64(c, &vr::AG, 1, &ag, 1), OK);
+        let (mut event, mut term, mut early, mut last) = (false, false, false, -1.0);
+        let s = fmi3DoStep(
+            c,
+            t,
+            end - t,
+            false,
+            &mut event,
+            &mut term,
+            &mut early,
+            &mut last,
+        );
+        assert!(!term);
+        (s, event, early, last)
+    };
+    assert_eq!(s, OK);
+    assert!(last >= t && last <= end, "{last} outside [{t}, {end}]");
+    assert_eq!(
+        early,
+        last < end,
+        "earlyReturn exactly when the step stopped before its end"
+    );
+    run.t = last;
+    if event {
+        for o in [
+            Op::EnterEventMode,
+            Op::UpdateDiscreteStates,
+            Op::EnterStepMode,
+        ] {
+            run.apply(&o);
+        }
+    }
+    (last, early, crossings() - before, event)
+}
+
+/// Regression: a zero crossing of theta located at the very end of a step
+/// (an impact within the step's last ulp, the event's time rounding to
+/// `t + h`) was applied without `eventHandlingNeeded`, so a host never
+/// heard of it. Each early return of the forced run is replayed with steps
+/// that end at the event's time and up to 3 ulps before it, then steps of
+/// one ulp across it: every step that applies a crossing reports exactly
+/// one event, and no other step reports one.
+#[test]
+fn every_zero_crossing_is_reported_once_even_at_a_step_end() {
+    let mut first = event_instance();
+    // (start of the step that returned early, the event's time)
+    let mut events = Vec::new();
+    while events.len() < 6 && first.t < 3.0 {
+        let t = first.t;
+        let (last, early, n, event) = step_to(&mut first, t + 0.05, forcing(t));
+        assert_eq!(n, event as i32, "a crossing without its event at {last}");
+        if early {
+            events.push((t, last));
+        }
+    }
+    assert_eq!(events.len(), 6, "{events:?}");
+    let (mut at_end, mut steps) = (0, 0);
+    for &(tp, te) in &events {
+        for ulps in 0..4 {
+            let mut run = event_instance();
+            // the forced run's steps (and its earlier early returns) to tp
+            while run.t < tp {
+                let t = run.t;
+                step_to(&mut run, (t + 0.05).min(tp), forcing(t));
+            }
+            assert_eq!(run.t, tp, "the replay of the forced run");
+            let mut end = te;
+            for _ in 0..ulps {
+                end = end.next_down();
+            }
+            let (mut crossings, mut reported) = (0, 0);
+            let mut next = end;
+            while run.t <= te.next_up() {
+                let (last, early, n, event) = step_to(&mut run, next, forcing(tp));
+                assert!(
+                    n <= 1 && n == event as i32,
+                    "{n} crossings, event {event} at {last}"
+                );
+                at_end += (event && !early) as i32;
+                (crossings, reported, steps) = (crossings + n, reported + event as i32, steps + 1);
+                next = run.t.next_up();
+            }
+            assert_eq!(
+                (crossings, reported),
+                (1, 1),
+                "event at {te}, {ulps} ulps before"
+            );
+        }
+    }
+    // the replays do meet the case: events at a step's very end
+    assert!(at_end > 0, "no event at a step's end in {steps} steps");
 }
