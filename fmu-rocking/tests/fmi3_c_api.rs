@@ -49,20 +49,55 @@ enum Mode {
 enum Op {
     EnterInit,
     ExitInit,
-    DoStep { h: f64, ag: f64 },
+    DoStep {
+        h: f64,
+        ag: f64,
+    },
     EnterEventMode,
     UpdateDiscreteStates,
     EnterStepMode,
     EnterContinuousTime,
-    SetTime { dt: f64 },
+    SetTime {
+        dt: f64,
+    },
     CompletedIntegratorStep,
-    Derivatives { n: usize },
+    Derivatives {
+        n: usize,
+    },
     StateRoundTrip,
-    GetFloat64 { vr: u32 },
+    GetFloat64 {
+        vr: u32,
+    },
     SetInt32OnEnumeration,
+    /// `fmi3SetFloat64` of one input (`ag`, `av`, `der(ag)`, `der(av)`) or
+    /// an unknown value reference, maybe non-finite, maybe with a bad size
+    /// or a NULL array.
+    SetReal {
+        which: usize,
+        value: usize,
+        bad: usize,
+    },
+    /// `fmi3GetOutputDerivatives` of theta, order 0..3, maybe nValues wrong.
+    OutputDerivative {
+        order: i32,
+        mismatch: bool,
+    },
+    /// `fmi3SetContinuousStates` with `n` states, maybe a NaN among them.
+    SetStates {
+        n: usize,
+        nan: bool,
+    },
+    /// `fmi3GetEventIndicators` into `n` places.
+    EventIndicators {
+        n: usize,
+    },
     Terminate,
     Reset,
 }
+
+/// `SetReal`'s value references: the inputs, their derivatives, unknown.
+const SET_REAL_VRS: [u32; 5] = [vr::AG, vr::AV, 68, 69, 9999];
+const SET_REAL_VALUES: [f64; 3] = [0.5, f64::NAN, f64::INFINITY];
 
 fn op() -> impl Strategy<Value = Op> {
     prop_oneof![
@@ -80,6 +115,11 @@ fn op() -> impl Strategy<Value = Op> {
         2 => Just(Op::StateRoundTrip),
         2 => (0u32..70).prop_map(|vr| Op::GetFloat64 { vr }),
         1 => Just(Op::SetInt32OnEnumeration),
+        3 => (0usize..5, 0usize..3, 0usize..4)
+            .prop_map(|(which, value, bad)| Op::SetReal { which, value, bad }),
+        1 => (0i32..4, any::<bool>()).prop_map(|(order, mismatch)| Op::OutputDerivative { order, mismatch }),
+        1 => (0usize..4, any::<bool>()).prop_map(|(n, nan)| Op::SetStates { n, nan }),
+        1 => (10usize..14).prop_map(|n| Op::EventIndicators { n }),
         1 => Just(Op::Terminate),
         1 => Just(Op::Reset),
     ]
@@ -161,6 +201,19 @@ impl Run {
     /// answer (FMI 2.0's masks, which the layer keeps); anything but fatal.
     fn lenient(&mut self, status: i32, what: &Op) {
         assert!(status != 4, "{what:?}: fmi3Fatal");
+    }
+
+    /// A well-formed call whose answer depends on the state: never fatal,
+    /// refused only with a message (and then in the error state).
+    fn settled(&mut self, status: i32, what: &Op) {
+        assert!(status != 4, "{what:?}: fmi3Fatal");
+        if status == ERROR {
+            assert!(
+                *self.messages > self.before,
+                "{what:?}: refused without a message"
+            );
+            self.mode = Mode::Error;
+        }
     }
 
     /// Checks `status` against whether the oracle allows the call, and
@@ -354,6 +407,62 @@ impl Run {
                     let v = 1i32;
                     let s = fmi3SetInt32(c, &vr::SHAPE, 1, &v, 1);
                     self.expect(false, s, m, op);
+                }
+                Op::SetReal { which, value, bad } => {
+                    let r = SET_REAL_VRS[which];
+                    let x = [SET_REAL_VALUES[value]; 2];
+                    // bad: 1 nValues = 2 for one value reference, 2 a NULL
+                    // value reference array, 3 a NULL value array
+                    let vrs = if bad == 2 {
+                        ptr::null()
+                    } else {
+                        &r as *const u32
+                    };
+                    let xs = if bad == 3 { ptr::null() } else { x.as_ptr() };
+                    let s = fmi3SetFloat64(c, vrs, 1, xs, if bad == 1 { 2 } else { 1 });
+                    if bad > 0 || which == 4 || value > 0 {
+                        self.expect(false, s, m, op);
+                    } else {
+                        self.settled(s, op);
+                    }
+                }
+                Op::OutputDerivative { order, mismatch } => {
+                    let mut x = [0.0; 2];
+                    let n_values = if mismatch { 2 } else { 1 };
+                    let s = fmi3GetOutputDerivatives(
+                        c,
+                        &vr::THETA,
+                        1,
+                        &order,
+                        x.as_mut_ptr(),
+                        n_values,
+                    );
+                    if mismatch || order == 0 {
+                        self.expect(false, s, m, op);
+                    } else {
+                        self.settled(s, op);
+                    }
+                }
+                Op::SetStates { n, nan } => {
+                    let mut x = [0.0; 4];
+                    if nan {
+                        x[n.saturating_sub(1)] = f64::NAN;
+                    }
+                    let s = fmi3SetContinuousStates(c, x.as_ptr(), n);
+                    if !self.me || n != 2 || nan {
+                        self.expect(false, s, m, op);
+                    } else {
+                        self.settled(s, op);
+                    }
+                }
+                Op::EventIndicators { n } => {
+                    let mut z = [0.0; 14];
+                    let s = fmi3GetEventIndicators(c, z.as_mut_ptr(), n);
+                    if !self.me || n != 12 {
+                        self.expect(false, s, m, op);
+                    } else {
+                        self.settled(s, op);
+                    }
                 }
                 Op::Terminate => {
                     let s = fmi3Terminate(c);
