@@ -10,7 +10,10 @@
 #       profile (no optimisation, overflow checks; DEV_ROUNDS x DEV_STEPS,
 #       default 1 x 400). Fails on any memcheck error or definite/indirect
 #       leak. Then the Model Exchange tests (fmu-rocking/tests/model_exchange.rs)
-#       under memcheck. This is what tools/test.sh runs (about 1 minute).
+#       under memcheck, and FMI 3.0: an instance's life in a plain C host
+#       (co-simulation with early return, Model Exchange) and the 3.0 call
+#       sequences (fmu-rocking/tests/fmi3_c_api.rs). This is what
+#       tools/test.sh runs (about 1.5 minutes).
 #   tools/memcheck.sh --suites
 #       every test binary of fmu-rocking (fmu_import among them, which dlopens
 #       the packaged FMU) and fmi2-export, under memcheck

@@ -47,19 +47,6 @@ static void log3(void *env, fmi3Status status, const char *category, const char 
     fprintf(stderr, "status %d, %s: %s\n", status, category, message);
 }
 
-static double real_from_hex(const char *s) {
-    uint64_t bits = strtoull(s, NULL, 16);
-    double x;
-    memcpy(&x, &bits, sizeof x);
-    return x;
-}
-
-static uint64_t bits_of(double x) {
-    uint64_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    return bits;
-}
-
 static void check(fmi3Status status, const char *call) {
     if (status != 0) {
         fprintf(stderr, "%s returned status %d\n", call, status);
