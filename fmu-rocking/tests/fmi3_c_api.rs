@@ -30,7 +30,7 @@ fn op() -> impl Strategy<Value = Op> {
     prop_oneof![
         3 => Just(Op::EnterInit),
         3 => Just(Op::ExitInit),
-        8 => (prop::sample::select(vec![1e-3, 0.01, 0.05, 0.2]), -6.0..6.0f64)
+        8 => (prop::sample::select(vec![1e-3, 0.01, 0.05, 0.2, 4.4e-16]), -6.0..6.0f64)
             .prop_map(|(h, ag)| Op::DoStep { h, ag }),
         2 => Just(Op::EnterEventMode),
         2 => Just(Op::UpdateDiscreteStates),
