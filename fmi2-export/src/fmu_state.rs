@@ -188,7 +188,9 @@ impl<S: Slave> Inner<S> {
         if machine == M::Fatal {
             return Err("a state cannot be in state fatal".into());
         }
-        let me_only = matches!(machine, M::EventMode | M::ContinuousTimeMode);
+        // event mode is also FMI 3.0 co-simulation's, with eventModeUsed
+        let me_only =
+            machine == M::ContinuousTimeMode || (machine == M::EventMode && !self.event_mode_used);
         let cs_only = matches!(machine, M::StepComplete | M::StepFailed);
         if (me_only && !self.model_exchange) || (cs_only && self.model_exchange) {
             return Err(format!(
