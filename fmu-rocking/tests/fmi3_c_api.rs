@@ -277,11 +277,10 @@ fn fuzz_decoder_inputs_meet_the_oracle() {
 #[test]
 #[ignore]
 fn replay_fuzz_input() {
-    let path = std::env::var("FUZZ_INPUT").expect("FUZZ_INPUT=path of an input");
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("..")
-        .join(path);
-    let data = std::fs::read(&path).expect("read FUZZ_INPUT");
+    // the path is relative to the repository's root
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let data = std::fs::read(root.join(std::env::var("FUZZ_INPUT").expect("FUZZ_INPUT")))
+        .expect("read FUZZ_INPUT");
     let (me, event_mode, early, started, ops) = decode(&data);
     println!("me {me}, eventModeUsed {event_mode}, earlyReturnAllowed {early}, started {started}");
     for op in &ops {
