@@ -37,8 +37,11 @@ impl<S: Slave> Inner<S> {
             terminated: self.terminated,
             values: self.values.clone(),
             derivatives: self.derivatives.clone(),
-            slave: match (&self.slave, self.stale) {
-                (Some(s), false) => Some(s.state()),
+            // before initialization the model is only a cache of the values
+            // (built to evaluate a calculated variable): not saved, as
+            // deserialize refuses a model state in state instantiated
+            slave: match (&self.slave, self.stale, self.machine) {
+                (Some(s), false, m) if m != M::Instantiated => Some(s.state()),
                 _ => None,
             },
         }

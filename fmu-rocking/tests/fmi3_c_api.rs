@@ -21,7 +21,7 @@
 mod fmi3_driver;
 
 use fmi3_driver::*;
-use fmu_rocking::description::vr;
+use fmu_rocking::description::{vr, ROCKING_BLOCK};
 use fmu_rocking::*;
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -283,10 +283,16 @@ fn replay_fuzz_input() {
         .expect("read FUZZ_INPUT");
     let (me, event_mode, early, started, ops) = decode(&data);
     println!("me {me}, eventModeUsed {event_mode}, earlyReturnAllowed {early}, started {started}");
-    for op in &ops {
-        println!("{op:?}");
+    let mut run = Run::new(me, event_mode, early);
+    let prefix = if started {
+        start(me, event_mode)
+    } else {
+        vec![]
+    };
+    for op in prefix.iter().chain(&ops) {
+        println!("{op:?} in {:?} at t = {}", run.mode, run.t);
+        run.apply(op);
     }
-    run_bytes(&data);
 }
 
 /// Regression (found by the c_api3 libFuzzer target): an FMU state taken in
@@ -316,4 +322,31 @@ fn a_state_taken_in_co_simulation_event_mode_round_trips() {
         }
     }
     panic!("no early return by t = {}", run.t);
+}
+
+/// Regression (found by the c_api3 libFuzzer target): reading an event
+/// indicator before initialization builds the model to evaluate it; an FMU
+/// state taken then saved that model's state, and deserializing the
+/// serialized state was refused ("a model state in state instantiated").
+/// Each interface, fresh and after a reset.
+#[test]
+fn a_state_taken_before_initialization_round_trips() {
+    let indicator = ROCKING_BLOCK.fmi3_event_indicator_vr(0);
+    for (me, event_mode) in [(false, false), (false, true), (true, false)] {
+        let mut run = Run::new(me, event_mode, event_mode);
+        for o in [Op::GetFloat64 { vr: indicator }, Op::StateRoundTrip] {
+            run.apply(&o);
+        }
+        let mut run = Run::new(me, event_mode, event_mode);
+        for o in start(me, event_mode) {
+            run.apply(&o);
+        }
+        for o in [
+            Op::Reset,
+            Op::GetFloat64 { vr: indicator },
+            Op::StateRoundTrip,
+        ] {
+            run.apply(&o);
+        }
+    }
 }
