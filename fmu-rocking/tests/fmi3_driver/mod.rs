@@ -246,7 +246,8 @@ impl Run {
                     self.expect(m == M::Step, s, M::Step, op);
                     if m == M::Step {
                         assert!(
-                            last > self.t - 1e-300 && last <= self.t + h,
+                            // = t: the run ended at the step's start
+                            last >= self.t && last <= self.t + h,
                             "{last} after {} + {h}",
                             self.t
                         );
