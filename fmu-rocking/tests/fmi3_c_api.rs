@@ -281,18 +281,7 @@ fn replay_fuzz_input() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let data = std::fs::read(root.join(std::env::var("FUZZ_INPUT").expect("FUZZ_INPUT")))
         .expect("read FUZZ_INPUT");
-    let (me, event_mode, early, started, ops) = decode(&data);
-    println!("me {me}, eventModeUsed {event_mode}, earlyReturnAllowed {early}, started {started}");
-    let mut run = Run::new(me, event_mode, early);
-    let prefix = if started {
-        start(me, event_mode)
-    } else {
-        vec![]
-    };
-    for op in prefix.iter().chain(&ops) {
-        println!("{op:?} in {:?} at t = {}", run.mode, run.t);
-        run.apply(op);
-    }
+    run_bytes_traced(&data, true);
 }
 
 /// Regression (found by the c_api3 libFuzzer target): an FMU state taken in

@@ -513,9 +513,15 @@ pub fn decode(data: &[u8]) -> (bool, bool, bool, bool, Vec<Op>) {
     (bit(0), bit(1), bit(2), bit(3), ops)
 }
 
-/// Runs the sequence `data` decodes to on one fresh instance.
-pub fn run_bytes(data: &[u8]) {
+/// Runs the sequence `data` decodes to on one fresh instance; `trace`
+/// prints each operation with the oracle's mode and time before it.
+pub fn run_bytes_traced(data: &[u8], trace: bool) {
     let (me, event_mode, early, started, ops) = decode(data);
+    if trace {
+        println!(
+            "me {me}, eventModeUsed {event_mode}, earlyReturnAllowed {early}, started {started}"
+        );
+    }
     let mut run = Run::new(me, event_mode, early);
     let prefix = if started {
         start(me, event_mode)
@@ -523,6 +529,14 @@ pub fn run_bytes(data: &[u8]) {
         vec![]
     };
     for o in prefix.iter().chain(&ops) {
+        if trace {
+            println!("{o:?} in {:?} at t = {}", run.mode, run.t);
+        }
         run.apply(o);
     }
+}
+
+/// Runs the sequence `data` decodes to on one fresh instance.
+pub fn run_bytes(data: &[u8]) {
+    run_bytes_traced(data, false);
 }
