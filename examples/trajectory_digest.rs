@@ -130,6 +130,9 @@ impl Hasher {
             stats,
             limited,
             terminal,
+            // not hashed: the digest predates it, and it restates how the
+            // call ended (state.t below)
+            stopped_at_event: _,
         } = *e;
         // without a vertical input the model's range is never left
         assert!(terminal.is_none());

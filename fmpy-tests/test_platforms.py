@@ -355,15 +355,15 @@ def _windows_path(path):
     return "Z:" + os.path.abspath(path).replace("/", "\\")
 
 
-def test_win64_under_wine_matches_the_exact_solution_and_linux64(win64_dll, case, linux64_result, tmp_path_factory,
-                                                                 unzipped):
+def _wine_run(source, dll, args, work):
+    """Builds the C host `source` with mingw-w64 in `work` and runs it under
+    wine with the DLL `dll` and `args`; the finished process."""
     wine = shutil.which("wine") or shutil.which("wine64")
     if wine is None:
         pytest.skip("wine not found (Debian: wine64); tools/cross-deps.sh installs it")
-    work = tmp_path_factory.mktemp("c_host_win64")
-    exe = work / "free_rocking.exe"
+    exe = work / (source.stem + ".exe")
     cflags = ["-O2", "-Wall", "-Wextra", "-Werror", "-static-libgcc"]
-    subprocess.run([MINGW_GCC, "-std=c99"] + cflags + ["-o", str(exe), str(C_HOST / "free_rocking.c")], check=True)
+    subprocess.run([MINGW_GCC, "-std=c99"] + cflags + ["-o", str(exe), str(source)], check=True)
     env = dict(os.environ)
     env.update(
         WINEPREFIX=str(TARGET / "wine"),  # kept: creating it takes seconds
@@ -371,14 +371,12 @@ def test_win64_under_wine_matches_the_exact_solution_and_linux64(win64_dll, case
         # no dialogs offering to install wine-mono and wine-gecko
         WINEDLLOVERRIDES="mscoree,mshtml=",
     )
-    args = list(case["args"])
-    args[1] = "file:///" + _windows_path(os.path.join(unzipped, "resources")).replace("\\", "/")
-    cmd = [wine, str(exe), _windows_path(win64_dll)] + args
+    cmd = [wine, str(exe), _windows_path(dll)] + args
     r = _run(cmd, env)
     if r.returncode == 2 and f"error {ERROR_MOD_NOT_FOUND}" in r.stderr:
         # Rust's std imports ProcessPrng from bcryptprimitives.dll (Windows 10
         # and later), which wine 8 lacks: a stand-in beside the host only
-        imports = subprocess.run([MINGW_OBJDUMP, "-p", win64_dll], capture_output=True, text=True).stdout
+        imports = subprocess.run([MINGW_OBJDUMP, "-p", dll], capture_output=True, text=True).stdout
         assert "ProcessPrng" in imports, f"LoadLibrary failed for another reason: {r.stderr}"
         subprocess.run(
             [MINGW_GCC] + cflags + ["-shared", "-o", str(work / "bcryptprimitives.dll"),
@@ -388,6 +386,14 @@ def test_win64_under_wine_matches_the_exact_solution_and_linux64(win64_dll, case
         print("wine lacks ProcessPrng: the host runs with the test's bcryptprimitives.dll stand-in")
         r = _run(cmd, env)
     assert r.returncode == 0, r.stderr
+    return r
+
+
+def test_win64_under_wine_matches_the_exact_solution_and_linux64(win64_dll, case, linux64_result, tmp_path_factory,
+                                                                 unzipped):
+    args = list(case["args"])
+    args[1] = "file:///" + _windows_path(os.path.join(unzipped, "resources")).replace("\\", "/")
+    r = _wine_run(C_HOST / "free_rocking.c", win64_dll, args, tmp_path_factory.mktemp("c_host_win64"))
     theta_bits, omega_bits = _parse(r.stdout)
     _check_against_exact(theta_bits, omega_bits, case, "win64 under wine")
 
@@ -401,3 +407,52 @@ def test_win64_under_wine_matches_the_exact_solution_and_linux64(win64_dll, case
             rel = np.max(np.abs(a - b) / np.maximum(np.abs(b), 1e-300))
             pytest.fail(f"{name}: win64 and linux64 differ at {differ.size} of {len(w)} points "
                         f"(first at step {differ[0]}), by up to {rel:.1e} relative")
+
+
+@pytest.fixture(scope="module")
+def fmi3_binaries(tmp_path_factory):
+    """The FMI 3.0 archive extracted: (linux64 .so, win64 .dll, resources)."""
+    path = TARGET / "fmu" / "fmi3" / "RockingBlock.fmu"
+    assert path.is_file(), f"{path} not found: run `cargo xtask fmu` first"
+    out = tmp_path_factory.mktemp("fmu3")
+    with zipfile.ZipFile(path) as z:
+        z.extractall(out)
+    dll = out / "binaries" / "x86_64-windows" / "RockingBlock.dll"
+    if not dll.is_file():
+        pytest.skip(f"no x86_64-windows binary: {_windows_toolchain_missing()}")
+    return str(out / "binaries" / "x86_64-linux" / "RockingBlock.so"), str(dll), str(out / "resources")
+
+
+def test_fmi3_win64_under_wine_matches_linux64(fmi3_binaries, case, tmp_path_factory):
+    """The 3.0 functions of both binaries through a plain C host
+    (`free_rocking3.c`): rigid free rocking in co-simulation with event mode
+    and early return, and in Model Exchange (explicit Euler, event mode at
+    each sign change of an indicator). Both platforms print the same bits;
+    in co-simulation each early return is at an exact impact time. (One
+    test for both modes: the second wine run finds wineserver running, which
+    saves most of a run's time.)"""
+    if shutil.which("cc") is None:
+        pytest.skip("no C compiler (cc) on this machine")
+    so, dll, resources = fmi3_binaries
+    work = tmp_path_factory.mktemp("c_host3")
+    exe = work / "free_rocking3"
+    subprocess.run(["cc", "-O2", "-std=c99", "-Wall", "-Wextra", "-Werror", "-o", str(exe),
+                    str(C_HOST / "free_rocking3.c"), "-ldl"], check=True)
+    for mode in ["cs", "me"]:
+        args = list(case["args"])
+        args[1] = resources + os.sep
+        linux = _run([str(exe), so, mode] + args)
+        assert linux.returncode == 0, linux.stderr
+        args[1] = _windows_path(resources) + "\\"
+        win = _wine_run(C_HOST / "free_rocking3.c", dll, [mode] + args, work)
+        lines = linux.stdout.splitlines()
+        assert win.stdout.replace("\r", "").splitlines() == lines, f"{mode}: win64 and linux64 differ"
+        events = [_from_hex(line.split()[1]) for line in lines if line.startswith("event ")]
+        if mode == "cs":
+            exact = [te for te, _ in case["exact"]]
+            assert len(events) == len(exact), (events, exact)
+            worst = max(abs(t - te) / te for t, te in zip(events, exact))
+            print(f"fmi3 cs: {len(events)} early returns, worst relative error of their times {worst:.1e}")
+            assert worst < RTOL
+        else:
+            assert events, "Model Exchange met no event"

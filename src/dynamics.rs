@@ -185,6 +185,11 @@ pub struct Events {
     /// The input left the model's range (docs/model.md §6.5): the call
     /// ended there, and the run is over.
     pub terminal: Option<Terminal>,
+    /// The call stopped at an event it was asked to stop at
+    /// ([`Simulator::advance_to_event`]): `state.t` is the event's time,
+    /// which may be `t_end` itself (an event within the last ulp of the
+    /// call rounds to it), so `state.t < t_end` does not tell.
+    pub stopped_at_event: bool,
 }
 
 impl Events {

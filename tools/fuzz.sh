@@ -1,7 +1,14 @@
 #!/usr/bin/env bash
-# Fuzzes the FMU's C API with libFuzzer: `tools/fuzz.sh [seconds]` (default
-# 600). Not part of tools/test.sh; the same interpreter runs as proptests in
-# `cargo test` (fmu-rocking/tests/c_api_fuzz.rs).
+# Fuzzes the FMU's C API with libFuzzer: `tools/fuzz.sh [seconds [target]]`
+# (default 600 s, target c_api). Not part of tools/test.sh; the same
+# interpreters run as proptests in `cargo test`.
+#
+# Targets: c_api (FMI 2.0, fmu-rocking/tests/fuzz_driver, proptests in
+# fmu-rocking/tests/c_api_fuzz.rs) and c_api3 (FMI 3.0: co-simulation with
+# and without event mode and early return, Model Exchange, der(ag)/der(av),
+# bad sizes, NULL arrays, unknown value references, non-finite values;
+# fmu-rocking/tests/fmi3_driver, proptests and a replay of the seeds in
+# fmu-rocking/tests/fmi3_c_api.rs: `tools/fuzz.sh 600 c_api3`).
 #
 # The target, fuzz/fuzz_targets/c_api.rs, decodes its input into up to 160
 # FMI calls on up to four instances (fmu-rocking/tests/fuzz_driver/mod.rs)
@@ -13,8 +20,8 @@
 # lets the stable toolchain accept them. FUZZ_SANITIZER=none runs without
 # AddressSanitizer (faster, or where it is not available).
 #
-# New inputs go to fuzz/target/corpus-c_api (not committed); the committed
-# seeds in fuzz/corpus/c_api are only read. To fold new inputs into the
+# New inputs go to fuzz/target/corpus-TARGET (not committed); the committed
+# seeds in fuzz/corpus/TARGET are only read. To fold new inputs into the
 # committed corpus, minimised (cmin rewrites the directory in place):
 #   cd fuzz && cp target/corpus-c_api/* corpus/c_api/ &&
 #   RUSTC_BOOTSTRAP=1 cargo fuzz cmin c_api corpus/c_api -- -timeout=30
@@ -25,10 +32,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/../fuzz"
 secs="${1:-600}"
+target="${2:-c_api}"
 if ! cargo fuzz --version >/dev/null 2>&1; then
     cargo install cargo-fuzz --locked
 fi
 export RUSTC_BOOTSTRAP=1
-mkdir -p target/corpus-c_api
-cargo fuzz run c_api -s "${FUZZ_SANITIZER:-address}" target/corpus-c_api corpus/c_api -- \
+mkdir -p "target/corpus-$target"
+cargo fuzz run "$target" -s "${FUZZ_SANITIZER:-address}" "target/corpus-$target" "corpus/$target" -- \
     -max_total_time="$secs" -timeout=30 -max_len=4096 -rss_limit_mb=4096 -print_final_stats=1

@@ -10,7 +10,10 @@
 #       profile (no optimisation, overflow checks; DEV_ROUNDS x DEV_STEPS,
 #       default 1 x 400). Fails on any memcheck error or definite/indirect
 #       leak. Then the Model Exchange tests (fmu-rocking/tests/model_exchange.rs)
-#       under memcheck. This is what tools/test.sh runs (about 1 minute).
+#       under memcheck, and FMI 3.0: an instance's life in a plain C host
+#       (co-simulation with early return, Model Exchange) and the 3.0 call
+#       sequences (fmu-rocking/tests/fmi3_c_api.rs). This is what
+#       tools/test.sh runs (about 1.5 minutes).
 #   tools/memcheck.sh --suites
 #       every test binary of fmu-rocking (fmu_import among them, which dlopens
 #       the packaged FMU) and fmi2-export, under memcheck
@@ -119,6 +122,33 @@ case "${1:-}" in
     (cd "$dir" && "${vg[@]}" --suppressions="$root/$supp" --log-file="$log" "$exe" -q) | tail -n 2 || status=1
     summary "$log"
   done < <(test_binaries -p fmu-rocking --test model_exchange)
+  # FMI 3.0: an instance's whole life through the C API in a plain C host
+  # (fmu-rocking/tests/c_host/free_rocking3.c: co-simulation with event mode
+  # and early return at each impact, Model Exchange with event handling),
+  # then the 3.0 call sequences (fmu-rocking/tests/fmi3_c_api.rs: the state
+  # machine, bad sizes, NULL arrays, unknown value references, non-finite
+  # values), PROPTEST_CASES=64
+  cargo build --quiet --release -p fmu-rocking
+  [ -f "$target/fmu/RockingBlock.fmu" ] || cargo xtask fmu >/dev/null # the GUID is the archive's
+  guid=$(unzip -p "$target/fmu/RockingBlock.fmu" modelDescription.xml | sed -n 's/.*guid="\([^"]*\)".*/\1/p')
+  host="$out/free_rocking3"
+  cc -O2 -std=c99 -Wall -Wextra -Werror -o "$host" fmu-rocking/tests/c_host/free_rocking3.c -ldl
+  # rigid block (interface 1) from theta = 0.1 rad, 300 steps of 0.01 s,
+  # tolerance 1e-9 (doubles as hex bits)
+  for mode in cs me; do
+    log="$out/fmi3_$mode.log"
+    echo "-- memcheck: FMI 3.0 $mode life (free_rocking3, release profile)"
+    "${vg[@]}" --suppressions="$supp" --log-file="$log" "$host" "$target/release/libfmu_rocking.so" "$mode" \
+      "$guid" \
+      "$PWD/" 3e112e0be826d695 3f847ae147ae147b 300 12 1 20 3fb999999999999a 21 | grep -c "^event" | sed 's/^/   events: /' || status=1
+    summary "$log"
+  done
+  while read -r name exe dir; do
+    log="$out/fmi3_c_api.log"
+    echo "-- memcheck: the FMI 3.0 call sequences (release profile, PROPTEST_CASES=64)"
+    (cd "$dir" && PROPTEST_CASES=64 "${vg[@]}" --suppressions="$root/$supp" --log-file="$log" "$exe" -q) | tail -n 2 || status=1
+    summary "$log"
+  done < <(test_binaries -p fmu-rocking --test fmi3_c_api)
   ;;
 esac
 if [ "$status" -ne 0 ]; then

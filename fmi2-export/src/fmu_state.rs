@@ -37,8 +37,11 @@ impl<S: Slave> Inner<S> {
             terminated: self.terminated,
             values: self.values.clone(),
             derivatives: self.derivatives.clone(),
-            slave: match (&self.slave, self.stale) {
-                (Some(s), false) => Some(s.state()),
+            // before initialization the model is only a cache of the values
+            // (built to evaluate a calculated variable): not saved, as
+            // deserialize refuses a model state in state instantiated
+            slave: match (&self.slave, self.stale, self.machine) {
+                (Some(s), false, m) if m != M::Instantiated => Some(s.state()),
                 _ => None,
             },
         }
@@ -188,7 +191,9 @@ impl<S: Slave> Inner<S> {
         if machine == M::Fatal {
             return Err("a state cannot be in state fatal".into());
         }
-        let me_only = matches!(machine, M::EventMode | M::ContinuousTimeMode);
+        // event mode is also FMI 3.0 co-simulation's, with eventModeUsed
+        let me_only =
+            machine == M::ContinuousTimeMode || (machine == M::EventMode && !self.event_mode_used);
         let cs_only = matches!(machine, M::StepComplete | M::StepFailed);
         if (me_only && !self.model_exchange) || (cs_only && self.model_exchange) {
             return Err(format!(

@@ -186,8 +186,9 @@ pub enum StepEnd {
     /// from a state it saved (`fmi2SetFMUstate`) with smaller steps.
     Stopped { time: f64, reason: String },
     /// Only from [`Slave::do_step_to_event`]: the model stopped at an event
-    /// (an impact, an uplift...) at `time`, before `t + h`; the state is the
-    /// one just after the event. FMI 3.0's early return.
+    /// (an impact, an uplift...) at `time`, before `t + h` or at it; the
+    /// state is the one just after the event. FMI 3.0's early return (at
+    /// `t + h`: the step completes, and the event is still reported).
     Event { time: f64 },
 }
 

@@ -56,8 +56,11 @@ pub unsafe fn do_step<S: Slave>(
         *last = i.last_successful_time;
         *terminate = i.terminated;
         let stopped_at_event = matches!(result, Ok((_, true)));
-        *early = stopped_at_event && i.early_return_allowed;
-        *event = *early && i.event_mode_used && !i.terminated;
+        // An event at t + h itself completes the step (no early return) but
+        // still needs event mode: each event is reported once, at the step
+        // that applied it.
+        *early = stopped_at_event && i.early_return_allowed && *last < t + h;
+        *event = stopped_at_event && i.event_mode_used && !i.terminated;
         result.map(|(s, _)| s)
     })
 }

@@ -302,7 +302,9 @@ impl RockingSlave {
                 ),
             });
         }
-        if to_event && s.t < t + h {
+        // an event at the step's end (within its last ulp) is an event too:
+        // the impact is applied, and the host must hear of it
+        if to_event && ev.stopped_at_event {
             return Ok(StepEnd::Event { time: s.t });
         }
         Ok(StepEnd::Completed)

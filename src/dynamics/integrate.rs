@@ -128,6 +128,7 @@ impl Simulator {
                         // starts there at rest (theta = omega = 0) and would
                         // report it again, for ever.
                         if stop_at_event && t0 + tu > t0 {
+                            ev.stopped_at_event = true;
                             return ev;
                         }
                     }
@@ -138,6 +139,7 @@ impl Simulator {
                 Method::Dop853 => StepCx::new::<Dop853>(call, st, &mut ev).steps::<Dop853>(),
             };
             if stop != Stop::End || st.overturned || !st.at_rest || st.t >= t_end {
+                ev.stopped_at_event = stop == Stop::Event;
                 return ev;
             }
         }

@@ -8,6 +8,7 @@
 #define FMI2_HOST_H
 
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -85,6 +86,21 @@ static inline void *symbol(library_t library, const char *name) {
     }
 #endif
     return f;
+}
+
+/* A double from the 16 hex digits of its bits (C's strtod differs between C
+ * runtimes in the last bit; bit patterns do not), and back. */
+static inline double real_from_hex(const char *s) {
+    uint64_t bits = strtoull(s, NULL, 16);
+    double x;
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}
+
+static inline uint64_t bits_of(double x) {
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    return bits;
 }
 
 #endif

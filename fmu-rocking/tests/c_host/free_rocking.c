@@ -35,19 +35,6 @@ typedef fmi2Status (*SetRealFn)(fmi2Component, const fmi2ValueReference *, size_
 typedef fmi2Status (*GetRealFn)(fmi2Component, const fmi2ValueReference *, size_t, fmi2Real *);
 typedef fmi2Status (*DoStepFn)(fmi2Component, fmi2Real, fmi2Real, fmi2Boolean);
 
-static double real_from_hex(const char *s) {
-    uint64_t bits = strtoull(s, NULL, 16);
-    double x;
-    memcpy(&x, &bits, sizeof x);
-    return x;
-}
-
-static uint64_t bits_of(double x) {
-    uint64_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    return bits;
-}
-
 static void check(fmi2Status status, const char *call) {
     if (status != fmi2OK) {
         fprintf(stderr, "%s returned status %d\n", call, status);
