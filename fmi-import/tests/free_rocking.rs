@@ -219,15 +219,24 @@ fn the_fmi_crate_reads_the_model_description() {
     assert_eq!(cs.can_serialize_fmu_state, Some(true));
     assert_eq!(cs.can_handle_variable_communication_step_size, Some(true));
     // Model Exchange in the same archive (docs/model-exchange.md): the same
-    // binary, and the 10 event indicators that page lists
+    // binary, and the 12 event indicators that page lists
     let me = md
         .model_exchange
         .as_ref()
         .expect("a Model Exchange interface");
     assert_eq!(me.model_identifier, "RockingBlock");
-    assert_eq!(md.number_of_event_indicators, Some(10));
+    assert_eq!(md.number_of_event_indicators, Some(12));
     let names: Vec<&str> = md.get_model_variables().map(|v| v.name.as_str()).collect();
-    for n in ["ag", "theta", "omega", "impacts", "overturned", "Fx", "Fz"] {
+    for n in [
+        "ag",
+        "theta",
+        "omega",
+        "omegaW",
+        "impacts",
+        "overturned",
+        "Fx",
+        "Fz",
+    ] {
         assert!(names.contains(&n), "{n} missing");
     }
     let ag = md.model_variable_by_name("ag").unwrap();
