@@ -150,21 +150,21 @@ impl Simulator {
     /// the term `-(dI/dN)(dN/dt) omega/(2 sqrt(I))` wrong under a varying
     /// `av` instead; the rigid law's `IO` does not depend on N.
     pub fn derivatives_q(&self, c: &Continuous, ag: f64, av: f64) -> [f64; 2] {
+        self.derivatives_power(c, ag, av, self.inertia_at(c.state.theta, av))
+    }
+
+    /// `[theta', q']` at `c` (its `omega`) under `ag`, `av`, given `(I,
+    /// dI/dphi)` there ([`derivatives_q`](Self::derivatives_q)).
+    fn derivatives_power(&self, c: &Continuous, ag: f64, av: f64, (i, di): (f64, f64)) -> [f64; 2] {
         let [theta_dot, omega_dot] = self.derivatives_vertical(c, ag, av);
         if theta_dot == 0.0 && omega_dot == 0.0 {
             return [0.0, 0.0];
         }
-        let (i, di) = self.inertia_at(c.state.theta, av);
         let sq = i.sqrt();
-        let s = if c.state.theta != 0.0 {
-            c.state.theta.signum()
-        } else {
-            c.side
-        };
         let omega = c.state.omega;
         [
             theta_dot,
-            sq * omega_dot + 0.5 * s * di * omega * omega / sq,
+            sq * omega_dot + 0.5 * toe_sign(c) * di * omega * omega / sq,
         ]
     }
 
@@ -214,20 +214,19 @@ impl Simulator {
     /// [`weight_referral`](Self::weight_referral) is `None` this is
     /// [`derivatives_vertical`](Self::derivatives_vertical), bit for bit.
     pub fn derivatives_weight_referred(&self, cw: &Continuous, ag: f64, av: f64) -> [f64; 2] {
-        let c = self.from_weight_referred(*cw, av);
-        if self.weight_referral(c.state.theta, av).is_none() {
-            return self.derivatives_vertical(&c, ag, av);
+        if av == 0.0 || !self.inertia_moves_with_n() {
+            return self.derivatives_vertical(cw, ag, av);
         }
-        let [theta_dot, q_dot] = self.derivatives_q(&c, ag, av);
-        let (j, dj) = self.inertia_at(c.state.theta, 0.0);
-        let s = if c.state.theta != 0.0 {
-            c.state.theta.signum()
-        } else {
-            c.side
-        };
+        // each inertia once: every one is a contact solve at (phi, N)
+        let theta = cw.state.theta;
+        let (i, di) = self.inertia_at(theta, av);
+        let (j, dj) = self.inertia_at(theta, 0.0);
+        let mut c = *cw;
+        c.state.omega /= (i / j).sqrt();
+        let [theta_dot, q_dot] = self.derivatives_power(&c, ag, av, (i, di));
         [
             theta_dot,
-            q_dot / j.sqrt() - 0.5 * cw.state.omega * s * dj * theta_dot / j,
+            q_dot / j.sqrt() - 0.5 * cw.state.omega * toe_sign(cw) * dj * theta_dot / j,
         ]
     }
 
@@ -503,6 +502,15 @@ impl Simulator {
 
     fn is_rigid(&self) -> bool {
         self.model.interface.law() == Law::Rigid
+    }
+}
+
+/// `s = sgn(theta)`, the toe's side at `theta = 0`.
+fn toe_sign(c: &Continuous) -> f64 {
+    if c.state.theta != 0.0 {
+        c.state.theta.signum()
+    } else {
+        c.side
     }
 }
 
