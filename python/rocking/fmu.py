@@ -87,6 +87,17 @@ def did_you_mean(name, names):
     return f"; did you mean {', '.join(close)}?" if close else ""
 
 
+def enumeration_value(name, value, enumerations):
+    """`value` of the variable `name`, an enumeration item's name replaced by its value
+    (`enumerations`: variable name -> {item name: value})."""
+    if name in enumerations and isinstance(value, str):
+        items = enumerations[name]
+        if value not in items:
+            raise ValueError(f"{name} = {value!r}: not one of {sorted(items)}")
+        return items[value]
+    return value
+
+
 def check_times(stop_time, output_interval):
     """ValueError naming the argument unless stop_time >= 0 and output_interval > 0 (finite, s)."""
     if not (math.isfinite(stop_time) and stop_time >= 0):
@@ -293,12 +304,8 @@ class RockingFMU:
         for name, value in params.items():
             if name not in self.variables:
                 raise KeyError(f"{name!r} is not a variable of the FMU{self._close_names(name)}")
-            if name in self.enumerations and isinstance(value, str):
-                items = self.enumerations[name]
-                if value not in items:
-                    raise ValueError(f"{name} = {value!r}: not one of {sorted(items)}")
-                value = items[value]
-            elif isinstance(value, (np.floating, np.integer)):
+            value = enumeration_value(name, value, self.enumerations)
+            if isinstance(value, (np.floating, np.integer)):
                 value = value.item()
             out[name] = value
         return out

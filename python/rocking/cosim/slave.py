@@ -66,12 +66,7 @@ class Extracted:
         """(the variable `name`, `value` with an enumeration item's name replaced by its value)."""
         if name not in self.variables:
             raise KeyError(f"{name!r} is not a variable of {self.name}.fmu")
-        if name in self.enumerations and isinstance(value, str):
-            items = self.enumerations[name]
-            if value not in items:
-                raise ValueError(f"{name} = {value!r}: not one of {sorted(items)}")
-            value = items[value]
-        return self.variables[name], value
+        return self.variables[name], _fmu.enumeration_value(name, value, self.enumerations)
 
 
 class Slave(Extracted):
