@@ -81,6 +81,23 @@ pub struct Interface {
     theta_c: f64,
 }
 
+/// Iterations of a loaded solve started in the regime of its hint before
+/// the regime is decided from the bed resultants instead
+/// ([`Interface::contact_loaded`]): from a nearby contact the solve takes
+/// one or two.
+const HINTED_MAX_ITER: u32 = 6;
+
+/// The regime of a contact whose heel is `closed` (`a >= D`) and whose toe
+/// has `crushed` (`a > a1`).
+fn regime_of(closed: bool, crushed: bool) -> Regime {
+    match (closed, crushed) {
+        (true, false) => Regime::FullContact,
+        (false, false) => Regime::Partial,
+        (false, true) => Regime::PartialCrushing,
+        (true, true) => Regime::FullCrushing,
+    }
+}
+
 /// Relative tolerance of the equilibrium residual `|N(a) - W| / W`.
 const EQUILIBRIUM_RTOL: f64 = 2e-15;
 const MAX_ITER: u32 = 200;
@@ -261,20 +278,26 @@ impl Interface {
                 (toe(phi), 0.0)
             };
         }
+        if phi > 0.0 && self.law != Law::Rigid && a_hint > 0.0 && a_hint.is_finite() {
+            // The regime of a nearby contact is nearly always this one's:
+            // solved there, the solve itself shows it (and the two bed
+            // resultants that decide the regime are not evaluated).
+            let k = self.kn * phi;
+            let regime = regime_of(a_hint >= self.d, a_hint > self.fm / k);
+            let (c, xel, inside) = self.solve_in(phi, n, regime, a_hint, HINTED_MAX_ITER);
+            if inside {
+                return (c, xel);
+            }
+        }
         let regime = if phi == 0.0 || self.law == Law::Rigid {
             Regime::FullContact
         } else {
             let k = self.kn * phi;
             let a1 = self.fm / k;
             // Nbed grows with a: a >= D iff n >= Nbed(D), xp > 0 iff n > Nbed(a1)
-            let closed = n >= self.resultants(k, a1, self.d).n;
-            let crushed = a1.is_finite() && n > self.resultants(k, a1, a1).n;
-            match (closed, crushed) {
-                (true, false) => Regime::FullContact,
-                (false, false) => Regime::Partial,
-                (false, true) => Regime::PartialCrushing,
-                (true, true) => Regime::FullCrushing,
-            }
+            let closed = n >= self.bed_resultant(k, a1, self.d);
+            let crushed = a1.is_finite() && n > self.bed_resultant(k, a1, a1);
+            regime_of(closed, crushed)
         };
         self.solve(phi, n, regime, a_hint)
     }
@@ -290,9 +313,9 @@ impl Interface {
         }
         let k = self.kn * phi;
         let a1 = self.fm / k;
-        let heel = 1.0 - self.resultants(k, a1, self.d).n / n;
+        let heel = 1.0 - self.bed_resultant(k, a1, self.d) / n;
         let toe = if a1.is_finite() {
-            1.0 - self.resultants(k, a1, a1).n / n
+            1.0 - self.bed_resultant(k, a1, a1) / n
         } else {
             -1.0
         };
@@ -303,6 +326,23 @@ impl Interface {
     /// and the elastic zone's centroid `xel` (m from the toe).
     #[inline(always)]
     fn solve(&self, phi: f64, w: f64, regime: Regime, a_hint: f64) -> (Contact, f64) {
+        let (c, xel, _) = self.solve_in(phi, w, regime, a_hint, MAX_ITER);
+        (c, xel)
+    }
+
+    /// [`solve`](Self::solve) with at most `max_iter` iterations, and
+    /// whether the equilibrium lies in `regime`: the residual met its
+    /// tolerance strictly inside the regime's range of `a` (`Nbed` grows
+    /// with `a` through every regime, so the root is there).
+    #[inline(always)]
+    fn solve_in(
+        &self,
+        phi: f64,
+        w: f64,
+        regime: Regime,
+        a_hint: f64,
+        max_iter: u32,
+    ) -> (Contact, f64, bool) {
         if phi == 0.0 {
             let c = Contact {
                 af: self.d / 2.0,
@@ -318,10 +358,10 @@ impl Interface {
                 regime: Regime::FullContact,
                 iterations: 0,
             };
-            return (c, self.d / 2.0);
+            return (c, self.d / 2.0, regime == Regime::FullContact);
         }
         if self.law == Law::Rigid {
-            return (toe(phi), 0.0);
+            return (toe(phi), 0.0, true);
         }
         let d = self.d;
         let k = self.kn * phi; // stress per unit length of closure, Pa/m
@@ -339,7 +379,8 @@ impl Interface {
                 iterations: 0,
             };
             // the whole section is elastic: its centroid
-            return (c, self.s_full[1] / self.s_full[0]);
+            let inside = a >= d && a <= self.fm / k;
+            return (c, self.s_full[1] / self.s_full[0], inside);
         }
         // Elastic length a1: the closure at which the stress reaches fm.
         let a1 = self.fm / k;
@@ -353,11 +394,17 @@ impl Interface {
         } else {
             self.first_guess(k, a1, lo, hi)
         };
+        let range = (lo, hi);
+        let mut converged = false;
         let mut iterations = 0;
         let mut r = self.resultants(k, a1, a);
         loop {
             let f = r.n - w;
-            if f.abs() <= EQUILIBRIUM_RTOL * w || iterations >= MAX_ITER {
+            if f.abs() <= EQUILIBRIUM_RTOL * w {
+                converged = true;
+                break;
+            }
+            if iterations >= max_iter {
                 break;
             }
             if f > 0.0 {
@@ -379,6 +426,7 @@ impl Interface {
                 // along by their Taylor series instead of re-evaluating.
                 r.shift(next - a);
                 a = next;
+                converged = true;
                 break;
             }
             if next == a || hi - lo <= 4.0 * f64::EPSILON * hi {
@@ -401,7 +449,8 @@ impl Interface {
             regime,
             iterations,
         };
-        (c, r.xp + r.zone_moment / r.zone_area)
+        let inside = converged && a > range.0 && a < range.1;
+        (c, r.xp + r.zone_moment / r.zone_area, inside)
     }
 
     /// Second derivatives in `phi` of a solved contact `c`:
@@ -483,30 +532,60 @@ impl Interface {
         }
     }
 
+    /// The zones of the stress profile at `a` with elastic length `a1`
+    /// (m): each cumulative moment evaluated once.
+    #[inline(always)]
+    fn zones(&self, a1: f64, a: f64) -> Zones {
+        let x2 = a.min(self.d);
+        let xp = (a - a1).clamp(0.0, x2);
+        let sp = if xp > 0.0 {
+            self.shape.moments(xp)
+        } else {
+            [0.0; 3]
+        };
+        let l = if xp == 0.0 && a >= self.d {
+            // whole base elastic: the moments about the toe are known
+            self.s_full
+        } else {
+            // moments(D) is s_full
+            let sq = || {
+                if a >= self.d {
+                    self.s_full
+                } else {
+                    self.shape.moments(x2)
+                }
+            };
+            self.shape.zone_moments_from(xp, x2, || sp, sq)
+        };
+        Zones {
+            xp,
+            x2,
+            e: a - xp,
+            l,
+            sp,
+        }
+    }
+
+    /// The bed resultant `Nbed(a, phi)` with `k = kn phi` and `a1 = fm/k`
+    /// (docs/model.md §6.4), N: the `n` of [`resultants`](Self::resultants)
+    /// without the rest.
+    #[inline]
+    fn bed_resultant(&self, k: f64, a1: f64, a: f64) -> f64 {
+        let z = self.zones(a1, a);
+        z.plastic(self.fm).0 + k * z.force()
+    }
+
     /// Force and moment of the stress profile with closure `k (a - x)`,
     /// capped at `fm`: plastic zone `[0, xp]`, `xp = a - a1`, elastic zone
     /// `[xp, x2]` (docs/model.md §2). The elastic zone's integrals are taken
     /// about its start `xp` so that no digits cancel when it is narrow.
     #[inline]
     fn resultants(&self, k: f64, a1: f64, a: f64) -> Resultants {
-        let x2 = a.min(self.d);
-        let xp = (a - a1).clamp(0.0, x2);
-        let l = if xp == 0.0 && a >= self.d {
-            // whole base elastic: the moments about the toe are known
-            self.s_full
-        } else {
-            self.shape.zone_moments(xp, x2)
-        };
-        let (np, mp) = if xp > 0.0 {
-            let sp = self.shape.moments(xp);
-            (self.fm * sp[0], self.fm * sp[1])
-        } else {
-            (0.0, 0.0)
-        };
-        // closure at xp is e = a - xp: ∫ (a - x) w = e L0 - L1 and
+        let z = self.zones(a1, a);
+        let (x2, xp, l, e) = (z.x2, z.xp, z.l, z.e);
+        let (np, mp) = z.plastic(self.fm);
+        let f = z.force();
         // ∫ (a - x) x w = xp (e L0 - L1) + e L1 - L2 over the elastic zone
-        let e = a - xp;
-        let f = e * l[0] - l[1];
         let mz = xp * f + e * l[1] - l[2];
         // The elastic zone gains w(x2) at its end (while a < D) and loses
         // w(xp) at its start (while crushing) as a grows.
@@ -529,7 +608,7 @@ impl Interface {
         Resultants {
             xp,
             zone_moment: l[1],
-            n: np + k * f,
+            n: np + k * f, // = bed_resultant(k, a1, a)
             m: mp + k * mz,
             dn_da: k * l[0],
             d2n_da2: k * (grow - lose),
@@ -539,6 +618,41 @@ impl Interface {
             dcentral_da,
             zone_force: f,
             zone_area: l[0],
+        }
+    }
+}
+
+/// The plastic zone `[0, xp]` and the elastic zone `[xp, x2]` of the
+/// stress profile at one `a` (docs/model.md §2).
+struct Zones {
+    /// End of the plastic zone, m from the toe.
+    xp: f64,
+    /// End of the elastic zone, `min(a, D)`, m.
+    x2: f64,
+    /// Closure at `xp`, `a - xp`, m.
+    e: f64,
+    /// Moments of the elastic zone about `xp`, `[L0, L1, L2]`.
+    l: [f64; 3],
+    /// Moments of the plastic zone about the toe, `[S0, S1, S2](xp)`
+    /// (zero without one).
+    sp: [f64; 3],
+}
+
+impl Zones {
+    /// `∫ (a - x) w dx` over the elastic zone, `e L0 - L1`, m³.
+    #[inline(always)]
+    fn force(&self) -> f64 {
+        self.e * self.l[0] - self.l[1]
+    }
+
+    /// Force and moment about the toe of the plastic zone at stress `fm`
+    /// (Pa): N, N m (none without one: `fm` is infinite on an elastic bed).
+    #[inline(always)]
+    fn plastic(&self, fm: f64) -> (f64, f64) {
+        if self.xp > 0.0 {
+            (fm * self.sp[0], fm * self.sp[1])
+        } else {
+            (0.0, 0.0)
         }
     }
 }

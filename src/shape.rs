@@ -120,6 +120,28 @@ impl Shape {
     /// at least 4 zone lengths away the rule's error is below 1e-18 relative.
     #[inline]
     pub fn zone_moments(&self, p: f64, q: f64) -> [f64; 3] {
+        let sp = || {
+            if p > 0.0 {
+                self.moments(p)
+            } else {
+                [0.0; 3]
+            }
+        };
+        self.zone_moments_from(p, q, sp, || self.moments(q))
+    }
+
+    /// [`zone_moments`](Self::zone_moments) for a caller that has the
+    /// cumulative moments at the ends, `sp = moments(p)` (zero at `p = 0`)
+    /// and `sq = moments(q)`: taken from them where the difference is
+    /// used, not evaluated again.
+    #[inline]
+    pub fn zone_moments_from(
+        &self,
+        p: f64,
+        q: f64,
+        sp: impl FnOnce() -> [f64; 3],
+        sq: impl FnOnce() -> [f64; 3],
+    ) -> [f64; 3] {
         if q <= p {
             return [0.0; 3];
         }
@@ -135,8 +157,8 @@ impl Shape {
             }
             return out;
         }
-        let sq = self.moments(q);
-        let sp = if p > 0.0 { self.moments(p) } else { [0.0; 3] };
+        let sq = sq();
+        let sp = sp();
         let d = [sq[0] - sp[0], sq[1] - sp[1], sq[2] - sp[2]];
         [d[0], d[1] - p * d[0], d[2] - 2.0 * p * d[1] + p * p * d[0]]
     }

@@ -11,7 +11,7 @@ mod support;
 
 use rocking::dynamics::{GroundInput, OutOfRange, Simulator, State, VerticalInput};
 use rocking::model::{LawKind, Restitution};
-use rocking::{Model, Params};
+use rocking::{Law, Model, Params, Regime};
 use support::exact::Exact;
 use support::{quad, rigid_block};
 
@@ -1017,5 +1017,71 @@ fn omega_w_carries_the_jump_rule_of_a_held_av() {
             (w_after - w_before).abs() <= 4.0 * f64::EPSILON * w_before.abs(),
             "{w_before} -> {w_after}"
         );
+    }
+}
+
+/// The equation of motion's contact under `N` (the table at the weight at
+/// `phi W/N` where the bed has not crushed, else the solve at N started in
+/// the regime of the previous contact's `a`) against the solve at N that
+/// decides the regime from the bed resultants with no warm start, in
+/// [`reference_accel`]: `theta''` over rotations to `thetaOv(N)` and
+/// apparent weights from 0.4 W to 1.6 W, on a rectangle and on the
+/// Dharahara ring (whose bed crushes from small rotations), warm started
+/// from no contact, from the right one, and from contacts in the other
+/// regimes (`a` past `a1 = fm/(kn phi)` or `D`, or far short of it).
+#[test]
+fn loaded_equation_of_motion_matches_the_unwarmed_solve() {
+    let omega = 0.05;
+    for params in [Params::default(), dharahara_f170_fm5()] {
+        let m = params.build().unwrap();
+        let sim = Simulator::new(m, 1e-12);
+        let (w, d) = (m.body.weight, m.interface.depth());
+        let Law::ElastoPlastic { kn, fm } = m.interface.law() else {
+            panic!("a crushing bed")
+        };
+        let (mut worst, mut crushed, mut checked) = (0.0f64, 0, 0);
+        for ratio in [0.4, 0.8, 1.0, 1.25, 1.6] {
+            let n = ratio * w;
+            let av = (ratio - 1.0) * m.body.weight / m.body.mass;
+            // below the overturning rotation at the weight too: a state
+            // started past it is overturned
+            let theta_ov = m.theta_ov_at(n).min(m.theta_ov);
+            for k in 1..120 {
+                let phi = theta_ov * k as f64 / 120.0;
+                let (c, _) = m.interface.contact_loaded(phi, n, f64::NAN);
+                crushed += usize::from(matches!(
+                    c.regime,
+                    Regime::PartialCrushing | Regime::FullCrushing
+                ));
+                let want = reference_accel(&m, n, 0.0, phi, omega, true);
+                // theta'' of the weight's moment about the centre of the base
+                let scale = n * d / 2.0 / m.levers(0.0, &m.interface.contact(0.0)).inertia;
+                let a1 = fm / (kn * phi);
+                for hint in [
+                    f64::NAN,
+                    c.a,
+                    0.3 * c.a,
+                    3.0 * c.a,
+                    0.99 * a1,
+                    1.01 * a1,
+                    1.01 * d,
+                ] {
+                    let mut st = sim.continuous(phi, omega, 0.0);
+                    st.state.a = hint;
+                    let got = sim.derivatives_vertical(&st, 0.0, av)[1];
+                    let err = (got - want).abs() / (want.abs() + scale);
+                    assert!(
+                        err <= 1e-9,
+                        "N/W {ratio}, phi {phi:e}, hint {hint:e}: {got:e} against {want:e}"
+                    );
+                    worst = worst.max(err);
+                    checked += 1;
+                }
+            }
+        }
+        println!(
+            "{checked} states, {crushed} crushed contacts: largest relative difference {worst:.1e}"
+        );
+        assert!(crushed >= 60, "{crushed} crushed contacts");
     }
 }

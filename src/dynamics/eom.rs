@@ -4,7 +4,7 @@
 //! (`shiftingPivot`; `costa` drops the `omega^2` term; the rigid law has
 //! `af = 0`, `I = IO` and both coincide), with `phi = |theta|`, `s = sgn theta`.
 
-use crate::interface::{Law, Regime};
+use crate::interface::{Contact, Law, Regime};
 use crate::model::Formulation;
 
 use super::{GroundInput, Simulator, VerticalInput};
@@ -137,10 +137,7 @@ impl<'a> Eom<'a> {
     /// with `dI/dt = s (dI/dphi) omega + (dI/dN) dN/dt` — the power form
     /// `d/dt(I omega²/2) = (-s N hW - m ag hg) omega`, which balances the
     /// energy against the work of the vertical input (§6.3); costa drops
-    /// both terms. The contact at `(phi, N)`: for an elastic bed `a` depends
-    /// on `phi/N` only, so the table at the weight answers at `phi W/N`
-    /// (`af(phi, N) = af(phi W/N, W)`, `daf/dphi` scaled by `W/N`,
-    /// `daf/dN = -(phi/N) daf/dphi`); a crushing bed is solved at N.
+    /// both terms. The contact at `(phi, N)`: [`contact_loaded`](Self::contact_loaded).
     /// Out of line: inlined, its copy of the contact made `av = 0`'s
     /// evaluations slower (docs/performance.md).
     #[inline(never)]
@@ -155,6 +152,26 @@ impl<'a> Eom<'a> {
     ) -> f64 {
         let s = toe(theta, side);
         let phi = theta.abs();
+        let (c, daf_dn) = self.contact_loaded(phi, n, hint);
+        let l = self.sim.model.levers(phi, &c);
+        let mut num = -s * n * l.hw - self.mass * ag * l.hg;
+        if self.pivot_term {
+            // dI/dN = -2 m (b - af) daf/dN, like dI/dphi
+            let di_dn = -2.0 * self.mass * (self.b - c.af) * daf_dn;
+            num -= 0.5 * (s * l.dinertia * omega + di_dn * self.dn()) * omega;
+        }
+        num / l.inertia
+    }
+
+    /// The contact of a flexible law at `phi = |theta|` under the apparent
+    /// weight `n` (N) and `daf/dN` (m/N), from `hint` (the `a` of a nearby
+    /// contact, updated). For an elastic bed `a` depends on `phi/N` only,
+    /// so the table at the weight answers at `phi W/N`
+    /// (`af(phi, N) = af(phi W/N, W)`, `daf/dphi` scaled by `W/N`,
+    /// `daf/dN = -(phi/N) daf/dphi`); a crushing bed is solved at N
+    /// (docs/model.md §6.1).
+    #[inline(always)]
+    pub fn contact_loaded(&self, phi: f64, n: f64, hint: &mut f64) -> (Contact, f64) {
         let model = &self.sim.model;
         let r = self.w / n;
         let (c, daf_dn) = if n <= 0.0 {
@@ -177,14 +194,7 @@ impl<'a> Eom<'a> {
         if c.a.is_finite() {
             *hint = c.a;
         }
-        let l = model.levers(phi, &c);
-        let mut num = -s * n * l.hw - self.mass * ag * l.hg;
-        if self.pivot_term {
-            // dI/dN = -2 m (b - af) daf/dN, like dI/dphi
-            let di_dn = -2.0 * self.mass * (self.b - c.af) * daf_dn;
-            num -= 0.5 * (s * l.dinertia * omega + di_dn * self.dn()) * omega;
-        }
-        num / l.inertia
+        (c, daf_dn)
     }
 
     /// The contact of a crushing bed at `(phi, N)`, `r = W/N`, where the toe
@@ -193,10 +203,19 @@ impl<'a> Eom<'a> {
     /// crushed either and its `a` stays below `a1 = fm/(kn phi)`. `None`:
     /// solve at N. `daf` is per radian of `phi r`.
     #[inline]
-    fn uncrushed(&self, phi: f64, r: f64, hint: f64) -> Option<crate::interface::Contact> {
+    fn uncrushed(&self, phi: f64, r: f64, hint: f64) -> Option<Contact> {
         let Law::ElastoPlastic { kn, fm } = self.sim.model.interface.law() else {
             return None;
         };
+        if r >= 1.0 {
+            // N <= W: the toe's stress here, kn phi a, is at most the one
+            // of the contact at the weight at phi r, kn (phi r) a (the same
+            // a), so where that one has not crushed this one has not
+            // either, and the contact's `a` is not needed to show it.
+            let c = self.sim.reaction(phi * r, hint);
+            let elastic = matches!(c.regime, Regime::FullContact | Regime::Partial);
+            return elastic.then_some(c);
+        }
         let c = self.sim.contact(phi * r, hint);
         let elastic = matches!(c.regime, Regime::FullContact | Regime::Partial);
         (elastic && c.a <= fm / (kn * phi)).then_some(c)

@@ -335,9 +335,9 @@ impl<'c, 'm> StepCx<'c, 'm> {
     fn hw_on_step(&self, tr: &Trial, herm: &Hermite, tau: f64) -> f64 {
         let phi = herm.theta(tau).abs();
         let n = self.call.eom.apparent_weight(tr.t + tau * tr.hh);
-        let m = &self.call.sim.model;
-        let (c, _) = m.contact_loaded(phi, n);
-        m.levers(phi, &c).hw
+        // the contact the equation of motion uses
+        let (c, _) = self.call.eom.contact_loaded(phi, n, &mut tr.hint.clone());
+        self.call.sim.model.levers(phi, &c).hw
     }
 
     /// Under moving thresholds, the overturning on the accepted step `tr`
