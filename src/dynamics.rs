@@ -332,6 +332,25 @@ impl Simulator {
         }
     }
 
+    /// [`reaction`](Self::reaction) and a bound on the contact's `a`, m
+    /// ([`ContactTable::reaction_bounded`]; the solver's `a` where the
+    /// table does not answer).
+    #[inline(always)]
+    pub(crate) fn reaction_bounded(&self, phi: f64, a_hint: f64) -> (Contact, f64) {
+        let it = &self.model.interface;
+        match self
+            .table
+            .as_ref()
+            .and_then(|t| t.reaction_bounded(it, phi))
+        {
+            Some(found) => found,
+            None => {
+                let c = it.contact_near(phi, a_hint);
+                (c, c.a)
+            }
+        }
+    }
+
     pub fn initial_state(&self, theta0: f64, omega0: f64) -> State {
         let mut st = self.state_at_start(theta0, omega0);
         // docs/model.md §7.1: at theta = 0 moving into the restraint, a

@@ -206,6 +206,42 @@ fn run(sim: &Simulator, amp: f64) -> Vec<State> {
     states
 }
 
+/// `reaction_bounded`'s bound on `a` (what the equation of motion under a
+/// vertical input reads to show that a crushing bed has not crushed
+/// without the contact's `a`) is at least the solver's `a`, and its `af`,
+/// `af'` are the table's contact's, over every fourth rotation of the grids.
+#[test]
+fn the_table_bounds_a_from_above() {
+    for (name, shape, w, kn, fm_partial, fm_full) in bodies() {
+        for law in [
+            Law::Elastic { kn },
+            Law::ElastoPlastic { kn, fm: fm_partial },
+            Law::ElastoPlastic { kn, fm: fm_full },
+        ] {
+            let it = Interface::new(shape, law, w);
+            let table = ContactTable::new(&it, PHI_MAX).expect("a table");
+            let (lo, hi) = table.range();
+            let (mut tightest, mut served) = (f64::INFINITY, 0);
+            for phi in grid(lo, hi).step_by(4) {
+                let Some((r, bound)) = table.reaction_bounded(&it, phi) else {
+                    continue;
+                };
+                let t = table.contact(&it, phi).expect("the same piece");
+                assert!(r.af == t.af && r.daf == t.daf, "{name} {law:?} at {phi}");
+                let a = it.contact(phi).a;
+                assert!(
+                    bound >= a * (1.0 - 1e-12),
+                    "{name} {law:?} at {phi}: bound {bound} < a {a}"
+                );
+                tightest = tightest.min(bound / a - 1.0);
+                served += 1;
+            }
+            println!("{name:22} {law:?}: {served} rotations, bound/a - 1 >= {tightest:.1e}");
+            assert!(served > 9_000, "{name} {law:?}: {served} rotations");
+        }
+    }
+}
+
 #[test]
 fn the_integrator_takes_its_contacts_from_the_table_within_1e12_of_the_solve() {
     for (kn, fm) in [(85e6, 2e6), (15e9, f64::INFINITY), (15e9, 2e6)] {

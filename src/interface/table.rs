@@ -99,6 +99,11 @@ pub struct ContactTable {
     pieces: Vec<Piece>,
     /// The pieces' upper ends, in order (the search touches only these).
     his: Vec<f64>,
+    /// `a` at each piece's lower end, m: the largest on the piece (`a`
+    /// falls as `phi` grows, `da/dphi = -F/(phi L0)`, docs/model.md §2).
+    /// Beside the pieces, not in them: a larger piece made every
+    /// evaluation dearer (docs/performance.md).
+    a_lo: Vec<f64>,
     /// For each bucket of rotations (see `bucket`) from the table's lower
     /// end, the first piece that reaches into it.
     first: Vec<u32>,
@@ -296,6 +301,16 @@ impl ContactTable {
             return None;
         }
         let his: Vec<f64> = pieces.iter().map(|p| p.hi).collect();
+        let a_lo = pieces
+            .iter()
+            .map(|p| {
+                if p.af.is_empty() {
+                    f64::NAN
+                } else {
+                    p.at(p.lo)[2]
+                }
+            })
+            .collect();
         let bucket0 = bucket(pieces[0].lo);
         let first = (bucket0..=bucket(top))
             .map(|k| his.partition_point(|&hi| hi < f64::from_bits(k << 49)) as u32)
@@ -303,6 +318,7 @@ impl ContactTable {
         Some(ContactTable {
             pieces,
             his,
+            a_lo,
             first,
             bucket0,
         })
@@ -365,6 +381,13 @@ impl ContactTable {
     /// The piece that answers at `phi = |theta|` and the regime there.
     #[inline(always)]
     fn lookup(&self, it: &Interface, phi: f64) -> Option<(&Piece, Regime)> {
+        self.index(it, phi)
+            .map(|(i, regime)| (&self.pieces[i], regime))
+    }
+
+    /// [`lookup`](Self::lookup) by the piece's index.
+    #[inline(always)]
+    fn index(&self, it: &Interface, phi: f64) -> Option<(usize, Regime)> {
         let (lo, hi) = self.range();
         if !(phi > lo && phi <= hi) {
             return None;
@@ -379,8 +402,7 @@ impl ContactTable {
         while self.his[i] < phi {
             i += 1;
         }
-        let piece = &self.pieces[i];
-        (!piece.af.is_empty()).then_some((piece, regime))
+        (!self.pieces[i].af.is_empty()).then_some((i, regime))
     }
 
     /// The contact of `it` (the interface the table was built for) at
@@ -409,8 +431,14 @@ impl ContactTable {
     pub fn reaction(&self, it: &Interface, phi: f64) -> Option<Contact> {
         let phi = phi.abs();
         let (piece, regime) = self.lookup(it, phi)?;
+        Some(Self::reaction_on(piece, regime, phi))
+    }
+
+    /// `af` and `af'` on `piece` at `phi >= 0`.
+    #[inline(always)]
+    fn reaction_on(piece: &Piece, regime: Regime, phi: f64) -> Contact {
         let [af, daf] = Piece::sum(&piece.af, piece.x(phi));
-        Some(Contact {
+        Contact {
             af,
             daf,
             a: f64::NAN,
@@ -419,6 +447,17 @@ impl ContactTable {
             da: f64::NAN,
             regime,
             iterations: 0,
-        })
+        }
+    }
+
+    /// [`reaction`](Self::reaction) and a bound on the contact's `a`, m:
+    /// the table's `a` at the lower end of its piece (at most a few ulps
+    /// below the solver's there, [`FIT_RTOL`]; `a` falls as `phi` grows).
+    #[inline(always)]
+    pub fn reaction_bounded(&self, it: &Interface, phi: f64) -> Option<(Contact, f64)> {
+        let phi = phi.abs();
+        let (i, regime) = self.index(it, phi)?;
+        let piece = &self.pieces[i];
+        Some((Self::reaction_on(piece, regime, phi), self.a_lo[i]))
     }
 }
