@@ -202,7 +202,7 @@ impl<'a> Eom<'a> {
     /// at the weight at `phi r` (docs/model.md §6.1), if that one has not
     /// crushed either and its `a` stays below `a1 = fm/(kn phi)`. `None`:
     /// solve at N. `daf` is per radian of `phi r`.
-    #[inline]
+    #[inline(always)]
     fn uncrushed(&self, phi: f64, r: f64, hint: f64) -> Option<Contact> {
         let Law::ElastoPlastic { kn, fm } = self.sim.model.interface.law() else {
             return None;
