@@ -311,15 +311,32 @@ impl Interface {
         if phi <= 0.0 || self.law == Law::Rigid {
             return [1.0, -1.0];
         }
+        Self::margins_of(self.bed_limits(phi), n)
+    }
+
+    /// The bed resultants of [`bed_margins`](Self::bed_margins) at `phi > 0`
+    /// (a flexible law), which depend on `phi` only: `[Nbed(D), Nbed(a1)]`,
+    /// N (`Nbed(a1)` infinite on an elastic bed).
+    pub fn bed_limits(&self, phi: f64) -> [f64; 2] {
         let k = self.kn * phi;
         let a1 = self.fm / k;
-        let heel = 1.0 - self.bed_resultant(k, a1, self.d) / n;
         let toe = if a1.is_finite() {
-            1.0 - self.bed_resultant(k, a1, a1) / n
+            self.bed_resultant(k, a1, a1)
+        } else {
+            f64::INFINITY
+        };
+        [self.bed_resultant(k, a1, self.d), toe]
+    }
+
+    /// [`bed_margins`](Self::bed_margins) from its [`bed_limits`](Self::bed_limits).
+    #[inline]
+    pub fn margins_of(limits: [f64; 2], n: f64) -> [f64; 2] {
+        let toe = if limits[1].is_finite() {
+            1.0 - limits[1] / n
         } else {
             -1.0
         };
-        [heel, toe]
+        [1.0 - limits[0] / n, toe]
     }
 
     /// The equilibrium `Nbed(a, phi) = w` in the given regime: the contact

@@ -249,10 +249,6 @@ pub(super) struct StepCx<'c, 'm> {
     pub(super) ov_level: f64,
     /// `|theta|` of the moving kink being located (docs/model.md §6.4), rad.
     pub(super) kink_level: f64,
-    /// The margins of [`moving_kink`](Self::moving_kink) at the end of the
-    /// last step looked at, keyed by its `(t, theta)`: the next step's start
-    /// if that step was taken.
-    margins_end: (f64, f64, [f64; 2]),
 }
 
 /// One attempted step from the context's state.
@@ -319,7 +315,6 @@ impl<'c, 'm> StepCx<'c, 'm> {
             jac: None,
             ov_level: sim.model.theta_ov,
             kink_level: f64::NAN,
-            margins_end: (f64::NAN, f64::NAN, [0.0; 2]),
         }
     }
 
@@ -380,7 +375,7 @@ impl<'c, 'm> StepCx<'c, 'm> {
     fn margins_on_step(&self, tr: &Trial, herm: &Hermite, tau: f64) -> [f64; 2] {
         let phi = herm.theta(tau).abs();
         let n = self.call.eom.apparent_weight(tr.t + tau * tr.hh);
-        self.call.sim.model.interface.bed_margins(phi, n)
+        self.call.sim.bed_margins(phi, n)
     }
 
     /// Under moving thresholds, the first zero on the step `tr` of the
@@ -389,14 +384,8 @@ impl<'c, 'm> StepCx<'c, 'm> {
     /// [`kink_level`](Self::kink_level). A function within `1e-10` of its
     /// zero at the step start is the kink the step starts on.
     fn moving_kink(&mut self, tr: &Trial, herm: &Hermite) -> Option<f64> {
-        let (t, theta, cached) = self.margins_end;
-        let m0 = if t == tr.t && theta == tr.y0[0] {
-            cached
-        } else {
-            self.margins_on_step(tr, herm, 0.0)
-        };
+        let m0 = self.margins_on_step(tr, herm, 0.0);
         let m1 = self.margins_on_step(tr, herm, 1.0);
-        self.margins_end = (tr.t_new, tr.out.y[0], m1);
         let tau = (0..2)
             .filter(|&i| m0[i].abs() > 1e-10 && (m0[i] > 0.0) != (m1[i] > 0.0))
             .map(|i| self.margin_zero(tr, herm, i, m0[i], m1[i]))
