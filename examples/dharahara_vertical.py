@@ -12,7 +12,8 @@ input av.
 
 Writes DIR/dharahara_vertical.csv (one row per run), dharahara_vertical.md (the tables of
 the page) and dharahara_vertical_theta.png (theta with and without av). Runs with av take
-the Python stepping loop (the native loop takes one input), about 10 times slower.
+the native stepping loop too; on the crushing beds they cost 3-4 times the runs without it
+(docs/performance.md, "The host loop with a vertical input").
 """
 
 import argparse
