@@ -34,6 +34,7 @@ Every row of every cluster run is checked against the loop's outcome for the sam
 import argparse
 import contextlib
 import heapq
+import multiprocessing
 import os
 import statistics
 import sys
@@ -66,17 +67,107 @@ def study(n_stripes, chunk, n_records=0, bodies=2):
                  stripes=tuple(np.linspace(0.2, 1.2, n_stripes)), chunk=chunk)
 
 
-def serial(fmu, tasks):
-    """The runs of `tasks` in a plain loop: (runs, CPU s, {(body, record, im): outcome})."""
-    c0 = time.process_time()
-    outcomes = {}
-    for _key, _fn, (_digest, parts, opts, _phase), _ in tasks:
-        for job, stripes in parts:
-            for im in stripes:
-                ov, t_ov, peak, _ = runner.run_once(fmu, job["params"], job["record"],
-                                                    im / job["meta"]["im_record"], opts)
-                outcomes[(job["meta"]["body"], job["meta"]["record"], im)] = (bool(ov), t_ov, peak)
-    return len(outcomes), time.process_time() - c0, outcomes
+def flat_runs(tasks):
+    """The runs of `tasks` in their order: [((body, record, im), params, record, scale, opts)]."""
+    return [((job["meta"]["body"], job["meta"]["record"], im), job["params"], job["record"],
+             im / job["meta"]["im_record"], opts)
+            for _key, _fn, (_digest, parts, opts, _phase), _ in tasks for job, stripes in parts for im in stripes]
+
+
+def serial(fmu, runs):
+    """`runs` in a plain loop: dict(cpu=process CPU s, start=, end= (time.monotonic: on Linux
+    the system-wide CLOCK_MONOTONIC, comparable between processes), costs=[each run's thread
+    CPU s], outcomes={(body, record, im): outcome})."""
+    outcomes, costs = {}, []
+    c0, start = time.process_time(), time.monotonic()
+    for key, params, record, scale, opts in runs:
+        r0 = time.thread_time()
+        ov, t_ov, peak, _ = runner.run_once(fmu, params, record, scale, opts)
+        costs.append(time.thread_time() - r0)
+        outcomes[key] = (bool(ov), t_ov, peak)
+    return dict(cpu=time.process_time() - c0, start=start, end=time.monotonic(), costs=costs, outcomes=outcomes)
+
+
+def plain_process(conn, barrier, fmu_path, runs):
+    """One of the ceiling's two processes: opens its own FMU, then for each list of indices
+    into `runs` it receives, waits at `barrier` for the other process (so that neither's start
+    nor FMU load is timed), runs them in a plain loop and sends serial()'s figures back. None
+    ends it."""
+    with RockingFMU(fmu_path) as fmu:
+        conn.send("ready")
+        while (idx := conn.recv()) is not None:
+            barrier.wait()
+            conn.send(serial(fmu, [runs[i] for i in idx]))
+
+
+@contextlib.contextmanager
+def environ(extra):
+    """os.environ with `extra` set (a None value unsets), for the processes started inside."""
+    saved = dict(os.environ)
+    for k, v in extra.items():
+        os.environ.pop(k, None) if v is None else os.environ.__setitem__(k, str(v))
+    try:
+        yield
+    finally:
+        os.environ.clear()
+        os.environ.update(saved)
+
+
+class Ceiling:
+    """The machine's ceiling without Dask: two plain-loop processes (spawned, each with its
+    own FMU, in the environment the LocalCluster gives its workers) that run two halves of the
+    runs at once."""
+
+    def __init__(self, fmu_path, runs, env):
+        ctx = multiprocessing.get_context("spawn")
+        barrier = ctx.Barrier(2)
+        self.conns, self.procs = [], []
+        with environ(env):
+            for _ in range(2):
+                mine, theirs = ctx.Pipe()
+                proc = ctx.Process(target=plain_process, args=(theirs, barrier, str(fmu_path), runs), daemon=True)
+                proc.start()
+                self.conns.append(mine)
+                self.procs.append(proc)
+        for conn in self.conns:
+            if conn.recv() != "ready":
+                raise RuntimeError("a ceiling process did not start")
+
+    def run(self, halves):
+        """serial()'s figures of each process, each running its half (indices into the runs)."""
+        for conn, idx in zip(self.conns, halves):
+            conn.send(idx)
+        return [conn.recv() for conn in self.conns]
+
+    def close(self):
+        for conn in self.conns:
+            conn.send(None)
+        for proc in self.procs:
+            proc.join(30)
+
+
+def split_in_two(costs):
+    """Indices of `costs` in two halves of near-equal sums (the largest first, each to the
+    lighter half), each half in the original order."""
+    halves, sums = ([], []), [0.0, 0.0]
+    for i in sorted(range(len(costs)), key=lambda i: -costs[i]):
+        k = 0 if sums[0] <= sums[1] else 1
+        halves[k].append(i)
+        sums[k] += costs[i]
+    return [sorted(h) for h in halves]
+
+
+def on_ceiling(ceiling, costs):
+    """One run of the ceiling, its halves split on `costs` (each run's CPU in the loop just
+    before): its figures and {(body, record, im): outcome}."""
+    res = ceiling.run(split_in_two(costs))
+    wall = max(r["end"] for r in res) - min(r["start"] for r in res)
+    halves = [sum(r["costs"]) for r in res]
+    outcomes = {k: v for r in res for k, v in r["outcomes"].items()}
+    return dict(runs=len(outcomes), wall=wall, cpu=sum(r["cpu"] for r in res), in_runs=sum(halves),
+                busy=sum(r["end"] - r["start"] for r in res) / (2 * wall),
+                schedule=sum(halves) / (2 * max(halves)),
+                per_process=[r["cpu"] / len(r["costs"]) for r in res]), outcomes
 
 
 def idle_cpu(client):
@@ -87,12 +178,12 @@ def idle_cpu(client):
     return (sum(w1[w] - w0[w] for w in w1) + c1 - c0) / (time.perf_counter() - t0)
 
 
-def on_cluster(client, workers, tasks):
+def on_cluster(client, workers, tasks, progress=None):
     """One run of `tasks` on the cluster: its figures and rows."""
     with tempfile.TemporaryDirectory() as tmp:
         store = ResultStore(Path(tmp) / "runs")
         w0, c0, t0 = client.run(time.process_time), time.process_time(), time.perf_counter()
-        _, runs, failures = cluster.execute(client, tasks, store)
+        _, runs, failures = cluster.execute(client, tasks, store, progress=progress)
         wall = time.perf_counter() - t0
         w1, c1 = client.run(time.process_time), time.process_time()
         df = store.read()
@@ -114,22 +205,57 @@ def schedule_efficiency(costs, workers):
     return sum(costs) / (workers * max(free))
 
 
-def mismatches(df, outcomes):
-    """Rows whose outcome differs from the loop's for the same run (bit for bit)."""
+def rows_of(df):
+    """((body, record, im), (overturned, t_overturn, peak)) of each of the store's rows."""
+    return zip(zip(df["body"], df["record"], df["im"]),
+               zip(df["overturned"], df["t_overturn"], df["peak_theta_over_alpha"]))
+
+
+def mismatches(got, outcomes):
+    """Runs of `got` ((key, outcome) pairs) whose outcome differs from the loop's for the same
+    run (bit for bit)."""
     bad = 0
-    for body, rec, im, ov, t_ov, peak in zip(df["body"], df["record"], df["im"], df["overturned"],
-                                             df["t_overturn"], df["peak_theta_over_alpha"]):
-        ref = outcomes.get((body, rec, im))
+    for key, (ov, t_ov, peak) in got:
+        ref = outcomes.get(key)
         if ref is not None and not (ref[0] == ov and ref[2] == peak
                                     and (ref[1] == t_ov or (np.isnan(ref[1]) and np.isnan(t_ov)))):
             bad += 1
     return bad
 
 
-def measure(fmu_path, tasks, worker_counts, repeats, sample):
-    """{workers: ([figures of each repeat], idle CPU)}: a cluster of each size open at once,
-    and in each repeat, for each size, the loop then the cluster (so that the sizes see the
-    same load, which drifts in minutes on a shared machine)."""
+def loop_figures(fmu_path, runs):
+    """The plain loop in this process (a fresh FMU, its load not timed)."""
+    with RockingFMU(fmu_path) as fmu:
+        return serial(fmu, runs)
+
+
+class Log:
+    """Progress on stderr: each measurement as it ends, and a long cluster run's every 10 %."""
+
+    def __init__(self):
+        self.t0 = time.perf_counter()
+
+    def __call__(self, text):
+        print(f"[{time.perf_counter() - self.t0:7.1f} s] {text}", file=sys.stderr, flush=True)
+
+    def cluster_progress(self, total, label):
+        done, shown = [0], [0]
+
+        def progress(rows, _expected):
+            done[0] += rows
+            if total >= 1000 and 10 * done[0] // total > shown[0]:
+                shown[0] = 10 * done[0] // total
+                self(f"{label}: {done[0]} of {total} runs")
+        return progress
+
+
+def measure(fmu_path, tasks, worker_counts, repeats, sample, log):
+    """({workers: ([figures of each repeat], idle CPU)}, [the ceiling's figures of each
+    repeat]): a cluster of each size and the ceiling's two processes open at once, and in each
+    repeat, for each size, the loop then the cluster, and the loop then the ceiling (so that
+    all see the same load, which drifts in minutes on a shared machine)."""
+    runs = flat_runs(tasks[::sample])
+    total = sum(t[3] for t in tasks)
     with contextlib.ExitStack() as stack:
         clients = {}
         for workers in worker_counts:
@@ -138,22 +264,64 @@ def measure(fmu_path, tasks, worker_counts, repeats, sample):
             client.wait_for_workers(workers)
             cluster.register_fmu(client, fmu_path)
             client.run(lambda: None)
+        ceiling = stack.enter_context(contextlib.closing(Ceiling(fmu_path, runs, cluster.worker_environ())))
         results = {w: ([], idle_cpu(c)) for w, c in clients.items()}
-        for _ in range(repeats):
+        ceilings = []
+        for r in range(1, repeats + 1):
             for workers, client in clients.items():
-                with RockingFMU(fmu_path) as fmu:
-                    n, loop_cpu, outcomes = serial(fmu, tasks[::sample])
-                fig, df = on_cluster(client, workers, tasks)
-                fig.update(loop=loop_cpu / n, bad=mismatches(df, outcomes), checked=n)
+                loop = loop_figures(fmu_path, runs)
+                label = f"repeat {r}/{repeats}, {workers} worker(s)"
+                fig, df = on_cluster(client, workers, tasks, log.cluster_progress(total, label))
+                fig.update(loop=loop["cpu"] / len(runs), loop_wall=loop["end"] - loop["start"], loop_runs=len(runs),
+                           bad=mismatches(rows_of(df), loop["outcomes"]), checked=len(runs))
                 results[workers][0].append(fig)
-    return results
+                log(f"{label}: loop {len(runs)} runs {fig['loop_wall']:.2f} s, cluster {fig['runs']} runs "
+                    f"{fig['wall']:.2f} s")
+            loop = loop_figures(fmu_path, runs)
+            fig, outcomes = on_ceiling(ceiling, loop["costs"])
+            fig.update(loop=loop["cpu"] / len(runs), loop_wall=loop["end"] - loop["start"], loop_runs=len(runs),
+                       bad=mismatches(outcomes.items(), loop["outcomes"]) + len(runs) - len(outcomes),
+                       checked=len(runs))
+            ceilings.append(fig)
+            log(f"repeat {r}/{repeats}, ceiling: loop {len(runs)} runs {fig['loop_wall']:.2f} s, "
+                f"two processes {fig['wall']:.2f} s")
+    return results, ceilings
 
 
 def cell(values, fmt):
     return f"{fmt.format(statistics.median(values))} / {fmt.format(min(values))}"
 
 
-def table(title, runs_all, n_tasks, results):
+def each(values, fmt="{:.3f}"):
+    return f"{fmt.format(statistics.median(values))} ({' '.join(fmt.format(v) for v in values)})"
+
+
+def config_row(label, reps, idle=None):
+    """A row of the table; idle None: not a cluster (no client, no idle CPU)."""
+    col = {k: [r[k] for r in reps] for k in reps[0]}
+    runs = col["runs"][0]
+    idle_s = 0.0 if idle is None else idle
+    client = "-" if idle is None else cell([1e3 * c for c in col["client"]], "{:.1f}")
+    return (f"| {label} | {cell(col['wall'], '{:.2f}')} "
+            f"| {cell([1e3 * c / runs for c in col['cpu']], '{:.2f}')} "
+            f"| {cell([1e3 * c / runs for c in col['in_runs']], '{:.2f}')} | {cell([1e3 * x for x in col['loop']], '{:.2f}')} "
+            f"| {cell([100 * (r['cpu'] / r['in_runs'] - 1) for r in reps], '{:.1f}')} "
+            f"| {cell([100 * ((r['cpu'] - idle_s * r['wall']) / r['in_runs'] - 1) for r in reps], '{:.1f}')} "
+            f"| {cell([100 * (r['cpu'] / runs / r['loop'] - 1) for r in reps], '{:.1f}')} "
+            f"| {cell([100 * (r['in_runs'] / runs / r['loop'] - 1) for r in reps], '{:.1f}')} "
+            f"| {client} | {'-' if idle is None else f'{100 * idle:.1f}'} "
+            f"| {cell(col['busy'], '{:.3f}')} | {cell(col['schedule'], '{:.3f}')} "
+            f"| {sum(col['checked']) - sum(col['bad'])} of {sum(col['checked'])} |")
+
+
+def against_loop(r, workers):
+    """Wall-clock efficiency against the loop just before: the loop's wall per run x the runs
+    over `workers` x the wall."""
+    return r["loop_wall"] / r["loop_runs"] * r["runs"] / (workers * r["wall"])
+
+
+def table(title, runs_all, n_tasks, results, ceilings):
+    """The study's table and its efficiency lines; returns its summary (a dict)."""
     print(f"\n{title}: {runs_all} runs in {n_tasks} tasks; each cell: median / min of the repeats")
     print("| configuration | wall (s) | CPU per run (ms) | in runs (ms) | loop (ms) | overhead (%) "
           "| overhead net of idle (%) | against the loop (%) | in-runs against the loop (%) "
@@ -161,25 +329,62 @@ def table(title, runs_all, n_tasks, results):
           "| rows equal to the loop's |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for workers, (reps, idle) in results.items():
-        col = {k: [r[k] for r in reps] for k in reps[0]}
-        runs = col["runs"][0]
-        print(f"| LocalCluster, {workers} worker(s) | {cell(col['wall'], '{:.2f}')} "
-              f"| {cell([1e3 * c / runs for c in col['cpu']], '{:.2f}')} "
-              f"| {cell([1e3 * c / runs for c in col['in_runs']], '{:.2f}')} | {cell([1e3 * x for x in col['loop']], '{:.2f}')} "
-              f"| {cell([100 * (r['cpu'] / r['in_runs'] - 1) for r in reps], '{:.1f}')} "
-              f"| {cell([100 * ((r['cpu'] - idle * r['wall']) / r['in_runs'] - 1) for r in reps], '{:.1f}')} "
-              f"| {cell([100 * (r['cpu'] / runs / r['loop'] - 1) for r in reps], '{:.1f}')} "
-              f"| {cell([100 * (r['in_runs'] / runs / r['loop'] - 1) for r in reps], '{:.1f}')} "
-              f"| {cell([1e3 * c for c in col['client']], '{:.1f}')} | {100 * idle:.1f} "
-              f"| {cell(col['busy'], '{:.3f}')} | {cell(col['schedule'], '{:.3f}')} "
-              f"| {sum(col['checked']) - sum(col['bad'])} of {sum(col['checked'])} |")
+        print(config_row(f"LocalCluster, {workers} worker(s)", reps, idle))
+    print(config_row(f"ceiling: 2 plain processes, no Dask ({ceilings[0]['runs']} runs)", ceilings))
+    summary = dict(title=title, runs=runs_all, tasks=n_tasks, ceiling=[c["loop_wall"] / (2 * c["wall"]) for c in ceilings],
+                   procs=[[100 * (p / c["loop"] - 1) for p in c["per_process"]] for c in ceilings])
     one = results.get(1)
-    for workers, (reps, _) in results.items():
+    for workers, (reps, idle) in results.items():
+        summary[workers] = reps, idle
         if one and workers > 1:
             pairs = [a["wall"] / b["wall"] / workers for a, b in zip(one[0], reps)]
+            summary["dask"] = pairs
             print(f"wall-clock efficiency on {workers} workers (1-worker wall / {workers}-worker wall / "
                   f"{workers}, each repeat's pair): median {statistics.median(pairs):.3f}, best {max(pairs):.3f}, "
                   f"all {' '.join(f'{e:.3f}' for e in pairs)}")
+    if 2 in results:
+        summary["dask_loop"] = [against_loop(r, 2) for r in results[2][0]]
+        print(f"wall-clock efficiency on 2 workers against the loop just before (loop wall per run x runs / "
+              f"(2 x wall)): {each(summary['dask_loop'])}")
+    print(f"machine ceiling (loop wall / (2 x the two processes' wall), the same runs, each repeat): "
+          f"{each(summary['ceiling'])}")
+    print("a run's process CPU in each of the two processes against the loop's (%, each repeat): "
+          + ", ".join(f"{p[0]:+.1f} and {p[1]:+.1f}" for p in summary["procs"]))
+    if "dask" in summary:
+        print(f"Dask's efficiency / the ceiling (each repeat): "
+              f"{each([d / c for d, c in zip(summary['dask'], summary['ceiling'])])}")
+    return summary
+
+
+def summary_table(summaries):
+    """One row a study: Dask's wall-clock efficiency on 2 workers beside the machine ceiling."""
+    print("\nSummary, 2 workers against the machine ceiling; each efficiency: median (each repeat)")
+    print("| study | tasks | 1 worker: wall (s) | 2 workers: wall (s) | wall-clock efficiency (1-worker wall / 2 x 2-worker wall) "
+          "| against the loop (loop wall per run x runs / 2 x 2-worker wall) | ceiling (loop wall / 2 x two processes' wall) "
+          "| Dask / ceiling | Dask against the loop / ceiling | a run's CPU in the two processes against the loop (%) "
+          "| workers busy | schedule efficiency | Dask's overhead (%) | net of idle (%) | study's CPU against the loop (%) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for s in summaries:
+        if 2 not in s:
+            continue
+        reps, idle = s[2]
+        one = cell([r["wall"] for r in s[1][0]], "{:.2f}") if 1 in s else "-"
+        dask = each(s["dask"]) if "dask" in s else "-"
+        ratio = each([d / c for d, c in zip(s["dask"], s["ceiling"])]) if "dask" in s else "-"
+        ratio_loop = each([d / c for d, c in zip(s["dask_loop"], s["ceiling"])])
+        procs = statistics.median(p for pair in s["procs"] for p in pair)
+        print(f"| {s['runs']} runs | {s['tasks']} | {one} | {cell([r['wall'] for r in reps], '{:.2f}')} | {dask} "
+              f"| {each(s['dask_loop'])} | {each(s['ceiling'])} | {ratio} | {ratio_loop} | {procs:+.1f} "
+              f"| {cell([r['busy'] for r in reps], '{:.3f}')} | {cell([r['schedule'] for r in reps], '{:.3f}')} "
+              f"| {cell([100 * (r['cpu'] / r['in_runs'] - 1) for r in reps], '{:.1f}')} "
+              f"| {cell([100 * ((r['cpu'] - idle * r['wall']) / r['in_runs'] - 1) for r in reps], '{:.1f}')} "
+              f"| {cell([100 * (r['cpu'] / r['runs'] / r['loop'] - 1) for r in reps], '{:+.1f}')} |")
+
+
+#: --large: the 4000-run study of issue 21 (100 records: the 9 shipped components repeated
+#: under new names, x 40 stripes of the slender block), the loop and the ceiling on every
+#: tenth task, one repeat.
+LARGE = dict(bodies=1, records=100, stripes="40", workers="2", sample=10, repeats=1)
 
 
 def main():
@@ -191,18 +396,29 @@ def main():
     ap.add_argument("--records", type=int, default=0, help="records (default: the 9 shipped; more: repeated)")
     ap.add_argument("--bodies", type=int, default=2, help="bodies, 1 or 2 (default 2)")
     ap.add_argument("--sample", type=int, default=1,
-                    help="the in-process loop runs every SAMPLE-th task only (its CPU per run is the base)")
+                    help="the loop and the ceiling run every SAMPLE-th task only (the loop's CPU per run is the base)")
+    ap.add_argument("--large", action="store_true",
+                    help="the 4000-run study: " + " ".join(f"--{k} {v}" for k, v in LARGE.items()))
     args = ap.parse_args()
+    if args.large:
+        vars(args).update(LARGE)
+    t_start = time.perf_counter()
+    log = Log()
     fmu_path = paths.default_fmu()
     load = os.getloadavg()
+    summaries = []
     for stripes in (int(s) for s in args.stripes.split(",")):
         st = study(stripes, args.chunk, args.records, args.bodies)
         with RockingFMU(fmu_path) as fmu:
             tasks = st.tasks(fmu, cluster.fmu_digest(fmu_path))
-        results = measure(fmu_path, tasks, [int(x) for x in args.workers.split(",")], args.repeats, args.sample)
-        table(f"--stripes {stripes}", sum(t[3] for t in tasks), len(tasks), results)
+        log(f"--stripes {stripes}: {sum(t[3] for t in tasks)} runs in {len(tasks)} tasks")
+        results, ceilings = measure(fmu_path, tasks, [int(x) for x in args.workers.split(",")], args.repeats,
+                                    args.sample, log)
+        summaries.append(table(f"--stripes {stripes}", sum(t[3] for t in tasks), len(tasks), results, ceilings))
+    summary_table(summaries)
     print(f"\nhost: {os.uname().nodename}, {os.cpu_count()} cores, load average before: "
-          f"{' '.join(f'{x:.1f}' for x in load)}, after: {' '.join(f'{x:.1f}' for x in os.getloadavg())}")
+          f"{' '.join(f'{x:.1f}' for x in load)}, after: {' '.join(f'{x:.1f}' for x in os.getloadavg())}; "
+          f"the whole command: {time.perf_counter() - t_start:.1f} s")
     return 0
 
 
