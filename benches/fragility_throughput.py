@@ -34,6 +34,7 @@ Every row of every cluster run is checked against the loop's outcome for the sam
 import argparse
 import contextlib
 import heapq
+import math
 import multiprocessing
 import os
 import statistics
@@ -88,16 +89,29 @@ def serial(fmu, runs):
     return dict(cpu=time.process_time() - c0, start=start, end=time.monotonic(), costs=costs, outcomes=outcomes)
 
 
-def plain_process(conn, barrier, fmu_path, runs):
-    """One of the ceiling's two processes: opens its own FMU, then for each list of indices
-    into `runs` it receives, waits at `barrier` for the other process (so that neither's start
-    nor FMU load is timed), runs them in a plain loop and sends serial()'s figures back. None
+def plain_process(conn, barrier, counter, fmu_path, runs):
+    """One of the ceiling's two processes: opens its own FMU, then for each order of `runs`
+    (indices) it receives, waits at `barrier` for the other process (so that neither's start
+    nor FMU load is timed), and runs in a plain loop the next run of the order not yet taken
+    (`counter`, shared by the two) until none is left; sends serial()'s figures back. None
     ends it."""
     with RockingFMU(fmu_path) as fmu:
         conn.send("ready")
-        while (idx := conn.recv()) is not None:
+        while (order := conn.recv()) is not None:
             barrier.wait()
-            conn.send(serial(fmu, [runs[i] for i in idx]))
+            conn.send(serial(fmu, (runs[i] for i in taken(counter, order))))
+
+
+def taken(counter, order):
+    """The items of `order` this process takes, one at a time, from `counter` (the next
+    index of `order` not yet taken by either process)."""
+    while True:
+        with counter.get_lock():
+            k = counter.value
+            counter.value = k + 1
+        if k >= len(order):
+            return
+        yield order[k]
 
 
 @contextlib.contextmanager
@@ -115,17 +129,20 @@ def environ(extra):
 
 class Ceiling:
     """The machine's ceiling without Dask: two plain-loop processes (spawned, each with its
-    own FMU, in the environment the LocalCluster gives its workers) that run two halves of the
-    runs at once."""
+    own FMU, in the environment the LocalCluster gives its workers) that run the runs at once,
+    each taking the next run left, largest first (by the loop's measured CPU), so that they end
+    within a run of each other: a balance no batching of tasks beats."""
 
     def __init__(self, fmu_path, runs, env):
         ctx = multiprocessing.get_context("spawn")
         barrier = ctx.Barrier(2)
+        self.counter = ctx.Value("q", 0)
         self.conns, self.procs = [], []
         with environ(env):
             for _ in range(2):
                 mine, theirs = ctx.Pipe()
-                proc = ctx.Process(target=plain_process, args=(theirs, barrier, str(fmu_path), runs), daemon=True)
+                proc = ctx.Process(target=plain_process, daemon=True,
+                                   args=(theirs, barrier, self.counter, str(fmu_path), runs))
                 proc.start()
                 self.conns.append(mine)
                 self.procs.append(proc)
@@ -133,10 +150,11 @@ class Ceiling:
             if conn.recv() != "ready":
                 raise RuntimeError("a ceiling process did not start")
 
-    def run(self, halves):
-        """serial()'s figures of each process, each running its half (indices into the runs)."""
-        for conn, idx in zip(self.conns, halves):
-            conn.send(idx)
+    def run(self, order):
+        """serial()'s figures of each process, the two taking the runs in `order` (indices)."""
+        self.counter.value = 0
+        for conn in self.conns:
+            conn.send(order)
         return [conn.recv() for conn in self.conns]
 
     def close(self):
@@ -146,28 +164,17 @@ class Ceiling:
             proc.join(30)
 
 
-def split_in_two(costs):
-    """Indices of `costs` in two halves of near-equal sums (the largest first, each to the
-    lighter half), each half in the original order."""
-    halves, sums = ([], []), [0.0, 0.0]
-    for i in sorted(range(len(costs)), key=lambda i: -costs[i]):
-        k = 0 if sums[0] <= sums[1] else 1
-        halves[k].append(i)
-        sums[k] += costs[i]
-    return [sorted(h) for h in halves]
-
-
 def on_ceiling(ceiling, costs):
-    """One run of the ceiling, its halves split on `costs` (each run's CPU in the loop just
-    before): its figures and {(body, record, im): outcome}."""
-    res = ceiling.run(split_in_two(costs))
+    """One run of the ceiling, the runs taken largest first by `costs` (each run's CPU in the
+    loop just before): its figures and {(body, record, im): outcome}."""
+    res = ceiling.run(sorted(range(len(costs)), key=lambda i: -costs[i]))
     wall = max(r["end"] for r in res) - min(r["start"] for r in res)
     halves = [sum(r["costs"]) for r in res]
     outcomes = {k: v for r in res for k, v in r["outcomes"].items()}
     return dict(runs=len(outcomes), wall=wall, cpu=sum(r["cpu"] for r in res), in_runs=sum(halves),
                 busy=sum(r["end"] - r["start"] for r in res) / (2 * wall),
                 schedule=sum(halves) / (2 * max(halves)),
-                per_process=[r["cpu"] / len(r["costs"]) for r in res]), outcomes
+                per_process=[r["cpu"] / max(1, len(r["costs"])) for r in res]), outcomes
 
 
 def idle_cpu(client):
@@ -223,6 +230,23 @@ def mismatches(got, outcomes):
     return bad
 
 
+def machine_cpu():
+    """The CPU seconds all the machine's cores have spent busy since boot (/proc/stat: user,
+    nice, system, irq, softirq, steal), nan where there is no /proc/stat."""
+    try:
+        with open("/proc/stat") as f:
+            user, nice, system, _idle, _iowait, irq, softirq, steal = (int(x) for x in f.readline().split()[1:9])
+    except (OSError, ValueError):
+        return math.nan
+    return (user + nice + system + irq + softirq + steal) / os.sysconf("SC_CLK_TCK")
+
+
+def others(busy0, fig):
+    """The CPU of processes other than this measurement's while it ran, in cores: the
+    machine's busy CPU since `busy0` less the measurement's own, over its wall time."""
+    return (machine_cpu() - busy0 - fig["cpu"]) / fig["wall"]
+
+
 def loop_figures(fmu_path, runs):
     """The plain loop in this process (a fresh FMU, its load not timed)."""
     with RockingFMU(fmu_path) as fmu:
@@ -271,20 +295,22 @@ def measure(fmu_path, tasks, worker_counts, repeats, sample, log):
             for workers, client in clients.items():
                 loop = loop_figures(fmu_path, runs)
                 label = f"repeat {r}/{repeats}, {workers} worker(s)"
+                busy0 = machine_cpu()
                 fig, df = on_cluster(client, workers, tasks, log.cluster_progress(total, label))
-                fig.update(loop=loop["cpu"] / len(runs), loop_wall=loop["end"] - loop["start"], loop_runs=len(runs),
+                fig.update(others=others(busy0, fig), loop=loop["cpu"] / len(runs), loop_wall=loop["end"] - loop["start"], loop_runs=len(runs),
                            bad=mismatches(rows_of(df), loop["outcomes"]), checked=len(runs))
                 results[workers][0].append(fig)
                 log(f"{label}: loop {len(runs)} runs {fig['loop_wall']:.2f} s, cluster {fig['runs']} runs "
-                    f"{fig['wall']:.2f} s")
+                    f"{fig['wall']:.2f} s, others' CPU {100 * fig['others']:.0f} % of a core")
             loop = loop_figures(fmu_path, runs)
+            busy0 = machine_cpu()
             fig, outcomes = on_ceiling(ceiling, loop["costs"])
-            fig.update(loop=loop["cpu"] / len(runs), loop_wall=loop["end"] - loop["start"], loop_runs=len(runs),
+            fig.update(others=others(busy0, fig), loop=loop["cpu"] / len(runs), loop_wall=loop["end"] - loop["start"], loop_runs=len(runs),
                        bad=mismatches(outcomes.items(), loop["outcomes"]) + len(runs) - len(outcomes),
                        checked=len(runs))
             ceilings.append(fig)
             log(f"repeat {r}/{repeats}, ceiling: loop {len(runs)} runs {fig['loop_wall']:.2f} s, "
-                f"two processes {fig['wall']:.2f} s")
+                f"two processes {fig['wall']:.2f} s, others' CPU {100 * fig['others']:.0f} % of a core")
     return results, ceilings
 
 
@@ -311,7 +337,8 @@ def config_row(label, reps, idle=None):
             f"| {cell([100 * (r['in_runs'] / runs / r['loop'] - 1) for r in reps], '{:.1f}')} "
             f"| {client} | {'-' if idle is None else f'{100 * idle:.1f}'} "
             f"| {cell(col['busy'], '{:.3f}')} | {cell(col['schedule'], '{:.3f}')} "
-            f"| {sum(col['checked']) - sum(col['bad'])} of {sum(col['checked'])} |")
+            f"| {sum(col['checked']) - sum(col['bad'])} of {sum(col['checked'])} "
+            f"| {cell([100 * x for x in col['others']], '{:.0f}')} |")
 
 
 def against_loop(r, workers):
@@ -326,12 +353,12 @@ def table(title, runs_all, n_tasks, results, ceilings):
     print("| configuration | wall (s) | CPU per run (ms) | in runs (ms) | loop (ms) | overhead (%) "
           "| overhead net of idle (%) | against the loop (%) | in-runs against the loop (%) "
           "| client CPU per task (ms) | idle cluster (% of a core) | workers busy | schedule efficiency "
-          "| rows equal to the loop's |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "| rows equal to the loop's | others' CPU (% of a core) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for workers, (reps, idle) in results.items():
         print(config_row(f"LocalCluster, {workers} worker(s)", reps, idle))
     print(config_row(f"ceiling: 2 plain processes, no Dask ({ceilings[0]['runs']} runs)", ceilings))
-    summary = dict(title=title, runs=runs_all, tasks=n_tasks, ceiling=[c["loop_wall"] / (2 * c["wall"]) for c in ceilings],
+    summary = dict(title=title, runs=runs_all, tasks=n_tasks, ceilings=ceilings, ceiling=[c["loop_wall"] / (2 * c["wall"]) for c in ceilings],
                    procs=[[100 * (p / c["loop"] - 1) for p in c["per_process"]] for c in ceilings])
     one = results.get(1)
     for workers, (reps, idle) in results.items():
@@ -362,8 +389,9 @@ def summary_table(summaries):
     print("| study | tasks | 1 worker: wall (s) | 2 workers: wall (s) | wall-clock efficiency (1-worker wall / 2 x 2-worker wall) "
           "| against the loop (loop wall per run x runs / 2 x 2-worker wall) | ceiling (loop wall / 2 x two processes' wall) "
           "| Dask / ceiling | Dask against the loop / ceiling | a run's CPU in the two processes against the loop (%) "
-          "| workers busy | schedule efficiency | Dask's overhead (%) | net of idle (%) | study's CPU against the loop (%) |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "| workers busy | schedule efficiency | Dask's overhead (%) | net of idle (%) | study's CPU against the loop (%) "
+          "| others' CPU, 2 workers / ceiling (% of a core) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for s in summaries:
         if 2 not in s:
             continue
@@ -378,7 +406,9 @@ def summary_table(summaries):
               f"| {cell([r['busy'] for r in reps], '{:.3f}')} | {cell([r['schedule'] for r in reps], '{:.3f}')} "
               f"| {cell([100 * (r['cpu'] / r['in_runs'] - 1) for r in reps], '{:.1f}')} "
               f"| {cell([100 * ((r['cpu'] - idle * r['wall']) / r['in_runs'] - 1) for r in reps], '{:.1f}')} "
-              f"| {cell([100 * (r['cpu'] / r['runs'] / r['loop'] - 1) for r in reps], '{:+.1f}')} |")
+              f"| {cell([100 * (r['cpu'] / r['runs'] / r['loop'] - 1) for r in reps], '{:+.1f}')} "
+              f"| {statistics.median(100 * r['others'] for r in reps):.0f} / "
+              f"{statistics.median(100 * c['others'] for c in s['ceilings']):.0f} |")
 
 
 #: --large: the 4000-run study of issue 21 (100 records: the 9 shipped components repeated
