@@ -1,16 +1,21 @@
 """Throughput of a fragility sweep on dask.distributed: the CPU and wall time of the study's
 tasks on a LocalCluster of 1 and 2 worker processes against the same runs in a plain loop in
-this process, repeated and interleaved (the loop just before each cluster run), the median
-and the minimum of each figure printed.
+this process and against the machine's ceiling without Dask (the same runs in two plain-loop
+processes at once), repeated and interleaved (the loop just before each cluster run and
+before the ceiling), the median and the minimum of each figure printed.
 
     .venv/bin/python benches/fragility_throughput.py [--stripes 8,16,40] [--repeats 3]
+    .venv/bin/python benches/fragility_throughput.py --large     # the 4000-run study
 
 The task set: the slender block and the Dharahara tower (rigid) of examples/fragility.toml,
 each under the 9 horizontal components of data/ground-motions, at --stripes intensities
 (multiple stripes: 8 make the default 144-run study, 16 288 runs, 40 720), every run 5 s
-past the record's end, batched as the study batches them (or --chunk runs a task). Each
-cluster run starts from an empty store; the cluster's start and the FMU's transfer are not
-timed. Columns:
+past the record's end, batched as the study batches them (or --chunk runs a task). --large:
+the slender block under 100 records (the 9 components repeated under new names) at 40
+stripes, 4000 runs on 2 workers, the loop and the ceiling on every tenth task, one repeat.
+Each cluster run starts from an empty store; the cluster's start and the FMU's transfer are
+not timed. Progress goes to stderr (each measurement as it ends; a cluster run of 1000 runs
+or more at every 10 %). Columns:
 
 - CPU per run: all processes (the workers', and this process's, which hosts the
   LocalCluster's scheduler and nannies) over the runs; "in runs": the runs' own thread CPU
@@ -18,17 +23,34 @@ timed. Columns:
   loop: all over the plain loop's CPU per run measured just before, minus one (what the
   study costs more than the loop); in-runs against the loop: whether a run itself costs more
   in a worker.
-- Interleaved: a cluster of each size is open at once; each repeat runs, for each size, the
-  loop and then the cluster, so that every size sees the same load.
+- Interleaved: a cluster of each size and the ceiling's two processes are open at once; each
+  repeat runs, for each size, the loop and then the cluster, then the loop and the ceiling,
+  so that all see the same load.
 - schedule efficiency: the tasks' measured CPU (the sum of their rows' cpu_s) list-scheduled
   in submission order on the workers, total / (workers x makespan): the balance the batching
   allows, whatever the machine's load. wall-clock efficiency: the 1-worker wall over n times
-  the n-worker wall of the same repeat; it needs a quiet machine.
+  the n-worker wall of the same repeat; "against the loop": the loop's wall per run x the
+  runs over n times the n-worker wall. Both need a quiet machine.
+- the machine ceiling: the loop's runs (every --sample-th task's) in two plain-loop processes
+  (spawned, each with its own FMU, in the environment the LocalCluster gives its workers),
+  started together on a barrier once both have loaded the FMU, each taking the next run
+  left, largest first by the loop's CPU, so that they end within a run of each other. Its
+  wall-clock efficiency: the loop's wall over twice the two processes' wall (first start to
+  last end): what two cores give plain loops, the most a 2-worker study could reach. Its row:
+  CPU per run as for the clusters (no client, no idle cluster); workers busy: the processes'
+  loop times over twice the wall; schedule efficiency: the two processes' run CPU, total /
+  (2 x the larger); "a run's CPU in each process against the loop's": each process's CPU
+  per run over the loop's. "Dask / ceiling": the 2-worker wall-clock efficiency over the
+  ceiling's of the same repeat.
 - idle cluster: its CPU while it waits (measured for IDLE_S before the runs), which grows
   with the wall time that a loaded machine stretches; "net of idle": the overhead without
   it (idle x wall).
+- others' CPU: the machine's busy CPU while a measurement ran (/proc/stat) less the
+  measurement's own, over its wall, in % of a core: near 0 on a quiet machine; a repeat with
+  tens of % is not a quiet one, whatever the load average said.
 
-Every row of every cluster run is checked against the loop's outcome for the same run.
+Every row of every cluster run, and every run of the ceiling, is checked against the loop's
+outcome for the same run.
 """
 
 import argparse
