@@ -311,18 +311,21 @@ def measure(fmu_path, tasks, worker_counts, repeats, sample, log):
             cluster.register_fmu(client, fmu_path)
             client.run(lambda: None)
         ceiling = stack.enter_context(contextlib.closing(Ceiling(fmu_path, runs, cluster.worker_environ())))
+        log(f"LocalCluster(s) of {', '.join(map(str, clients))} worker(s) and the ceiling's two processes ready; "
+            f"the idle clusters' CPU for {IDLE_S:.0f} s")
         results = {w: ([], idle_cpu(c)) for w, c in clients.items()}
         ceilings = []
         for r in range(1, repeats + 1):
             for workers, client in clients.items():
                 loop = loop_figures(fmu_path, runs)
                 label = f"repeat {r}/{repeats}, {workers} worker(s)"
+                log(f"{label}: loop {len(runs)} runs {loop['end'] - loop['start']:.2f} s")
                 busy0 = machine_cpu()
                 fig, df = on_cluster(client, workers, tasks, log.cluster_progress(total, label))
                 fig.update(others=others(busy0, fig), loop=loop["cpu"] / len(runs), loop_wall=loop["end"] - loop["start"], loop_runs=len(runs),
                            bad=mismatches(rows_of(df), loop["outcomes"]), checked=len(runs))
                 results[workers][0].append(fig)
-                log(f"{label}: loop {len(runs)} runs {fig['loop_wall']:.2f} s, cluster {fig['runs']} runs "
+                log(f"{label}: cluster {fig['runs']} runs "
                     f"{fig['wall']:.2f} s, others' CPU {100 * fig['others']:.0f} % of a core")
             loop = loop_figures(fmu_path, runs)
             busy0 = machine_cpu()
@@ -463,7 +466,7 @@ def main():
         st = study(stripes, args.chunk, args.records, args.bodies)
         with RockingFMU(fmu_path) as fmu:
             tasks = st.tasks(fmu, cluster.fmu_digest(fmu_path))
-        log(f"--stripes {stripes}: {sum(t[3] for t in tasks)} runs in {len(tasks)} tasks")
+        log(f"--stripes {stripes}: {sum(t[3] for t in tasks)} runs in {len(tasks)} tasks; starting the clusters")
         results, ceilings = measure(fmu_path, tasks, [int(x) for x in args.workers.split(",")], args.repeats,
                                     args.sample, log)
         summaries.append(table(f"--stripes {stripes}", sum(t[3] for t in tasks), len(tasks), results, ceilings))
