@@ -75,6 +75,37 @@ def test_degenerate_bootstrap_resamples_are_counted_not_fatal():
     assert math.isfinite(f.median) and f.beta > 0
 
 
+def test_msa_bootstrap_fits_each_resample_as_a_plain_loop_does():
+    """The bootstrap fits each distinct resample's counts once: the same medians and betas,
+    bit for bit, and the same undetermined count, as fitting every resample in a loop written
+    here (over records, and over stations, where some resamples are undetermined)."""
+    rng = np.random.default_rng(3)
+    stripes = [0.4, 0.7, 1.0, 1.4]
+    table = (rng.random((11, 4)) < np.array([0.05, 0.3, 0.6, 0.9])).astype(float)
+    stations = [k // 2 for k in range(11)]
+    undetermined_seen = 0
+    for groups_of in (None, stations):
+        f = fit.msa_fragility(stripes, table, n_boot=400, seed=7, stations=groups_of)
+        groups = fit._groups(list(table), groups_of)
+        pick_rng = np.random.default_rng(7)
+        medians, betas, undetermined = [], [], 0
+        for _ in range(400):
+            pick = pick_rng.integers(0, len(groups), len(groups))
+            rows = np.array([row for i in pick for row in groups[i]])
+            try:
+                m, b = fit.fit_stripes(stripes, (~np.isnan(rows)).sum(axis=0), np.nansum(rows, axis=0))
+            except (ValueError, OverflowError, FloatingPointError):
+                undetermined += 1
+                continue
+            medians.append(m)
+            betas.append(b)
+        assert f.boot_undetermined == undetermined
+        assert np.array_equal(f.boot[0], medians) and np.array_equal(f.boot[1], betas)
+        assert len(set(zip(medians, betas))) < len(medians)  # resamples repeat
+        undetermined_seen += undetermined
+    assert undetermined_seen > 0
+
+
 def test_an_undetermined_body_is_one_line_and_everything_is_written(tmp_path):
     """A body whose stripes separate gets 'no fit: ...'; the other body, the summary and the
     plot are written (the command used to die in the bootstrap)."""

@@ -265,8 +265,21 @@ def msa_fragility(stripes, outcomes, n_boot=1000, level=0.9, seed=0, beta_modell
         rows = np.asarray(rows, dtype=float)
         return (~np.isnan(rows)).sum(axis=0), np.nansum(rows, axis=0)
 
+    fits = {}
+
     def refit(sample):
-        return fit_stripes(stripes, *counts(_flat(sample)))
+        # A resample's fit depends on its counts alone, and resamples of a few records or
+        # stations repeat them (5 stations: at most 126 distinct resamples): each fitted once.
+        n, z = counts(_flat(sample))
+        key = (n.tobytes(), z.tobytes())
+        if key not in fits:
+            try:
+                fits[key] = fit_stripes(stripes, n, z)
+            except (ValueError, OverflowError, FloatingPointError) as exc:
+                fits[key] = exc
+        if isinstance(fits[key], Exception):
+            raise fits[key].with_traceback(None)
+        return fits[key]
 
     n, z = counts(table)
     median, beta = fit_stripes(stripes, n, z)
