@@ -23,7 +23,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy import stats
-from scipy.optimize import minimize
 from scipy.special import log_ndtr, ndtr
 
 _LOG_SQRT_2PI = 0.5 * math.log(2 * math.pi)
@@ -86,12 +85,46 @@ def _finite_fit(median, beta, what):
     return median, beta
 
 
-def _maximize(nll, mu0, beta0, what):
-    res = minimize(lambda p: nll(p[0], math.exp(min(p[1], 700.0))), [mu0, math.log(max(beta0, 1e-3))],
-                   method="BFGS", options=dict(gtol=1e-9))
-    if not np.all(np.isfinite(res.x)) or abs(res.x[0]) > 700 or abs(res.x[1]) > 700:
-        raise Undetermined(f"{what}: the likelihood has no maximum")
-    return _finite_fit(math.exp(res.x[0]), math.exp(res.x[1]), what)
+def _censored_loglik(xs, xc, a, b):
+    r = b * xs - a
+    return float(-0.5 * r @ r + xs.size * math.log(b) + log_ndtr(a - b * xc).sum())
+
+
+def _censored_newton(xs, xc, iterations=100):
+    """Maximum of the log-likelihood of ln-capacities `xs` and lower bounds `xc` under a
+    normal of mean mu and deviation beta, by Newton's method with step halving in
+    (a, b) = (mu/beta, 1/beta), where it is concave (Olsen 1978, the Tobit model):
+    l = sum_s [ln b - (b x - a)²/2] + sum_c ln Phi(a - b x) + const. Returns (mu, beta)."""
+    a, b = xs.mean() / xs.std(), 1.0 / xs.std()
+    ll = _censored_loglik(xs, xc, a, b)
+    sx, sxx = xs.sum(), xs @ xs
+    for _ in range(iterations):
+        r = b * xs - a
+        u = a - b * xc
+        lam = np.exp(-0.5 * u * u - _LOG_SQRT_2PI - log_ndtr(u))  # inverse Mills ratio
+        k = lam * (u + lam)                                       # -d lambda/du > 0
+        g = np.array([r.sum() + lam.sum(), -(r @ xs) + xs.size / b - lam @ xc])
+        h = np.array([[xs.size + k.sum(), -sx - k @ xc],
+                      [-sx - k @ xc, sxx + xs.size / (b * b) + k @ (xc * xc)]])  # -Hessian
+        det = h[0, 0] * h[1, 1] - h[0, 1] * h[1, 0]
+        if not det > 0:
+            break
+        step = np.array([h[1, 1] * g[0] - h[0, 1] * g[1], h[0, 0] * g[1] - h[1, 0] * g[0]]) / det
+        t = 1.0
+        while t > 1e-10:
+            a1, b1 = a + t * step[0], b + t * step[1]
+            if b1 > 0:
+                ll1 = _censored_loglik(xs, xc, a1, b1)
+                if ll1 >= ll - 1e-13 * abs(ll):
+                    break
+            t /= 2
+        else:
+            break
+        done = abs(ll1 - ll) <= 1e-15 * max(1.0, abs(ll)) and np.max(np.abs(t * step)) < 1e-12 * max(1.0, abs(a))
+        a, b, ll = a1, b1, ll1
+        if done:
+            break
+    return a / b, 1.0 / b
 
 
 def fit_capacities(capacities, censored=None, estimator="mle"):
@@ -116,12 +149,8 @@ def fit_capacities(capacities, censored=None, estimator="mle"):
     if xc.size == 0:
         return math.exp(xs.mean()), float(xs.std())
 
-    def nll(mu, beta):
-        zs = (xs - mu) / beta
-        return (0.5 * zs @ zs + xs.size * (math.log(beta) + _LOG_SQRT_2PI)
-                - log_ndtr(-(xc - mu) / beta).sum())
-
-    return _maximize(nll, xs.mean(), max(xs.std(), 0.1), "censored collapse intensities")
+    mu, beta = _censored_newton(xs, xc)
+    return _finite_fit(math.exp(mu), beta, "censored collapse intensities")
 
 
 def stripes_determined(im, n, collapsed):
