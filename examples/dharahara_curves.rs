@@ -4,11 +4,7 @@
 //! Table 1 with fm = 2, 5, 15 MPa and without crushing, and on the rigid
 //! interface.
 //!
-//! Geometry (stated in docs/dharahara.md): the paper's R0 = 30.44 m and
-//! alpha = 0.125 put the pivot 3.80 m from G's vertical, not at Ro = 3.99 m;
-//! this model needs G above the section centroid, so hG = R0 cos(alpha) =
-//! 30.20 m and alpha = atan(3.99 / 30.20) = 0.131. Ic is an assumption: a
-//! hollow cylinder of height 2 hG, Ic = m (H²/12 + (Ro² + Ri²)/4).
+//! Geometry and mass: examples/support/dharahara.rs.
 //!
 //! `cargo run --release --example dharahara_curves [-- OUT_DIR [HG [IC]]]`
 //! (default `out/dharahara`; HG in m and IC in kg m² replace the choices above,
@@ -24,15 +20,12 @@
 
 use std::fmt::Write as _;
 
-use rocking::model::{LawKind, MassKind, ShapeKind};
+use rocking::model::LawKind;
 use rocking::{Model, Params};
 
-const RO: f64 = 3.99;
-const RI: f64 = 2.12;
-const W: f64 = 24003.94e3;
-const R0_PAPER: f64 = 30.44;
-const ALPHA_PAPER: f64 = 0.125;
-const G: f64 = 9.81;
+#[path = "support/dharahara.rs"]
+mod dharahara;
+use dharahara::{tower, ALPHA_PAPER, R0_PAPER, RI, RO};
 
 /// Foundation stiffnesses of Table 1, MPa/m.
 const FOUNDATION_MPA: [f64; 6] = [85.0, 170.0, 340.0, 680.0, 1350.0, 13500.0];
@@ -47,25 +40,6 @@ struct Case {
     kn: f64,
     fm: f64,
     model: Model,
-}
-
-/// The tower: `hg` defaults to R0 cos(alpha) of the paper, `ic` to the
-/// hollow cylinder of height 2 hG.
-fn tower(hg: Option<f64>, ic: Option<f64>) -> Params {
-    let hg = hg.unwrap_or(R0_PAPER * ALPHA_PAPER.cos());
-    let m = W / G;
-    let h = 2.0 * hg;
-    Params {
-        shape: ShapeKind::HollowCircle,
-        ro: RO,
-        ri: RI,
-        mass_model: MassKind::Lumped,
-        w: W,
-        hg,
-        ic: ic.unwrap_or(m * (h * h / 12.0 + (RO * RO + RI * RI) / 4.0)),
-        g: G,
-        ..Params::default()
-    }
 }
 
 fn fm_label(fm: f64) -> String {

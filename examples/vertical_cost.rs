@@ -21,8 +21,11 @@
 //! one of `VERTICAL_COST_ONLY=none`) and to compare two builds bit for bit.
 
 use rocking::dynamics::{GroundInput, Simulator, VerticalInput};
-use rocking::model::{LawKind, MassKind, ShapeKind};
+use rocking::model::LawKind;
 use rocking::Params;
+
+#[path = "support/dharahara.rs"]
+mod dharahara;
 
 const DT: f64 = 0.01;
 const N: usize = 2000;
@@ -94,21 +97,11 @@ extern "C" {
 /// The Dharahara tower of docs/dharahara.md on its F170_fm5 foundation
 /// (kn = 170 MPa/m, fm = 5 MPa).
 fn tower() -> Params {
-    let (ro, ri, w, hg) = (3.99, 2.12, 24_003.94e3, 30.44 * 0.125f64.cos());
-    let h = 2.0 * hg;
     Params {
-        shape: ShapeKind::HollowCircle,
-        ro,
-        ri,
-        mass_model: MassKind::Lumped,
-        w,
-        hg,
-        ic: w / G * (h * h / 12.0 + (ro * ro + ri * ri) / 4.0),
-        g: G,
         interface: LawKind::ElastoPlastic,
         kn: 170e6,
         fm: 5e6,
-        ..Params::default()
+        ..dharahara::tower(None, None)
     }
 }
 
