@@ -58,6 +58,24 @@ fn bodies() -> Vec<(&'static str, Shape, f64, f64, f64, f64)> {
     ]
 }
 
+/// Every body of [`bodies`] on its three flexible laws (elastic, crushing in
+/// partial and in full contact), with its table up to `PHI_MAX`.
+fn tables() -> Vec<(&'static str, Law, Interface, ContactTable)> {
+    let mut out = Vec::new();
+    for (name, shape, w, kn, fm_partial, fm_full) in bodies() {
+        for law in [
+            Law::Elastic { kn },
+            Law::ElastoPlastic { kn, fm: fm_partial },
+            Law::ElastoPlastic { kn, fm: fm_full },
+        ] {
+            let it = Interface::new(shape, law, w);
+            let table = ContactTable::new(&it, PHI_MAX).expect("a table");
+            out.push((name, law, it, table));
+        }
+    }
+    out
+}
+
 fn grid(lo: f64, hi: f64) -> impl Iterator<Item = f64> {
     let n = 20_000;
     let log = (0..=n).map(move |i| lo * (hi / lo).powf(i as f64 / n as f64));
@@ -101,42 +119,36 @@ fn worst(it: &Interface, table: &ContactTable) -> [f64; 4] {
 
 #[test]
 fn table_agrees_with_the_solve_on_dense_grids() {
-    for (name, shape, w, kn, fm_partial, fm_full) in bodies() {
+    for (name, shape, w, ..) in bodies() {
         let rigid = Interface::new(shape, Law::Rigid, w);
         assert!(
             ContactTable::new(&rigid, PHI_MAX).is_none(),
             "{name}: rigid"
         );
-        for law in [
-            Law::Elastic { kn },
-            Law::ElastoPlastic { kn, fm: fm_partial },
-            Law::ElastoPlastic { kn, fm: fm_full },
-        ] {
-            let it = Interface::new(shape, law, w);
-            let table = ContactTable::new(&it, PHI_MAX).expect("a table");
-            let (lo, hi) = table.range();
-            // whole octaves from the first iterative regime, the last one
-            // reaching PHI_MAX
-            let phi0 = it.theta_jo().min(it.theta_c());
-            let octaves = (hi / lo).log2();
-            assert!(
-                lo == phi0 && (PHI_MAX..2.0 * PHI_MAX).contains(&hi) && octaves == octaves.round(),
-                "{name} {law:?}: range {lo}..{hi}"
-            );
-            let (pieces, open) = table.pieces();
-            let err = worst(&it, &table);
-            println!("{name:22} {law:?}: {pieces} pieces ({open} left to the solver), max rel. error af {:.1e}, af' {:.1e}, a {:.1e}, a' {:.1e}", err[0], err[1], err[2], err[3]);
-            assert!(
-                err[0] <= 1e-12 && err[2] <= 1e-12,
-                "{name} {law:?}: af, a: {err:?}"
-            );
-            // the solver's own af' is good to 1e-10 (1e-9 beside an inner edge,
-            // docs/interface.md), its a' to about 3e-8
-            assert!(
-                err[1] <= 2e-9 && err[3] <= 3e-7,
-                "{name} {law:?}: af', a': {err:?}"
-            );
-        }
+    }
+    for (name, law, it, table) in tables() {
+        let (lo, hi) = table.range();
+        // whole octaves from the first iterative regime, the last one
+        // reaching PHI_MAX
+        let phi0 = it.theta_jo().min(it.theta_c());
+        let octaves = (hi / lo).log2();
+        assert!(
+            lo == phi0 && (PHI_MAX..2.0 * PHI_MAX).contains(&hi) && octaves == octaves.round(),
+            "{name} {law:?}: range {lo}..{hi}"
+        );
+        let (pieces, open) = table.pieces();
+        let err = worst(&it, &table);
+        println!("{name:22} {law:?}: {pieces} pieces ({open} left to the solver), max rel. error af {:.1e}, af' {:.1e}, a {:.1e}, a' {:.1e}", err[0], err[1], err[2], err[3]);
+        assert!(
+            err[0] <= 1e-12 && err[2] <= 1e-12,
+            "{name} {law:?}: af, a: {err:?}"
+        );
+        // the solver's own af' is good to 1e-10 (1e-9 beside an inner edge,
+        // docs/interface.md), its a' to about 3e-8
+        assert!(
+            err[1] <= 2e-9 && err[3] <= 3e-7,
+            "{name} {law:?}: af', a': {err:?}"
+        );
     }
 }
 
@@ -212,33 +224,25 @@ fn run(sim: &Simulator, amp: f64) -> Vec<State> {
 /// `af'` are the table's contact's, over every fourth rotation of the grids.
 #[test]
 fn the_table_bounds_a_from_above() {
-    for (name, shape, w, kn, fm_partial, fm_full) in bodies() {
-        for law in [
-            Law::Elastic { kn },
-            Law::ElastoPlastic { kn, fm: fm_partial },
-            Law::ElastoPlastic { kn, fm: fm_full },
-        ] {
-            let it = Interface::new(shape, law, w);
-            let table = ContactTable::new(&it, PHI_MAX).expect("a table");
-            let (lo, hi) = table.range();
-            let (mut tightest, mut served) = (f64::INFINITY, 0);
-            for phi in grid(lo, hi).step_by(4) {
-                let Some((r, bound)) = table.reaction_bounded(&it, phi) else {
-                    continue;
-                };
-                let t = table.contact(&it, phi).expect("the same piece");
-                assert!(r.af == t.af && r.daf == t.daf, "{name} {law:?} at {phi}");
-                let a = it.contact(phi).a;
-                assert!(
-                    bound >= a * (1.0 - 1e-12),
-                    "{name} {law:?} at {phi}: bound {bound} < a {a}"
-                );
-                tightest = tightest.min(bound / a - 1.0);
-                served += 1;
-            }
-            println!("{name:22} {law:?}: {served} rotations, bound/a - 1 >= {tightest:.1e}");
-            assert!(served > 9_000, "{name} {law:?}: {served} rotations");
+    for (name, law, it, table) in tables() {
+        let (lo, hi) = table.range();
+        let (mut tightest, mut served) = (f64::INFINITY, 0);
+        for phi in grid(lo, hi).step_by(4) {
+            let Some((r, bound)) = table.reaction_bounded(&it, phi) else {
+                continue;
+            };
+            let t = table.contact(&it, phi).expect("the same piece");
+            assert!(r.af == t.af && r.daf == t.daf, "{name} {law:?} at {phi}");
+            let a = it.contact(phi).a;
+            assert!(
+                bound >= a * (1.0 - 1e-12),
+                "{name} {law:?} at {phi}: bound {bound} < a {a}"
+            );
+            tightest = tightest.min(bound / a - 1.0);
+            served += 1;
         }
+        println!("{name:22} {law:?}: {served} rotations, bound/a - 1 >= {tightest:.1e}");
+        assert!(served > 9_000, "{name} {law:?}: {served} rotations");
     }
 }
 
