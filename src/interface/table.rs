@@ -452,7 +452,7 @@ impl ContactTable {
 
     /// [`reaction`](Self::reaction) and a bound on the contact's `a`, m:
     /// the table's `a` at the lower end of its piece (at most a few ulps
-    /// below the solver's there, [`FIT_RTOL`]; `a` falls as `phi` grows).
+    /// below the solver's there, within the fit's tolerance; `a` falls as `phi` grows).
     #[inline(always)]
     pub fn reaction_bounded(&self, it: &Interface, phi: f64) -> Option<(Contact, f64)> {
         let phi = phi.abs();
