@@ -68,3 +68,36 @@ proptest! {
         prop_assert!((n - w).abs() < 1e-12 * w, "N = {n} vs W = {w}");
     }
 }
+
+proptest! {
+    /// The contact under a bed resultant `n` other than the weight (docs/model.md
+    /// §6.1), solved from a warm start anywhere (the regime of the warm start is
+    /// tried first and kept only where the solve converges inside it): its `a`
+    /// carries `n` and its `af` is the stress's moment over `n`, by an independent
+    /// quadrature, as the unwarmed solve's does.
+    #[test]
+    fn the_loaded_contact_carries_n_from_any_warm_start(
+        shape in shape_strategy(),
+        stress in 1e3f64..1e7,
+        kn_exp in 6.0f64..15.0,
+        fm_ratio in prop_oneof![Just(f64::INFINITY), 1.01f64..50.0],
+        theta_exp in -9.0f64..0.0,
+        n_ratio in 0.05f64..1.9,      // n / W, below fm A / W
+        hint_ratio in prop_oneof![Just(f64::NAN), 1e-3f64..1e3], // warm start / D
+    ) {
+        let w = stress * shape.area();
+        let kn = 10f64.powf(kn_exp);
+        let fm = fm_ratio * stress;
+        prop_assume!(n_ratio * w < fm * shape.area());
+        let it = Interface::new(shape, law(kn, fm), w);
+        let (th, n) = (10f64.powf(theta_exp), n_ratio * w);
+        let (c, _) = it.contact_loaded(th, n, hint_ratio * shape.depth());
+        let (cold, _) = it.contact_loaded(th, n, f64::NAN);
+        let [nq, mq] = resultants(&shape, kn, fm, th, c.a);
+        prop_assert!((nq - n).abs() < 1e-12 * n, "N = {nq} vs {n}");
+        prop_assert!((c.af - mq / nq).abs() <= 1e-11 * c.af.abs().max(1e-12 * shape.depth()),
+            "af {} vs {}", c.af, mq / nq);
+        prop_assert!((c.af - cold.af).abs() <= 1e-12 * cold.af.abs().max(1e-12 * shape.depth()),
+            "af {} warm vs {} cold", c.af, cold.af);
+    }
+}
