@@ -45,6 +45,7 @@ mod output_rates;
 mod outputs;
 mod rodas;
 mod stiffness;
+mod thresholds;
 mod work;
 
 pub mod continuous;
@@ -52,9 +53,8 @@ pub mod continuous;
 pub use output_rates::{Jet, OutputRates};
 pub use work::{Limited, WorkLimit};
 
-use crate::interface::{Contact, ContactTable, Interface, Law, Regime};
+use crate::interface::{Contact, ContactTable, Law, Regime};
 use crate::model::Model;
-use std::cell::Cell;
 use std::sync::Arc;
 
 use erk::Tol;
@@ -270,11 +270,9 @@ pub struct Simulator {
     /// The contact solve tabulated up to `thetaOv` (flexible laws, built by
     /// `new`); `None`: every contact is solved.
     table: Option<Arc<ContactTable>>,
-    /// The last [`Interface::bed_limits`] asked for, with its rotation (its
-    /// bits): a step's end and the next step's start are the same rotation,
-    /// across calls too. A cache of a function of `phi` alone: what it
-    /// holds changes no result.
-    bed_limits: Cell<(u64, [f64; 2])>,
+    /// The moving thresholds' bed resultants at the last two rotations
+    /// asked for.
+    threshold_limits: thresholds::LimitCache,
 }
 
 impl Simulator {
@@ -292,26 +290,8 @@ impl Simulator {
             method,
             stiff_mode: true,
             work_limit: None,
-            bed_limits: Cell::new((f64::NAN.to_bits(), [f64::NAN; 2])),
+            threshold_limits: thresholds::LimitCache::default(),
         }
-    }
-
-    /// [`Interface::bed_margins`] at `phi` under the bed resultant `n`
-    /// (N), its bed resultants kept for the next call at the same `phi`.
-    pub(crate) fn bed_margins(&self, phi: f64, n: f64) -> [f64; 2] {
-        let it = &self.model.interface;
-        if phi <= 0.0 || it.law() == Law::Rigid {
-            return it.bed_margins(phi, n);
-        }
-        let (key, cached) = self.bed_limits.get();
-        let limits = if key == phi.to_bits() {
-            cached
-        } else {
-            let limits = it.bed_limits(phi);
-            self.bed_limits.set((phi.to_bits(), limits));
-            limits
-        };
-        Interface::margins_of(limits, n)
     }
 
     /// Whether contacts come from the table ([`ContactTable`], within about

@@ -62,6 +62,23 @@ pub struct Contact {
     pub iterations: u32,
 }
 
+/// An edge of the stress profile reaching a point of the base: the
+/// moving thresholds of docs/model.md §6.4, zeros of `N - Nbed(phi)` at a
+/// bed resultant explicit in `phi`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Threshold {
+    /// The contact edge `a` at `x` m from the toe (`x = D`: joint opening).
+    Contact(f64),
+    /// The plastic edge `xp = a - fm/(kn phi)` at `x` m from the toe
+    /// (`x = 0`: crushing onset).
+    Plastic(f64),
+}
+
+/// The most moving thresholds an interface has: joint opening, crushing
+/// onset, and both edges at each of the two breaks of a hollow section's
+/// width.
+pub const THRESHOLDS: usize = 6;
+
 /// An interface law applied to a base shape carrying a weight.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Interface {
@@ -326,6 +343,48 @@ impl Interface {
             f64::INFINITY
         };
         [self.bed_resultant(k, a1, self.d), toe]
+    }
+
+    /// The moving thresholds of docs/model.md §6.4 in a fixed order:
+    /// joint opening, crushing onset, then at each break of the width
+    /// ([`Shape::width_breaks`]) the contact edge and the plastic edge.
+    /// `None` where the interface has none: the plastic ones on an elastic
+    /// bed, the breaks of a solid section, every one for the rigid law.
+    pub fn moving_thresholds(&self) -> [Option<Threshold>; THRESHOLDS] {
+        let mut t = [None; THRESHOLDS];
+        if self.law == Law::Rigid {
+            return t;
+        }
+        let plastic = self.fm.is_finite();
+        t[0] = Some(Threshold::Contact(self.d));
+        t[1] = plastic.then_some(Threshold::Plastic(0.0));
+        for (i, x) in self.shape.width_breaks().into_iter().flatten().enumerate() {
+            t[2 + 2 * i] = Some(Threshold::Contact(x));
+            t[3 + 2 * i] = plastic.then_some(Threshold::Plastic(x));
+        }
+        t
+    }
+
+    /// The bed resultant at which the edge of `t` is at its point at
+    /// `phi > 0` (a flexible law), N: `Nbed(x, phi)` for the contact edge,
+    /// `Nbed(x + fm/(kn phi), phi)` for the plastic one (docs/model.md
+    /// §6.4). Under a larger `N` the edge is past the point (`Nbed` grows
+    /// with `a`).
+    pub fn threshold_resultant(&self, phi: f64, t: Threshold) -> f64 {
+        let k = self.kn * phi;
+        let a1 = self.fm / k;
+        match t {
+            Threshold::Contact(x) => self.bed_resultant(k, a1, x),
+            Threshold::Plastic(x) => self.bed_resultant(k, a1, x + a1),
+        }
+    }
+
+    /// The relative margin `1 - Nbed/n` of the bed resultant `n` (N) to a
+    /// threshold's `limit` ([`threshold_resultant`](Self::threshold_resultant)):
+    /// positive while the edge is past its point.
+    #[inline]
+    pub fn threshold_margin(limit: f64, n: f64) -> f64 {
+        1.0 - limit / n
     }
 
     /// [`bed_margins`](Self::bed_margins) from its [`bed_limits`](Self::bed_limits).

@@ -74,6 +74,18 @@ impl Shape {
         }
     }
 
+    /// Where the width has a kink or a square-root end inside the base
+    /// (m from the toe): a hollow rectangle's flange edges (`w` jumps), a
+    /// hollow circle's inner circle (`w'` is infinite); none on a solid
+    /// section.
+    pub fn width_breaks(&self) -> Option<[f64; 2]> {
+        match *self {
+            Shape::SolidRectangle { .. } | Shape::SolidCircle { .. } => None,
+            Shape::HollowRectangle { b, t, .. } => Some([t, b - t]),
+            Shape::HollowCircle { ro, ri } => Some([ro - ri, ro + ri]),
+        }
+    }
+
     /// Whether `w` is smooth (analytic) on `[lo, hi]`: no flange step of a
     /// hollow rectangle and no circle edge (square-root point) inside.
     pub fn is_smooth_on(&self, lo: f64, hi: f64) -> bool {

@@ -13,13 +13,14 @@
 //! | 0 | `side theta` | zero crossing (impact): `omega <- eta omega`, the toe switches (docs/model.md §3) |
 //! | 1 | `thetaOv - abs(theta)` | overturning: the run ends |
 //! | 2 | `g tan(alpha) - abs(ag)` while a rigid body rests, else 1 | uplift from rest |
-//! | 3.. | `abs(theta) - level` per kink of `af` ([`KINK_SLOTS`], unused ones 1) | none: the solver restarts at the kink |
+//! | 3.. | `abs(theta) - level` per kink of `af`, one slot per threshold of [`Interface::moving_thresholds`](crate::interface::Interface::moving_thresholds) in its order ([`KINK_SLOTS`]; a kink not reached below `thetaOv`, or absent, 1) | none: the solver restarts at the kink |
 //! | 9 | the smallest relative margin of `N = W + m av` to its limits (1 without `av`) | the input left the model's range (docs/model.md §6.5): the run ends |
 //! | 10, 11 | `abs(theta) - level` for joint opening and crushing onset at `N = W` on a flexible law with `shiftingPivot` (else 1) | none: the slope of `I(phi, W)`, to which the state `omegaW` is referred, changes there |
 //!
 //! Under a vertical input `av` (docs/model.md §6) the uplift threshold is
-//! `(g + av) tan(alpha)` and, for a flexible law, indicator 1 is
-//! `hW(phi, N)/phi`, positive below `thetaOv(N)`. A one-sided body
+//! `(g + av) tan(alpha)`; for a flexible law, indicator 1 is
+//! `hW(phi, N)/phi`, positive below `thetaOv(N)`, and the kink slots are
+//! the thresholds' margins at N (docs/model.md §6.4). A one-sided body
 //! (docs/model.md §7) keeps its toe: the crossing is a restraint impact.
 //!
 //! `side` (the toe the body rocks about, `±1`) is a discrete state: the
@@ -27,7 +28,7 @@
 //! impact map leaves exactly at `theta = 0` moving into the other side does
 //! not fire again.
 
-use crate::interface::Law;
+use crate::interface::{Law, Threshold, THRESHOLDS};
 use crate::model::Formulation;
 
 use super::eom::Eom;
@@ -35,9 +36,9 @@ use super::events::count_crossing;
 use super::{Events, GroundInput, OutOfRange, Simulator, State, VerticalInput};
 
 /// Event-indicator slots for the kinks of `af` (docs/model.md §2: `thetaJo`,
-/// `thetaC`, and up to two corners of the width function, each passed by the
-/// contact edge and by the plastic edge).
-pub const KINK_SLOTS: usize = 6;
+/// `thetaC`, and the two breaks of a hollow section's width, each passed by
+/// the contact edge and by the plastic edge), one per moving threshold.
+pub const KINK_SLOTS: usize = THRESHOLDS;
 /// Number of event indicators: crossing, overturning, uplift, kinks, the
 /// range of the apparent weight (docs/model.md §6.5), and the two kinks of
 /// the inertia at the weight that the state `omegaW` is referred to.
@@ -265,23 +266,30 @@ impl Simulator {
         z[0] = c.side * st.theta;
         let moving = (av != 0.0 && !self.is_rigid()).then(|| {
             let n = self.model.body.weight + self.model.body.mass * av;
-            self.model.interface.bed_margins(phi, n)
+            self.threshold_margins(phi, n)
         });
-        let (jo, cr) = (
-            self.model.interface.theta_jo(),
-            self.model.interface.theta_c(),
-        );
-        for (zi, &level) in z[3..].iter_mut().zip(self.kinks.as_slice()) {
-            *zi = match moving {
-                // the thresholds move with N (docs/model.md §6.4): joint
-                // opening and crushing onset from the bed resultant, signed
-                // as `phi - level` is (negative while the joint is closed,
-                // positive once the toe crushes), so that `av` leaving 0
-                // flips no indicator; the corners of a hollow section's
-                // width stay at their levels at N = W
-                Some([heel, _]) if level == jo => -heel,
-                Some([_, toe]) if level == cr => toe,
-                _ => phi - level,
+        let k = &self.kinks;
+        for (i, zi) in z[3..3 + KINK_SLOTS].iter_mut().enumerate() {
+            let (Some(t), level) = (k.thresholds[i], k.at_weight[i]) else {
+                continue;
+            };
+            *zi = match (moving, level) {
+                (None, Some(level)) => phi - level,
+                (None, None) => 1.0,
+                // the thresholds move with N (docs/model.md §6.4): the
+                // margin signed as `phi - level` is (a contact edge passes
+                // its point as phi grows, a plastic edge as phi falls), so
+                // that `av` leaving 0 flips no indicator; one not reached
+                // below thetaOv at the weight signed as that slot's 1 (its
+                // edge short of the point, or the toe uncrushed)
+                (Some(m), level) => {
+                    let contact = matches!(t, Threshold::Contact(_));
+                    if contact == level.is_some() {
+                        -m[i]
+                    } else {
+                        m[i]
+                    }
+                }
             };
         }
         if self.inertia_moves_with_n() {
@@ -290,7 +298,8 @@ impl Simulator {
             // kinks of the motion: the solver restarts there too. At av = 0
             // these are slots 3, 4 over again (the same values: the same
             // events), so that av leaving 0 flips no indicator.
-            for (zi, level) in z[REFERRED..].iter_mut().zip([jo, cr]) {
+            let it = &self.model.interface;
+            for (zi, level) in z[REFERRED..].iter_mut().zip([it.theta_jo(), it.theta_c()]) {
                 if level.is_finite() {
                     *zi = phi - level;
                 }

@@ -369,26 +369,30 @@ impl<'c, 'm> StepCx<'c, 'm> {
         Some(hi)
     }
 
-    /// The event functions of docs/model.md §6.4 at `tau` of the step `tr`
-    /// (interpolated by `herm`): the heel's and the toe's margins
-    /// `1 - Nbed/N` at `(|theta(tau)|, N(t + tau h))`.
-    fn margins_on_step(&self, tr: &Trial, herm: &Hermite, tau: f64) -> [f64; 2] {
+    /// `(|theta(tau)|, N(t + tau h))` at `tau` of the step `tr`
+    /// (interpolated by `herm`): where the event functions of
+    /// docs/model.md §6.4 are evaluated.
+    fn point_on_step(&self, tr: &Trial, herm: &Hermite, tau: f64) -> (f64, f64) {
         let phi = herm.theta(tau).abs();
-        let n = self.call.eom.apparent_weight(tr.t + tau * tr.hh);
-        self.call.sim.bed_margins(phi, n)
+        (phi, self.call.eom.apparent_weight(tr.t + tau * tr.hh))
     }
 
-    /// Under moving thresholds, the first zero on the step `tr` of the
-    /// joint-opening or crushing-onset function (docs/model.md §6.4), as a
-    /// fraction of the step, located by bisection on the interpolant; sets
+    /// Under moving thresholds, the first zero on the step `tr` of a
+    /// threshold's function (docs/model.md §6.4: joint opening, crushing
+    /// onset, an edge of the stress profile at a break of the width), as a
+    /// fraction of the step, located on the interpolant; sets
     /// [`kink_level`](Self::kink_level). A function within `1e-10` of its
     /// zero at the step start is the kink the step starts on.
     fn moving_kink(&mut self, tr: &Trial, herm: &Hermite) -> Option<f64> {
-        let m0 = self.margins_on_step(tr, herm, 0.0);
-        let m1 = self.margins_on_step(tr, herm, 1.0);
-        let tau = (0..2)
-            .filter(|&i| m0[i].abs() > 1e-10 && (m0[i] > 0.0) != (m1[i] > 0.0))
-            .map(|i| self.margin_zero(tr, herm, i, m0[i], m1[i]))
+        let ends = (
+            self.point_on_step(tr, herm, 0.0),
+            self.point_on_step(tr, herm, 1.0),
+        );
+        let tau = self
+            .call
+            .sim
+            .thresholds_crossed(ends.0, ends.1)
+            .map(|(i, m0, m1)| self.margin_zero(tr, herm, i, m0, m1))
             .fold(f64::INFINITY, f64::min);
         if tau > 1.0 {
             return None;
@@ -412,7 +416,8 @@ impl<'c, 'm> StepCx<'c, 'm> {
             if !(x > lo && x < hi) {
                 x = 0.5 * (lo + hi);
             }
-            let fx = self.margins_on_step(tr, herm, x)[i];
+            let (phi, n) = self.point_on_step(tr, herm, x);
+            let fx = self.call.sim.threshold_margin(i, phi, n, false);
             if (fx > 0.0) == (f0 > 0.0) {
                 lo = x;
                 f0 = fx;

@@ -2,17 +2,20 @@
 //! the equation of motion is continuous but not smooth, and where the step
 //! loop cuts its steps.
 
-use crate::interface::{solve_increasing, Law};
+use crate::interface::{solve_increasing, Law, Threshold, THRESHOLDS};
 use crate::model::Model;
-use crate::shape::Shape;
 
 use super::dense::{first_event, Hermite, Hit};
 
 /// Kink levels of `|theta|`, at most a few.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Kinks {
-    levels: [f64; 8],
+    levels: [f64; THRESHOLDS],
     n: usize,
+    /// The interface's moving thresholds (docs/model.md §6.4), in their
+    /// fixed order, and the level of each at the weight below `thetaOv`.
+    pub thresholds: [Option<Threshold>; THRESHOLDS],
+    pub at_weight: [Option<f64>; THRESHOLDS],
 }
 
 impl Kinks {
@@ -20,46 +23,48 @@ impl Kinks {
     /// `thetaOv`: there `af'` (hence `I'`, which the `shiftingPivot` term
     /// multiplies by `omega²`) is continuous but its derivative jumps, and a
     /// step across would see a low-order error and be rejected several times,
-    /// so steps are cut there. They are the regime thresholds `thetaJo` and
-    /// `thetaC`, and the rotations where the contact edge `a` or the plastic
-    /// edge `xp = a - fm / (kn phi)` passes a corner of the width function:
-    /// the flanges of a hollow rectangle (`w` jumps), the inner circle of a
-    /// hollow circle (`w'` is infinite). Found by bisection on the contact
-    /// solve (`a` decreases with `phi` beyond `thetaJo`, `xp` increases beyond
-    /// `thetaC`).
+    /// so steps are cut there. They are the rotations at which the
+    /// interface's thresholds are reached under the weight: `thetaJo`,
+    /// `thetaC`, and where the contact edge `a` or the plastic edge
+    /// `xp = a - fm / (kn phi)` passes a break of the width function (the
+    /// flanges of a hollow rectangle, where `w` jumps; the inner circle of a
+    /// hollow circle, where `w'` is infinite). Found by bisection on the
+    /// contact solve (`a` decreases with `phi` beyond `thetaJo`, `xp`
+    /// increases beyond `thetaC`).
     pub(super) fn of(model: &Model) -> Kinks {
-        let mut k = Kinks::default();
-        let (kn, fm) = match model.interface.law() {
+        let it = &model.interface;
+        let mut k = Kinks {
+            thresholds: it.moving_thresholds(),
+            ..Kinks::default()
+        };
+        let (kn, fm) = match it.law() {
             Law::Rigid => return k,
             Law::Elastic { kn } => (kn, f64::INFINITY),
             Law::ElastoPlastic { kn, fm } => (kn, fm),
         };
         let ov = model.theta_ov;
-        let mut push = |l: f64| {
-            if l > 0.0 && l < ov && k.n < k.levels.len() {
+        let (jo, c) = (it.theta_jo(), it.theta_c());
+        let a = |phi: f64| it.contact(phi).a;
+        let xp = |phi: f64| a(phi) - fm / (kn * phi);
+        let level = |t: Threshold| match t {
+            Threshold::Contact(x) if x == it.depth() => Some(jo),
+            Threshold::Plastic(0.0) => Some(c),
+            // a(phi) = x: a from D at thetaJo down
+            Threshold::Contact(x) => {
+                (jo < ov && a(ov) < x).then(|| solve_increasing(|p| x - a(p), jo, ov))
+            }
+            // xp(phi) = x: xp from 0 at thetaC up
+            Threshold::Plastic(x) => {
+                (c < ov && xp(ov) > x).then(|| solve_increasing(|p| xp(p) - x, c, ov))
+            }
+        };
+        for (i, t) in k.thresholds.into_iter().enumerate() {
+            let l = t.and_then(level).filter(|&l| l > 0.0 && l < ov);
+            if let Some(l) = l {
                 k.levels[k.n] = l;
                 k.n += 1;
             }
-        };
-        let (jo, c) = (model.interface.theta_jo(), model.interface.theta_c());
-        push(jo);
-        push(c);
-        let corners: &[f64] = match *model.interface.shape() {
-            Shape::HollowRectangle { b, t, .. } => &[t, b - t],
-            Shape::HollowCircle { ro, ri } => &[ro - ri, ro + ri],
-            _ => &[],
-        };
-        let a = |phi: f64| model.interface.contact(phi).a;
-        let xp = |phi: f64| a(phi) - fm / (kn * phi);
-        for &x in corners {
-            // a(phi) = x: a from D at thetaJo down
-            if jo < ov && a(ov) < x {
-                push(solve_increasing(|p| x - a(p), jo, ov));
-            }
-            // xp(phi) = x: xp from 0 at thetaC up
-            if c < ov && xp(ov) > x {
-                push(solve_increasing(|p| xp(p) - x, c, ov));
-            }
+            k.at_weight[i] = l;
         }
         k
     }

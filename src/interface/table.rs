@@ -23,7 +23,6 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use super::{Contact, Interface, Law, Regime};
-use crate::shape::Shape;
 
 /// No body rotates this far before it overturns (`alpha < pi/2`), rad.
 const PHI_CAP: f64 = std::f64::consts::FRAC_PI_2;
@@ -199,15 +198,6 @@ fn fit(it: &Interface, lo: f64, hi: f64, end: f64, sqrt: bool) -> Option<Piece> 
     ok.then_some(piece)
 }
 
-/// Where the width of `shape` has a kink or a square-root end inside the base.
-fn width_kinks(shape: &Shape) -> Vec<f64> {
-    match *shape {
-        Shape::SolidRectangle { .. } | Shape::SolidCircle { .. } => vec![],
-        Shape::HollowRectangle { b, t, .. } => vec![t, b - t],
-        Shape::HollowCircle { ro, ri } => vec![ro - ri, ro + ri],
-    }
-}
-
 /// The rotation in `[lo, hi]` where the monotone `g` crosses `target`, if it does.
 fn crossing(g: impl Fn(f64) -> f64, target: f64, mut lo: f64, mut hi: f64) -> Option<f64> {
     let glo = g(lo) - target;
@@ -276,7 +266,7 @@ impl ContactTable {
         // where the resultants have a square-root end or a kink
         let mut singular = vec![jo, c];
         let above = |x: f64| x * (1.0 + 1e-12);
-        for edge in width_kinks(it.shape()) {
+        for edge in it.shape().width_breaks().into_iter().flatten() {
             singular.extend(crossing(|p| it.contact(p).a, edge, above(jo), PHI_CAP));
             if fm.is_finite() && above(c) < PHI_CAP {
                 let xp = |p: f64| it.contact(p).a - fm / (kn * p);
