@@ -41,6 +41,7 @@ mod events;
 mod free;
 mod integrate;
 mod kinks;
+mod loaded_rates;
 mod output_rates;
 mod outputs;
 mod rodas;

@@ -581,6 +581,70 @@ impl Interface {
         (d2af, d2a)
     }
 
+    /// The second partial derivatives in `phi` and `N` of a contact `c`
+    /// solved at `(phi, n)` ([`contact_loaded`](Self::contact_loaded)),
+    /// for the output derivatives under a vertical input (docs/dynamics.md,
+    /// "Output derivatives"). With the elastic zone `[xp, x2]` of
+    /// docs/model.md §2 (area `L0`, centroid `X = xp + L1/L0` from the
+    /// toe, `k = kn phi`): `da/dN = 1/(k L0)`, `daf/dN = (X - af)/N`; as `a`
+    /// grows the zone gains `w(x2)` at its end (while `a < D`) and loses
+    /// `w(xp)` at its start (while the toe crushes), so `dX/da = (w(x2)
+    /// (x2 - X) + w(xp) (X - xp))/L0` and `dL0/da = w(x2) - w(xp)`; at fixed
+    /// `a` a larger `phi` moves `xp` by `a1/phi` (`a1 = fm/(kn phi)`).
+    /// Then `d²af/dN² = (dX/dN - 2 daf/dN)/N`, `d²af/dphi dN = (dX/dphi -
+    /// daf/dphi)/N`, `d²a/dN² = -(dL0/da)/(k² L0³)`, `d²a/dphi dN =
+    /// -1/(kn phi² L0) - (dL0/dphi)/(kn phi L0²)`; `d²af/dphi²` and
+    /// `d²a/dphi²` are [`second_derivatives`](Self::second_derivatives)'
+    /// with `N` for the weight. In full contact `af = D/2 - kn phi Is/N`.
+    pub fn loaded_second_derivatives(&self, c: &Contact, n: f64) -> LoadedCurvature {
+        let phi = c.phi;
+        let mut out = LoadedCurvature::default();
+        if self.law == Law::Rigid {
+            return out;
+        }
+        if phi == 0.0 || c.regime == Regime::FullContact {
+            let k_is = self.kn * self.is;
+            out.af_nn = -2.0 * k_is * phi / (n * n * n);
+            out.af_pn = k_is / (n * n);
+            out.a_n = 1.0 / (self.kn * phi * self.area);
+            return out;
+        }
+        let (af_pp, a_pp) = self.second_derivatives(c);
+        out.af_pp = af_pp * self.weight / n;
+        out.a_pp = a_pp;
+        let (d, a) = (self.d, c.a);
+        let a1 = self.fm / (self.kn * phi);
+        let x2 = a.min(d);
+        let xp = (a - a1).clamp(0.0, x2);
+        let l = if xp == 0.0 && a >= d {
+            self.s_full
+        } else {
+            self.shape.zone_moments(xp, x2)
+        };
+        if l[0] <= 0.0 {
+            return out;
+        }
+        let k = self.kn * phi;
+        let grow = if a < d { self.shape.width(x2) } else { 0.0 };
+        let lose = if xp > 0.0 { self.shape.width(xp) } else { 0.0 };
+        let cz = l[1] / l[0];
+        let x = xp + cz;
+        let a_p = -((a - xp) * l[0] - l[1]) / (phi * l[0]);
+        let a_n = 1.0 / (k * l[0]);
+        let dx_da = (grow * (x2 - x) + lose * cz) / l[0];
+        let dxp = if xp > 0.0 { a1 / phi } else { 0.0 };
+        let x_n = dx_da * a_n;
+        let x_p = dx_da * a_p + lose * cz * dxp / l[0];
+        let af_n = (x - c.af) / n;
+        out.a_n = a_n;
+        out.af_nn = (x_n - 2.0 * af_n) / n;
+        out.af_pn = (x_p - c.daf) / n;
+        out.a_nn = -(grow - lose) / (k * k * l[0] * l[0] * l[0]);
+        let dl0_dphi = grow * if a < d { a_p } else { 0.0 } - lose * (a_p + dxp);
+        out.a_pn = -1.0 / (self.kn * phi * phi * l[0]) - dl0_dphi / (self.kn * phi * l[0] * l[0]);
+        out
+    }
+
     /// The solid-rectangle formulas of docs/model.md §2 for `a` in partial
     /// contact, with the section's mean width `A/D`, and their derivative
     /// in `phi`: elastic `a = sqrt(2W/(kn phi wbar))`; crushing
@@ -696,6 +760,21 @@ impl Interface {
             zone_area: l[0],
         }
     }
+}
+
+/// The second partial derivatives of a contact at `(phi, N)`
+/// ([`Interface::loaded_second_derivatives`]): `p` for `phi` (rad), `n`
+/// for `N` (N). m/rad², m/(rad N), m/N².
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LoadedCurvature {
+    /// `da/dN` (the first partial the contact does not carry).
+    pub a_n: f64,
+    pub af_pp: f64,
+    pub af_pn: f64,
+    pub af_nn: f64,
+    pub a_pp: f64,
+    pub a_pn: f64,
+    pub a_nn: f64,
 }
 
 /// The plastic zone `[0, xp]` and the elastic zone `[xp, x2]` of the

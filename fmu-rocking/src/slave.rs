@@ -42,8 +42,8 @@ pub struct RockingSlave {
     side: f64,
     /// Model Exchange: `|omega|` after the last impact of a rigid body, rad/s.
     left_with: f64,
-    /// Outputs at `state` for the ground accelerations `(ag, av)` with these bits.
-    cache: Option<(u64, u64, Outputs)>,
+    /// Outputs at `state` for the inputs `(ag, av, dav/dt)` with these bits.
+    cache: Option<([u64; 3], Outputs)>,
     /// Output derivatives at `state` for the ground input `(ag, dag/dt,
     /// av, dav/dt)` with these bits.
     rates: Option<([u64; 4], OutputRates)>,
@@ -92,28 +92,29 @@ fn regime_name(r: Regime) -> &'static str {
 }
 
 impl RockingSlave {
-    fn outputs(&mut self, ag: f64, av: f64) -> Outputs {
+    /// The outputs under `ag`, `av` and `av`'s input derivative `dav`
+    /// (`Simulator::outputs_loaded`).
+    fn outputs(&mut self, ag: f64, av: f64, dav: f64) -> Outputs {
+        let key = [ag, av, dav].map(f64::to_bits);
         match self.cache {
-            Some((a, v, o)) if (a, v) == (ag.to_bits(), av.to_bits()) => o,
+            Some((k, o)) if k == key => o,
             _ => {
-                let o = self.sim.outputs_vertical(&self.motion(av), ag, av);
-                self.cache = Some((ag.to_bits(), av.to_bits(), o));
+                let v = VerticalInput { av, dav };
+                let o = self.sim.outputs_loaded(&self.motion(av), ag, v);
+                self.cache = Some((key, o));
                 o
             }
         }
     }
 
-    /// `None`: a flexible law under a vertical input (not available).
-    fn rates(&mut self, input: GroundInput, v: VerticalInput) -> Option<OutputRates> {
+    fn rates(&mut self, input: GroundInput, v: VerticalInput) -> OutputRates {
         let key = [input.ag, input.dag, v.av, v.dav].map(f64::to_bits);
         match self.rates {
-            Some((k, r)) if k == key => Some(r),
+            Some((k, r)) if k == key => r,
             _ => {
-                let r = self
-                    .sim
-                    .output_rates_vertical(&self.motion(v.av), input, v)?;
+                let r = self.sim.output_rates_vertical(&self.motion(v.av), input, v);
                 self.rates = Some((key, r));
-                Some(r)
+                r
             }
         }
     }
@@ -134,7 +135,7 @@ impl RockingSlave {
         if mu == 0.0 || warned {
             return;
         }
-        let demand = self.outputs(ag, av).friction_demand();
+        let demand = self.outputs(ag, av, 0.0).friction_demand();
         if demand > mu {
             self.sliding.warned = true;
             log.warn(format!(
@@ -149,7 +150,7 @@ impl RockingSlave {
         if self.state.overturned {
             Regime::Overturned
         } else {
-            self.outputs(ag, av).regime
+            self.outputs(ag, av, 0.0).regime
         }
     }
 
@@ -368,6 +369,7 @@ impl Slave for RockingSlave {
         let b = &m.body;
         let ag = inputs.real(vr::AG);
         let av = inputs.real(vr::AV);
+        let dav = inputs.derivative(vr::AV);
         let x = match r {
             vr::THETA => self.state.theta,
             vr::OMEGA => self.motion(av).omega,
@@ -382,17 +384,17 @@ impl Slave for RockingSlave {
             vr::THETA_JO => m.interface.theta_jo(),
             vr::THETA_C => m.interface.theta_c(),
             vr::THETA_OV => m.theta_ov,
-            vr::ANGULAR_ACCELERATION => self.outputs(ag, av).theta_dd,
-            vr::AF => self.outputs(ag, av).af,
-            vr::CONTACT_LENGTH => self.outputs(ag, av).contact_length,
-            vr::MR => self.outputs(ag, av).mr,
-            vr::FX => self.outputs(ag, av).fx,
-            vr::FZ => self.outputs(ag, av).fz,
+            vr::ANGULAR_ACCELERATION => self.outputs(ag, av, dav).theta_dd,
+            vr::AF => self.outputs(ag, av, dav).af,
+            vr::CONTACT_LENGTH => self.outputs(ag, av, dav).contact_length,
+            vr::MR => self.outputs(ag, av, dav).mr,
+            vr::FX => self.outputs(ag, av, dav).fx,
+            vr::FZ => self.outputs(ag, av, dav).fz,
             // the reaction's opposite, exactly (negation rounds nothing)
-            vr::FX_SUPPORT => -self.outputs(ag, av).fx,
-            vr::FZ_SUPPORT => -self.outputs(ag, av).fz,
-            vr::APPARENT_WEIGHT => self.outputs(ag, av).apparent_weight,
-            vr::FRICTION_DEMAND => self.outputs(ag, av).friction_demand(),
+            vr::FX_SUPPORT => -self.outputs(ag, av, dav).fx,
+            vr::FZ_SUPPORT => -self.outputs(ag, av, dav).fz,
+            vr::APPARENT_WEIGHT => self.outputs(ag, av, dav).apparent_weight,
+            vr::FRICTION_DEMAND => self.outputs(ag, av, dav).friction_demand(),
             vr::DER_THETA | vr::DER_OMEGA_W => self.me_derivative(r, inputs)?,
             _ => return Err(format!("no computed Real with value reference {r}")),
         };
@@ -438,12 +440,7 @@ impl Slave for RockingSlave {
             1 | 2 => order as usize,
             _ => return Err(format!("derivative order {order} is not 1 or 2")),
         };
-        let Some(rates) = self.rates(input, v) else {
-            return Err(format!(
-                "av = {}, dav/dt = {}: under a vertical input, output derivatives are available for interface = rigid only",
-                v.av, v.dav
-            ));
-        };
+        let rates = self.rates(input, v);
         let x = match r {
             vr::THETA => rates.theta[k],
             vr::OMEGA => rates.omega[k],

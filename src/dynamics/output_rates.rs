@@ -34,8 +34,8 @@
 //! Under a vertical input `av + dav (t - t0)` (docs/model.md §6) the rigid
 //! law's outputs carry the jet of `N = W + m av`, `[N, m dav, 0]`, in place
 //! of the weight (its levers do not depend on N); `Fz = m (g + av + zG'')`.
-//! The flexible laws' contact depends on N as well, and their rates under
-//! `av` are not available ([`Simulator::output_rates_vertical`]).
+//! The flexible laws' contact depends on N as well: their rates under `av`
+//! carry partial derivatives in `phi` and `N` (`loaded_rates`).
 
 use crate::interface::{Law, Regime};
 use crate::model::Formulation;
@@ -110,15 +110,15 @@ fn phi_mul(u: PhiDerivs, v: PhiDerivs) -> PhiDerivs {
     ]
 }
 
-fn jet_add(u: Jet, v: Jet) -> Jet {
+pub(super) fn jet_add(u: Jet, v: Jet) -> Jet {
     [u[0] + v[0], u[1] + v[1], u[2] + v[2]]
 }
 
-fn jet_scale(c: f64, u: Jet) -> Jet {
+pub(super) fn jet_scale(c: f64, u: Jet) -> Jet {
     [c * u[0], c * u[1], c * u[2]]
 }
 
-fn jet_mul(u: Jet, v: Jet) -> Jet {
+pub(super) fn jet_mul(u: Jet, v: Jet) -> Jet {
     [
         u[0] * v[0],
         u[1] * v[0] + u[0] * v[1],
@@ -126,7 +126,7 @@ fn jet_mul(u: Jet, v: Jet) -> Jet {
     ]
 }
 
-fn jet_div(u: Jet, v: Jet) -> Jet {
+pub(super) fn jet_div(u: Jet, v: Jet) -> Jet {
     let w0 = u[0] / v[0];
     let w1 = (u[1] - w0 * v[1]) / v[0];
     let w2 = (u[2] - 2.0 * w1 * v[1] - w0 * v[2]) / v[0];
@@ -156,17 +156,15 @@ impl Simulator {
 
     /// [`output_rates`](Self::output_rates) under the vertical input
     /// `av + dav (t - state.t)` too (m/s², m/s³); the values are those of
-    /// [`Simulator::outputs_vertical`]. `None` for a flexible law under a
-    /// vertical input (its contact moves with N: not available).
+    /// [`Simulator::outputs_loaded`] (a flexible law's to rounding: its
+    /// contact moves with N, see `loaded_rates`).
     pub fn output_rates_vertical(
         &self,
         state: &State,
         input: GroundInput,
         v: VerticalInput,
-    ) -> Option<OutputRates> {
-        let vertical = v.av != 0.0 || v.dav != 0.0;
-        (!vertical || self.model.interface.law() == Law::Rigid)
-            .then(|| self.rates_under(state, input, v))
+    ) -> OutputRates {
+        self.rates_under(state, input, v)
     }
 
     fn rates_under(&self, state: &State, input: GroundInput, v: VerticalInput) -> OutputRates {
@@ -206,7 +204,7 @@ impl Simulator {
     }
 
     /// [`output_rates`](Self::output_rates) from the equation of motion at
-    /// `state` (under `v`: the rigid law only).
+    /// `state`.
     fn output_rates_in_motion(
         &self,
         state: &State,
@@ -214,6 +212,9 @@ impl Simulator {
         v: VerticalInput,
     ) -> OutputRates {
         let m = &self.model;
+        if (v.av != 0.0 || v.dav != 0.0) && m.interface.law() != Law::Rigid {
+            return self.loaded_rates_in_motion(state, input, v);
+        }
         let b = &m.body;
         let GroundInput { ag, dag } = input;
         let vertical = v.av != 0.0 || v.dav != 0.0;

@@ -28,10 +28,21 @@ impl Simulator {
 
     /// [`outputs`](Self::outputs) under the vertical ground acceleration `av`
     /// too (docs/model.md §6.2): the contact at the apparent weight `N`,
-    /// `MR = N hW(phi, N)`, `Fz = m (g + av + zG'')`.
+    /// `MR = N hW(phi, N)`, `Fz = m (g + av + zG'')`; `av` held (see
+    /// [`outputs_loaded`](Self::outputs_loaded)).
     pub fn outputs_vertical(&self, state: &State, ag: f64, av: f64) -> Outputs {
+        self.outputs_loaded(state, ag, VerticalInput { av, dav: 0.0 })
+    }
+
+    /// [`outputs_vertical`](Self::outputs_vertical) under `av` rising at
+    /// `dav` (m/s³) from the state's time: a flexible law's `theta''` in
+    /// the power form of docs/model.md §6.2 has the term `(dI/dN) m dav
+    /// omega / 2`, so it is the acceleration of a motion whose input goes
+    /// on at that slope (the host's input derivative).
+    pub fn outputs_loaded(&self, state: &State, ag: f64, v: VerticalInput) -> Outputs {
+        let av = v.av;
         if !state.at_rest {
-            return self.outputs_in_motion(state, ag, av);
+            return self.outputs_in_motion(state, ag, v);
         }
         let b = &self.model.body;
         // The contact of a body at rest is the whole base, whatever ag: the
@@ -52,7 +63,7 @@ impl Simulator {
         if self.held(ag, av) {
             return rest;
         }
-        let start = self.outputs_in_motion(state, ag, av);
+        let start = self.outputs_in_motion(state, ag, v);
         Outputs {
             theta_dd: start.theta_dd,
             fx: start.fx,
@@ -62,7 +73,8 @@ impl Simulator {
     }
 
     /// [`outputs`](Self::outputs) from the equation of motion at `state`.
-    fn outputs_in_motion(&self, state: &State, ag: f64, av: f64) -> Outputs {
+    fn outputs_in_motion(&self, state: &State, ag: f64, v: VerticalInput) -> Outputs {
+        let av = v.av;
         let m = &self.model;
         let b = &m.body;
         let side = self.side(state.theta, state.omega, ag);
@@ -73,7 +85,7 @@ impl Simulator {
                 ag,
                 ..Default::default()
             },
-            VerticalInput { av, dav: 0.0 },
+            v,
         );
         let n = eom.apparent_weight(state.t);
         let mut hint = state.a;
