@@ -292,9 +292,8 @@ class _Loop:
         self.r_u = frame.refs([f"u[{i}]" for i in range(1, n + 1)])
         self.r_bag = block.refs(["ag"])
         self.r_bav = block.refs(["av"]) if vertical is not None else None
-        # under av the FMU gives output derivatives for a rigid block only (docs/model.md
-        # §7.4): with av the block's force reaches the frame constant over a step
-        self.force_rates = self.extrapolate and vertical is None
+        # the block's force reaches the frame with its rate (docs/model.md §7.4: under av too)
+        self.force_rates = self.extrapolate
         self.r_bf = block.refs(["Fx", "Fz"])
         self.r_th = block.refs(["theta", "omega"])
         self.rows, self.steps, self.rejected, self.early_returns = [], 0, 0, []
