@@ -546,18 +546,10 @@ impl Interface {
         if self.law == Law::Rigid || phi == 0.0 || c.regime == Regime::FullContact {
             return (0.0, 0.0);
         }
-        let (d, a) = (self.d, c.a);
-        let a1 = self.fm / (self.kn * phi);
-        let x2 = a.min(d);
-        let xp = (a - a1).clamp(0.0, x2);
-        let l = if xp == 0.0 && a >= d {
-            self.s_full
-        } else {
-            self.shape.zone_moments(xp, x2)
-        };
-        if l[0] <= 0.0 {
+        let Some(ElasticZone { a1, x2, xp, l }) = self.elastic_zone(c) else {
             return (0.0, 0.0);
-        }
+        };
+        let (d, a) = (self.d, c.a);
         let e = a - xp;
         let f = e * l[0] - l[1];
         let da = -f / (phi * l[0]);
@@ -612,18 +604,10 @@ impl Interface {
         let (af_pp, a_pp) = self.second_derivatives(c);
         out.af_pp = af_pp * self.weight / n;
         out.a_pp = a_pp;
-        let (d, a) = (self.d, c.a);
-        let a1 = self.fm / (self.kn * phi);
-        let x2 = a.min(d);
-        let xp = (a - a1).clamp(0.0, x2);
-        let l = if xp == 0.0 && a >= d {
-            self.s_full
-        } else {
-            self.shape.zone_moments(xp, x2)
-        };
-        if l[0] <= 0.0 {
+        let Some(ElasticZone { a1, x2, xp, l }) = self.elastic_zone(c) else {
             return out;
-        }
+        };
+        let (d, a) = (self.d, c.a);
         let k = self.kn * phi;
         let grow = if a < d { self.shape.width(x2) } else { 0.0 };
         let lose = if xp > 0.0 { self.shape.width(xp) } else { 0.0 };
@@ -643,6 +627,22 @@ impl Interface {
         let dl0_dphi = grow * if a < d { a_p } else { 0.0 } - lose * (a_p + dxp);
         out.a_pn = -1.0 / (self.kn * phi * phi * l[0]) - dl0_dphi / (self.kn * phi * l[0] * l[0]);
         out
+    }
+
+    /// The elastic zone `[xp, x2]` of a solved contact `c` at `phi > 0`
+    /// (docs/model.md §2) with its moments about `xp`; `None` where it has
+    /// no area.
+    fn elastic_zone(&self, c: &Contact) -> Option<ElasticZone> {
+        let a = c.a;
+        let a1 = self.fm / (self.kn * c.phi);
+        let x2 = a.min(self.d);
+        let xp = (a - a1).clamp(0.0, x2);
+        let l = if xp == 0.0 && a >= self.d {
+            self.s_full
+        } else {
+            self.shape.zone_moments(xp, x2)
+        };
+        (l[0] > 0.0).then_some(ElasticZone { a1, x2, xp, l })
     }
 
     /// The solid-rectangle formulas of docs/model.md §2 for `a` in partial
@@ -760,6 +760,17 @@ impl Interface {
             zone_area: l[0],
         }
     }
+}
+
+/// The elastic zone of a solved contact ([`Interface::elastic_zone`]).
+struct ElasticZone {
+    /// `fm/(kn phi)`, m.
+    a1: f64,
+    /// The zone's ends, m from the toe.
+    x2: f64,
+    xp: f64,
+    /// Its moments about `xp`, `[L0, L1, L2]`.
+    l: [f64; 3],
 }
 
 /// The second partial derivatives of a contact at `(phi, N)`

@@ -21,10 +21,10 @@
 
 mod support;
 
-use rocking::dynamics::{GroundInput, Jet, OutputRates, Simulator, State};
+use rocking::dynamics::{GroundInput, Jet, Simulator, State};
 use rocking::interface::Interface;
 use rocking::{Formulation, Law, Params, Regime, Shape};
-use support::base;
+use support::{base, output_jets};
 
 // ---------------------------------------------------------------- interface
 
@@ -208,19 +208,6 @@ fn values(sim: &Simulator, st: &State, ag: f64) -> [f64; 8] {
 /// `[order 1, order 2]` of every output.
 type Orders12 = [[f64; 2]; 8];
 
-fn jets(r: &OutputRates) -> [Jet; 8] {
-    [
-        r.theta,
-        r.omega,
-        r.theta_dd,
-        r.af,
-        r.contact_length,
-        r.mr,
-        r.fx,
-        r.fz,
-    ]
-}
-
 #[derive(Clone, Copy)]
 struct Case {
     name: &'static str,
@@ -278,7 +265,7 @@ fn run_case(c: &Case) -> ([[f64; 2]; 8], usize, [usize; 4]) {
                 dag: c.dag,
             },
         );
-        let a = jets(&r);
+        let a = output_jets(&r);
         let mut fd = [[0.0; 2]; 8];
         for (i, f) in fd.iter_mut().enumerate() {
             let y: Vec<f64> = pts.iter().map(|p| p.1[i]).collect();

@@ -9,12 +9,13 @@
 
 mod support;
 
-use rocking::dynamics::{GroundInput, OutOfRange, OutputRates, Simulator, State, VerticalInput};
+use rocking::dynamics::{GroundInput, OutOfRange, Simulator, State, VerticalInput};
 use rocking::model::{LawKind, Restitution};
 use rocking::Formulation;
 use rocking::{Law, Model, Params, Regime};
 use support::exact::Exact;
-use support::{quad, rigid_block};
+use support::reduced_gravity::rock_both;
+use support::{output_jets, quad, rigid_block};
 
 const G: f64 = 9.81;
 
@@ -609,40 +610,15 @@ fn moving_kinks_are_events_like_the_fixed_ones_under_reduced_gravity() {
         ..Params::default()
     };
     for av in [-0.3 * G, 0.2 * G] {
-        let shifted = Simulator::new(params(G + av).build().unwrap(), 1e-10);
-        let vertical = Simulator::new(params(G).build().unwrap(), 1e-10);
-        let theta0 = 0.5 * shifted.model.theta_ov;
-        let (mut a, mut b) = (
-            shifted.initial_state(theta0, 0.0),
-            vertical.initial_state(theta0, 0.0),
-        );
-        let (mut work_a, mut work_b) = (0, 0);
-        let mut impacts = 0;
-        while a.impacts < 6 && !a.at_rest {
-            let ea = shifted.advance_to_event(&mut a, 100.0, GroundInput::default());
-            let eb = vertical.advance_to_event_vertical(
-                &mut b,
-                100.0,
-                GroundInput::default(),
-                VerticalInput { av, dav: 0.0 },
-            );
-            work_a += ea.work();
-            work_b += eb.work();
-            if a.impacts > impacts {
-                impacts = a.impacts;
-                assert_eq!(b.impacts, impacts, "av {av}: impacts at t = {}", a.t);
-                assert!(
-                    (a.t - b.t).abs() <= 1e-7,
-                    "av {av}: impact {impacts} at {} under av, {} under g'",
-                    b.t,
-                    a.t
-                );
-            }
-        }
-        assert!(impacts >= 3, "av {av}: {impacts} impacts");
+        let theta0 = 0.5 * params(G + av).build().unwrap().theta_ov;
+        let r = rock_both(&params, G, av, theta0, 1e-10);
+        assert!(r.impacts >= 3, "av {av}: {} impacts", r.impacts);
+        assert!(r.max_dt <= 1e-7, "av {av}: impacts {} s apart", r.max_dt);
         assert!(
-            (work_b as f64) <= 1.02 * work_a as f64,
-            "av {av}: {work_b} steps under av, {work_a} under g'"
+            (r.work_av as f64) <= 1.02 * r.work_g as f64,
+            "av {av}: {} steps under av, {} under g'",
+            r.work_av,
+            r.work_g
         );
     }
 }
@@ -962,20 +938,8 @@ fn rates_under_av_error(m: Model, theta0: f64, t_step: f64, h: f64, amp: f64) ->
             r.apparent_weight,
             [b.weight + b.mass * av(tc), b.mass * dav, 0.0]
         );
-        let jets = |r: &OutputRates| {
-            [
-                r.theta,
-                r.omega,
-                r.theta_dd,
-                r.af,
-                r.contact_length,
-                r.mr,
-                r.fx,
-                r.fz,
-            ]
-        };
-        let around: Vec<_> = (0..5).map(|j| jets(&rates(j))).collect();
-        for (i, jet) in jets(&r).iter().enumerate() {
+        let around: Vec<_> = (0..5).map(|j| output_jets(&rates(j))).collect();
+        for (i, jet) in output_jets(&r).iter().enumerate() {
             let y: Vec<f64> = pts.iter().map(|p| p.2[i]).collect();
             let d1 = (-y[4] + 8.0 * y[3] - 8.0 * y[1] + y[0]) / (12.0 * h);
             // order 2 against the differences of order 1 at the stencil's

@@ -10,10 +10,13 @@
 //! contact solved at `(phi, N)` for the signs of Model Exchange's
 //! indicators; a run at rtol 1e-13 for the accuracy at a looser tolerance.
 
+mod support;
+
 use rocking::dynamics::continuous::KINK_SLOTS;
-use rocking::dynamics::{GroundInput, Simulator, VerticalInput};
+use rocking::dynamics::Simulator;
 use rocking::model::{LawKind, MassKind, ShapeKind};
 use rocking::{Model, Params};
+use support::reduced_gravity::rock_both;
 
 const G: f64 = 9.81;
 
@@ -68,49 +71,25 @@ fn breaks(m: &Model) -> [f64; 2] {
 fn width_breaks_under_a_constant_av_are_the_kinks_under_reduced_gravity() {
     for (name, params) in [("box", hollow_box as fn(f64) -> Params), ("tower", tower)] {
         for av in [-0.3 * G, 0.25 * G] {
-            let shifted = Simulator::new(params(G + av).build().unwrap(), 1e-10);
-            let vertical = Simulator::new(params(G).build().unwrap(), 1e-10);
-            let m = shifted.model;
+            let m = params(G + av).build().unwrap();
             let theta0 = 0.6 * m.theta_ov;
             let a0 = m.interface.contact(theta0).a;
             assert!(
                 breaks(&m).iter().any(|&x| a0 < x),
                 "{name}, av {av}: the contact edge passes no break (a = {a0})"
             );
-            let (mut a, mut b) = (
-                shifted.initial_state(theta0, 0.0),
-                vertical.initial_state(theta0, 0.0),
-            );
-            let (mut work_a, mut work_b, mut impacts) = (0, 0, 0);
-            while a.impacts < 6 && !a.at_rest && !a.overturned {
-                let ea = shifted.advance_to_event(&mut a, 100.0, GroundInput::default());
-                let eb = vertical.advance_to_event_vertical(
-                    &mut b,
-                    100.0,
-                    GroundInput::default(),
-                    VerticalInput { av, dav: 0.0 },
-                );
-                work_a += ea.work();
-                work_b += eb.work();
-                if a.impacts > impacts {
-                    impacts = a.impacts;
-                    assert_eq!(
-                        b.impacts, impacts,
-                        "{name}, av {av}: impacts at t = {}",
-                        a.t
-                    );
-                    assert!(
-                        (a.t - b.t).abs() <= 1e-7,
-                        "{name}, av {av}: impact {impacts} at {} under av, {} under g'",
-                        b.t,
-                        a.t
-                    );
-                }
-            }
-            assert!(impacts >= 3, "{name}, av {av}: {impacts} impacts");
+            let r = rock_both(&params, G, av, theta0, 1e-10);
+            assert!(r.impacts >= 3, "{name}, av {av}: {} impacts", r.impacts);
             assert!(
-                (work_b as f64) <= 1.05 * work_a as f64,
-                "{name}, av {av}: {work_b} steps under av, {work_a} under g'"
+                r.max_dt <= 1e-7,
+                "{name}, av {av}: impacts {} s apart",
+                r.max_dt
+            );
+            assert!(
+                (r.work_av as f64) <= 1.05 * r.work_g as f64,
+                "{name}, av {av}: {} steps under av, {} under g'",
+                r.work_av,
+                r.work_g
             );
         }
     }

@@ -15,7 +15,9 @@ use crate::interface::{Contact, Regime};
 use crate::model::Formulation;
 
 use super::eom::{side_of, Eom};
-use super::output_rates::{jet_add, jet_div, jet_mul, jet_scale, Jet, OutputRates};
+use super::output_rates::{
+    jet_add, jet_div, jet_mul, jet_scale, theta_jet, Jet, Motion, OutputRates,
+};
 use super::{GroundInput, Simulator, State, VerticalInput};
 
 /// Relative step of the differences that give the third partials.
@@ -172,16 +174,8 @@ impl Simulator {
             jet_div(num, g.inertia.compose(p, n_jet))
         };
         let eom = Eom::with_vertical(self, state.t, GroundInput { ag, dag: 0.0 }, v);
-        let mut hint = state.a;
-        let theta_dd = eom.accel(state.t, state.theta, state.omega, s, &mut hint);
-        let mut th = [state.theta, state.omega, theta_dd, 0.0, 0.0];
-        th[3] = accel(&th)[1];
-        th[4] = accel(&th)[2];
-
-        let p = [s * th[0], s * th[1], s * th[2]];
-        let w = [th[1], th[2], th[3]];
-        let w2 = jet_mul(w, w);
-        let thdd = [th[2], th[3], th[4]];
+        let th = theta_jet(&eom, state, s, accel);
+        let Motion { p, w, w2, thdd } = Motion::of(&th, s);
         let contact_length = if c.a < m.interface.depth() {
             self.a_partials(&c, n).compose(p, n_jet)
         } else {

@@ -133,6 +133,46 @@ pub(super) fn jet_div(u: Jet, v: Jet) -> Jet {
     [w0, w1, w2]
 }
 
+/// `[theta, omega, theta'', theta''', theta'''']` at `state` on the toe
+/// `s`: `theta''` as `eom` gives it (the outputs' value to the bit), then
+/// one more derivative per pass of `accel`, the equation of motion as a jet
+/// in time of the jet of theta (Taylor's method: the k-th derivative of
+/// `theta''` needs theta up to order k + 1).
+pub(super) fn theta_jet(
+    eom: &Eom,
+    state: &State,
+    s: f64,
+    accel: impl Fn(&[f64; 5]) -> Jet,
+) -> [f64; 5] {
+    let mut hint = state.a;
+    let theta_dd = eom.accel(state.t, state.theta, state.omega, s, &mut hint);
+    let mut th = [state.theta, state.omega, theta_dd, 0.0, 0.0];
+    th[3] = accel(&th)[1];
+    th[4] = accel(&th)[2];
+    th
+}
+
+/// The jets of the motion from the jet of theta on the toe `s`: `phi = s
+/// theta`, `omega`, `omega²`, `theta''`.
+pub(super) struct Motion {
+    pub p: Jet,
+    pub w: Jet,
+    pub w2: Jet,
+    pub thdd: Jet,
+}
+
+impl Motion {
+    pub(super) fn of(th: &[f64; 5], s: f64) -> Motion {
+        let w = [th[1], th[2], th[3]];
+        Motion {
+            p: [s * th[0], s * th[1], s * th[2]],
+            w,
+            w2: jet_mul(w, w),
+            thdd: [th[2], th[3], th[4]],
+        }
+    }
+}
+
 /// `F(phi(t))` from `F, F', F''` at `phi(t0)` and the jet of `phi`.
 fn compose(f: &[f64], p: Jet) -> Jet {
     [f[0], f[1] * p[1], f[2] * p[1] * p[1] + f[1] * p[2]]
@@ -267,25 +307,14 @@ impl Simulator {
             }
             jet_div(n, compose(&g.inertia, p))
         };
-        // theta'' itself as `Simulator::outputs` has it, to the bit; then
-        // one more derivative per pass (the k-th of theta'' needs theta up
-        // to order k + 1): theta''', then theta''''
         let eom = Eom::with_vertical(
             self,
             state.t,
             GroundInput { ag, dag: 0.0 },
             VerticalInput { av: v.av, dav: 0.0 },
         );
-        let mut hint = state.a;
-        let theta_dd = eom.accel(state.t, state.theta, state.omega, s, &mut hint);
-        let mut th = [state.theta, state.omega, theta_dd, 0.0, 0.0];
-        th[3] = accel(&th)[1];
-        th[4] = accel(&th)[2];
-
-        let p = [s * th[0], s * th[1], s * th[2]];
-        let w = [th[1], th[2], th[3]];
-        let w2 = jet_mul(w, w);
-        let thdd = [th[2], th[3], th[4]];
+        let th = theta_jet(&eom, state, s, accel);
+        let Motion { p, w, w2, thdd } = Motion::of(&th, s);
         let contact_length = if !rigid && c.a < m.interface.depth() {
             compose(&[c.a, c.da, a2], p)
         } else {

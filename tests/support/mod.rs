@@ -4,15 +4,18 @@
 //! moment and the potential energy; the bases and their width ([`base`]),
 //! exact rigid rocking ([`exact`]), a plain RK4 ([`rk4`]), a seeded
 //! generator for the random sweeps ([`lcg`]), a sampled ground pulse
-//! ([`pulse`]).
+//! ([`pulse`]), a body under a constant `av` against reduced gravity
+//! ([`reduced_gravity`]).
 #![allow(dead_code)]
 
 pub mod base;
 pub mod exact;
 pub mod lcg;
 pub mod pulse;
+pub mod reduced_gravity;
 pub mod rk4;
 
+use rocking::dynamics::{Jet, OutputRates};
 use rocking::model::{LawKind, MassKind, ShapeKind};
 use rocking::{Model, Params};
 
@@ -227,4 +230,19 @@ pub fn potential(m: &Model, phi: f64, breaks: &[f64]) -> f64 {
     pts.windows(2)
         .map(|w| quad_adaptive(&f, w[0], w[1], 1e-14))
         .sum()
+}
+
+/// `theta`, `omega`, `theta''`, `af`, `contactLength`, `MR`, `Fx`, `Fz`
+/// with their time derivatives, in that order.
+pub fn output_jets(r: &OutputRates) -> [Jet; 8] {
+    [
+        r.theta,
+        r.omega,
+        r.theta_dd,
+        r.af,
+        r.contact_length,
+        r.mr,
+        r.fx,
+        r.fz,
+    ]
 }
