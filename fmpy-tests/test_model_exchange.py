@@ -136,8 +136,8 @@ def test_model_exchange_is_declared_and_valid(fmu_path, model_description):
     md = model_description
     assert validate_fmu(fmu_path) == []
     assert md.modelExchange.modelIdentifier == md.coSimulation.modelIdentifier == "RockingBlock"
-    # docs/model-exchange.md: 9, the range of N under av, two kinks of I(phi, W)
-    assert md.numberOfEventIndicators == 12
+    # docs/model-exchange.md: 9, the range of N under av, six kinks of I(phi, W)
+    assert md.numberOfEventIndicators == 16
     states = {d.variable.derivative.name: (d.variable.name, {x.name for x in d.dependencies})
               for d in md.derivatives}
     assert states == {"theta": ("der(theta)", {"theta", "omegaW", "av"}),

@@ -15,7 +15,7 @@ pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 /// theta, overturning, uplift from rest, six kinks of af, the range of the
 /// apparent weight and two kinks of the inertia at the weight
 /// (`rocking::dynamics::continuous::EVENT_INDICATORS`, checked by the FMU).
-pub const EVENT_INDICATORS: u32 = 12;
+pub const EVENT_INDICATORS: u32 = 16;
 
 /// Declares the value-reference constants ([`vr`]) and the variable table
 /// ([`VARIABLES`]) from one list.

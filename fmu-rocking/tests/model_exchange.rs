@@ -402,6 +402,29 @@ fn me_host_reproduces_co_simulation_under_a_varying_av() {
             1e-7,
         );
     }
+    // a box section whose contact and plastic edges pass its flange edges:
+    // the indicators of docs/model.md §6.4 at N, and the kinks of omegaW's
+    // inertia at the weight (measured 6.0e-9 rad; 4.8e-6 with only joint
+    // opening and crushing onset of the latter located; 4.2e-9 without av)
+    let hollow = [("B", 0.5), ("H", 2.5), ("t", 0.1), ("kn", 1e8), ("fm", 1e6)];
+    compare_av(
+        &hollow,
+        &[
+            ("interface", enums::ELASTO_PLASTIC),
+            ("shape", enums::HOLLOW_RECTANGLE),
+        ],
+        (-1.5 * g_tan, Some(av)),
+        1e-7,
+    );
+    compare_av(
+        &hollow,
+        &[
+            ("interface", enums::ELASTO_PLASTIC),
+            ("shape", enums::HOLLOW_RECTANGLE),
+        ],
+        (-1.5 * g_tan, None),
+        1e-7,
+    );
 }
 
 #[test]

@@ -15,7 +15,7 @@
 //! | 2 | `g tan(alpha) - abs(ag)` while a rigid body rests, else 1 | uplift from rest |
 //! | 3.. | `abs(theta) - level` per kink of `af`, one slot per threshold of [`Interface::moving_thresholds`](crate::interface::Interface::moving_thresholds) in its order ([`KINK_SLOTS`]; a kink not reached below `thetaOv`, or absent, 1) | none: the solver restarts at the kink |
 //! | 9 | the smallest relative margin of `N = W + m av` to its limits (1 without `av`) | the input left the model's range (docs/model.md §6.5): the run ends |
-//! | 10, 11 | `abs(theta) - level` for joint opening and crushing onset at `N = W` on a flexible law with `shiftingPivot` (else 1) | none: the slope of `I(phi, W)`, to which the state `omegaW` is referred, changes there |
+//! | 10..15 | `abs(theta) - level` for the kinks of slots 3 to 8 at `N = W` (their levels without `av`) on a flexible law with `shiftingPivot` (else 1) | none: `I(phi, W)`, to which the state `omegaW` is referred, has a kink there |
 //!
 //! Under a vertical input `av` (docs/model.md §6) the uplift threshold is
 //! `(g + av) tan(alpha)`; for a flexible law, indicator 1 is
@@ -40,13 +40,13 @@ use super::{Events, GroundInput, OutOfRange, Simulator, State, VerticalInput};
 /// the contact edge and by the plastic edge), one per moving threshold.
 pub const KINK_SLOTS: usize = THRESHOLDS;
 /// Number of event indicators: crossing, overturning, uplift, kinks, the
-/// range of the apparent weight (docs/model.md §6.5), and the two kinks of
-/// the inertia at the weight that the state `omegaW` is referred to.
-pub const EVENT_INDICATORS: usize = 6 + KINK_SLOTS;
+/// range of the apparent weight (docs/model.md §6.5), and the kinks of the
+/// inertia at the weight that the state `omegaW` is referred to.
+pub const EVENT_INDICATORS: usize = 4 + 2 * KINK_SLOTS;
 /// The slot of the range indicator.
 const RANGE: usize = 3 + KINK_SLOTS;
-/// The first of the slots for joint opening and crushing onset at N = W
-/// under a vertical input ([`Simulator::weight_referral`]).
+/// The first of the slots for the kinks at N = W under a vertical input
+/// ([`Simulator::weight_referral`]).
 const REFERRED: usize = RANGE + 1;
 
 /// The state of a run under Model Exchange: the co-simulation [`State`]
@@ -293,14 +293,13 @@ impl Simulator {
             };
         }
         if self.inertia_moves_with_n() {
-            // `omegaW`'s inertia I(phi, W) changes slope where the bed
-            // opens and crushes at the weight, which under av != 0 are no
-            // kinks of the motion: the solver restarts there too. At av = 0
-            // these are slots 3, 4 over again (the same values: the same
-            // events), so that av leaving 0 flips no indicator.
-            let it = &self.model.interface;
-            for (zi, level) in z[REFERRED..].iter_mut().zip([it.theta_jo(), it.theta_c()]) {
-                if level.is_finite() {
+            // `omegaW`'s inertia I(phi, W) has the kinks of af at the
+            // weight, which under av != 0 are no kinks of the motion: the
+            // solver restarts there too. At av = 0 these are slots 3 to 8
+            // over again (the same values: the same events), so that av
+            // leaving 0 flips no indicator.
+            for (zi, level) in z[REFERRED..].iter_mut().zip(self.kinks.at_weight) {
+                if let Some(level) = level {
                     *zi = phi - level;
                 }
             }
