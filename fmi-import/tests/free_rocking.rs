@@ -225,7 +225,7 @@ fn the_fmi_crate_reads_the_model_description() {
         .as_ref()
         .expect("a Model Exchange interface");
     assert_eq!(me.model_identifier, "RockingBlock");
-    assert_eq!(md.number_of_event_indicators, Some(12));
+    assert_eq!(md.number_of_event_indicators, Some(16));
     let names: Vec<&str> = md.get_model_variables().map(|v| v.name.as_str()).collect();
     for n in [
         "ag",
