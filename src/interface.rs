@@ -328,21 +328,13 @@ impl Interface {
         if phi <= 0.0 || self.law == Law::Rigid {
             return [1.0, -1.0];
         }
-        Self::margins_of(self.bed_limits(phi), n)
-    }
-
-    /// The bed resultants of [`bed_margins`](Self::bed_margins) at `phi > 0`
-    /// (a flexible law), which depend on `phi` only: `[Nbed(D), Nbed(a1)]`,
-    /// N (`Nbed(a1)` infinite on an elastic bed).
-    pub fn bed_limits(&self, phi: f64) -> [f64; 2] {
-        let k = self.kn * phi;
-        let a1 = self.fm / k;
-        let toe = if a1.is_finite() {
-            self.bed_resultant(k, a1, a1)
+        let margin = |t| Self::threshold_margin(self.threshold_resultant(phi, t), n);
+        let toe = if self.fm.is_finite() {
+            margin(Threshold::Plastic(0.0))
         } else {
-            f64::INFINITY
+            -1.0
         };
-        [self.bed_resultant(k, a1, self.d), toe]
+        [margin(Threshold::Contact(self.d)), toe]
     }
 
     /// The moving thresholds of docs/model.md §6.4 in a fixed order:
@@ -385,17 +377,6 @@ impl Interface {
     #[inline]
     pub fn threshold_margin(limit: f64, n: f64) -> f64 {
         1.0 - limit / n
-    }
-
-    /// [`bed_margins`](Self::bed_margins) from its [`bed_limits`](Self::bed_limits).
-    #[inline]
-    pub fn margins_of(limits: [f64; 2], n: f64) -> [f64; 2] {
-        let toe = if limits[1].is_finite() {
-            1.0 - limits[1] / n
-        } else {
-            -1.0
-        };
-        [1.0 - limits[0] / n, toe]
     }
 
     /// The equilibrium `Nbed(a, phi) = w` in the given regime: the contact
@@ -546,9 +527,17 @@ impl Interface {
         if self.law == Law::Rigid || phi == 0.0 || c.regime == Regime::FullContact {
             return (0.0, 0.0);
         }
-        let Some(ElasticZone { a1, x2, xp, l }) = self.elastic_zone(c) else {
-            return (0.0, 0.0);
-        };
+        match self.elastic_zone(c) {
+            Some(z) => self.zone_second_derivatives(c, &z, self.weight),
+            None => (0.0, 0.0),
+        }
+    }
+
+    /// [`second_derivatives`](Self::second_derivatives) of `c` from its
+    /// elastic zone `z`, under the bed resultant `n` (N).
+    fn zone_second_derivatives(&self, c: &Contact, z: &ElasticZone, n: f64) -> (f64, f64) {
+        let &ElasticZone { a1, x2, xp, l } = z;
+        let phi = c.phi;
         let (d, a) = (self.d, c.a);
         let e = a - xp;
         let f = e * l[0] - l[1];
@@ -566,7 +555,7 @@ impl Interface {
         let cz = l[1] / l[0];
         let e2 = x2 - xp;
         let djc = grow * (e2 - cz) * (e2 - cz) * dx2 - lose * cz * cz * dxp;
-        let d2af = -self.kn * djc / self.weight;
+        let d2af = -self.kn * djc / n;
         let df = da * l[0] - e * lose * dxp;
         let dl0 = grow * dx2 - lose * dxp;
         let d2a = -df / (phi * l[0]) - da * (1.0 / phi + dl0 / l[0]);
@@ -601,12 +590,11 @@ impl Interface {
             out.a_n = 1.0 / (self.kn * phi * self.area);
             return out;
         }
-        let (af_pp, a_pp) = self.second_derivatives(c);
-        out.af_pp = af_pp * self.weight / n;
-        out.a_pp = a_pp;
-        let Some(ElasticZone { a1, x2, xp, l }) = self.elastic_zone(c) else {
+        let Some(z) = self.elastic_zone(c) else {
             return out;
         };
+        (out.af_pp, out.a_pp) = self.zone_second_derivatives(c, &z, n);
+        let ElasticZone { a1, x2, xp, l } = z;
         let (d, a) = (self.d, c.a);
         let k = self.kn * phi;
         let grow = if a < d { self.shape.width(x2) } else { 0.0 };

@@ -130,12 +130,12 @@ impl RockingSlave {
     /// Warns, once, when the friction demand at the current state exceeds
     /// `mu` (checked where the state is: at communication points and at
     /// Model Exchange's completed integrator steps).
-    fn check_sliding(&mut self, ag: f64, av: f64, log: &mut EventLog) {
+    fn check_sliding(&mut self, ag: f64, av: f64, dav: f64, log: &mut EventLog) {
         let SlidingCheck { mu, warned } = self.sliding;
         if mu == 0.0 || warned {
             return;
         }
-        let demand = self.outputs(ag, av, 0.0).friction_demand();
+        let demand = self.outputs(ag, av, dav).friction_demand();
         if demand > mu {
             self.sliding.warned = true;
             log.warn(format!(
@@ -146,11 +146,11 @@ impl RockingSlave {
         }
     }
 
-    fn regime(&mut self, ag: f64, av: f64) -> Regime {
+    fn regime(&mut self, ag: f64, av: f64, dav: f64) -> Regime {
         if self.state.overturned {
             Regime::Overturned
         } else {
-            self.outputs(ag, av, 0.0).regime
+            self.outputs(ag, av, dav).regime
         }
     }
 
@@ -204,7 +204,7 @@ impl RockingSlave {
                 ),
             });
         }
-        let before = log.enabled().then(|| self.regime(ag, v.av));
+        let before = log.enabled().then(|| self.regime(ag, v.av, v.dav));
         let mut s = self.state;
         if let Some(prev) = self.av_end {
             self.sim.vertical_jump(&mut s, prev, v.av);
@@ -225,7 +225,7 @@ impl RockingSlave {
         self.av_end = Some(v.av + v.dav * (s.t - t));
         self.cache = None;
         self.rates = None;
-        self.check_sliding(ag + dag * h, av + dav * h, log);
+        self.check_sliding(ag + dag * h, av + dav * h, dav, log);
         if log.enabled() {
             if ev.uplift {
                 log.event(format!(
@@ -247,7 +247,7 @@ impl RockingSlave {
                 log.event(format!("came to rest in ({t}, {}]", t + h));
             }
             let a_end = ag + dag * h;
-            let after = self.regime(a_end, v.av + v.dav * h);
+            let after = self.regime(a_end, v.av + v.dav * h, v.dav);
             if let Some(b) = before {
                 if b != after {
                     log.event(format!(
@@ -411,7 +411,11 @@ impl Slave for RockingSlave {
     fn get_integer(&mut self, r: u32, inputs: Inputs<'_>) -> Result<i32, String> {
         match r {
             vr::REGIME if self.terminal.is_some() => Ok(REGIME_OUT_OF_RANGE),
-            vr::REGIME => Ok(self.regime(inputs.real(vr::AG), inputs.real(vr::AV)) as i32),
+            vr::REGIME => Ok(self.regime(
+                inputs.real(vr::AG),
+                inputs.real(vr::AV),
+                inputs.derivative(vr::AV),
+            ) as i32),
             vr::IMPACTS => Ok(i32::try_from(self.state.impacts).unwrap_or(i32::MAX)),
             vr::ZERO_CROSSINGS => Ok(i32::try_from(self.state.zero_crossings).unwrap_or(i32::MAX)),
             _ => Err(format!("no computed Integer with value reference {r}")),
@@ -645,7 +649,12 @@ impl Slave for RockingSlave {
         log: &mut EventLog,
     ) -> Result<bool, String> {
         let event = self.me_completed_step()?;
-        self.check_sliding(inputs.real(vr::AG), inputs.real(vr::AV), log);
+        self.check_sliding(
+            inputs.real(vr::AG),
+            inputs.real(vr::AV),
+            inputs.derivative(vr::AV),
+            log,
+        );
         Ok(event)
     }
 

@@ -11,7 +11,7 @@
 //! one-sided on the state's side where a moving threshold (docs/model.md
 //! §6.4) lies within two steps, as `af'''` is without `av`.
 
-use crate::interface::{Contact, Regime};
+use crate::interface::{Contact, LoadedCurvature, Regime};
 use crate::model::Formulation;
 
 use super::eom::{side_of, Eom};
@@ -149,7 +149,8 @@ impl Simulator {
         let s = side_of(state.theta, state.omega, ag);
         let phi = state.theta.abs();
         let (c, daf_dn) = m.contact_loaded(phi, n);
-        let af = self.af_partials(&c, daf_dn, n);
+        let k = m.interface.loaded_second_derivatives(&c, n);
+        let af = self.af_partials(&c, daf_dn, &k, n);
         let g = self.loaded_geometry(phi, af);
         let pivot = m.formulation == Formulation::ShiftingPivot;
         let ag_jet = [ag, dag, 0.0];
@@ -177,7 +178,7 @@ impl Simulator {
         let th = theta_jet(&eom, state, s, accel);
         let Motion { p, w, w2, thdd } = Motion::of(&th, s);
         let contact_length = if c.a < m.interface.depth() {
-            self.a_partials(&c, n).compose(p, n_jet)
+            a_partials(&c, &k).compose(p, n_jet)
         } else {
             [c.contact_length, 0.0, 0.0]
         };
@@ -207,9 +208,8 @@ impl Simulator {
 
     /// The partials of `af` at the contact `c` solved at `(phi, n)`, whose
     /// `daf/dN` is `daf_dn`.
-    fn af_partials(&self, c: &Contact, daf_dn: f64, n: f64) -> Biv {
+    fn af_partials(&self, c: &Contact, daf_dn: f64, k: &LoadedCurvature, n: f64) -> Biv {
         let it = &self.model.interface;
-        let k = it.loaded_second_derivatives(c, n);
         let mut u = Biv::default();
         u.0[0] = [c.af, daf_dn, k.af_nn, 0.0];
         u.0[1][0] = c.daf;
@@ -235,19 +235,6 @@ impl Simulator {
         u.0[2][1] = difference(|x| curvature(phi, x).af_pp, n, hn, above_n, below_n);
         u.0[1][2] = difference(|x| curvature(phi, x).af_pn, n, hn, above_n, below_n);
         u.0[0][3] = difference(|x| curvature(phi, x).af_nn, n, hn, above_n, below_n);
-        u
-    }
-
-    /// The partials of `a` up to order 2 at the contact `c` solved at
-    /// `(phi, n)`.
-    fn a_partials(&self, c: &Contact, n: f64) -> Biv {
-        let it = &self.model.interface;
-        let k = it.loaded_second_derivatives(c, n);
-        let mut u = Biv::default();
-        u.0[0] = [c.a, k.a_n, k.a_nn, 0.0];
-        u.0[1][0] = c.da;
-        u.0[1][1] = k.a_pn;
-        u.0[2][0] = k.a_pp;
         u
     }
 
@@ -283,6 +270,17 @@ impl Simulator {
             inertia,
         }
     }
+}
+
+/// The partials of `a` up to order 2 at the contact `c` whose second
+/// partials are `k`.
+fn a_partials(c: &Contact, k: &LoadedCurvature) -> Biv {
+    let mut u = Biv::default();
+    u.0[0] = [c.a, k.a_n, k.a_nn, 0.0];
+    u.0[1][0] = c.da;
+    u.0[1][1] = k.a_pn;
+    u.0[2][0] = k.a_pp;
+    u
 }
 
 /// `g'(x)` by a difference of step `h`: central, or on the side away from
