@@ -371,6 +371,21 @@ impl Interface {
         }
     }
 
+    /// Whether the edge of `t` is past its point (the sign of its margin
+    /// at the bed resultant `n` the contact was solved for) from the
+    /// contact's edge `a` (m) at `phi > 0`: `Nbed` grows strictly with `a`,
+    /// so the margin is positive exactly when `a` (or `a - fm/(kn phi)`) is
+    /// beyond the point. `None` where `a` is within `1e-8 D` of it (the
+    /// contact's own error is some 1e-13 of `a`) or not finite.
+    #[inline]
+    pub fn threshold_side(&self, phi: f64, a: f64, t: Threshold) -> Option<bool> {
+        let edge_past = match t {
+            Threshold::Contact(x) => a - x,
+            Threshold::Plastic(x) => a - self.fm / (self.kn * phi) - x,
+        };
+        (edge_past.abs() > 1e-8 * self.d).then_some(edge_past > 0.0)
+    }
+
     /// The relative margin `1 - Nbed/n` of the bed resultant `n` (N) to a
     /// threshold's `limit` ([`threshold_resultant`](Self::threshold_resultant)):
     /// positive while the edge is past its point.

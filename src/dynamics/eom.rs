@@ -197,6 +197,31 @@ impl<'a> Eom<'a> {
         (c, daf_dn)
     }
 
+    /// The edge `a` (m) of the contact [`contact_loaded`](Self::contact_loaded)
+    /// gives at `(phi, n)`, read where the table answers without it: which
+    /// side of their points the moving thresholds' edges are on
+    /// (docs/model.md §6.4). NaN at `phi <= 0` or `n <= 0`.
+    pub fn contact_edge(&self, phi: f64, n: f64, hint: f64) -> f64 {
+        if phi <= 0.0 || n <= 0.0 {
+            return f64::NAN;
+        }
+        let it = &self.sim.model.interface;
+        // an uncrushed contact at N is the elastic bed's at the weight at
+        // phi W/N (docs/model.md §6.1), valid while kn phi a <= fm
+        let c = self.sim.contact(phi * self.w / n, hint);
+        let uncrushed = match it.law() {
+            Law::ElastoPlastic { kn, fm } => {
+                matches!(c.regime, Regime::FullContact | Regime::Partial) && kn * phi * c.a <= fm
+            }
+            _ => true,
+        };
+        if uncrushed {
+            c.a
+        } else {
+            it.contact_loaded(phi, n, hint).0.a
+        }
+    }
+
     /// The contact of a crushing bed at `(phi, N)`, `r = W/N`, where the toe
     /// has not crushed: then the bed is elastic and the contact is the one
     /// at the weight at `phi r` (docs/model.md §6.1), if that one has not

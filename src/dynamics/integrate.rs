@@ -384,9 +384,18 @@ impl<'c, 'm> StepCx<'c, 'm> {
     /// [`kink_level`](Self::kink_level). A function within `1e-10` of its
     /// zero at the step start is the kink the step starts on.
     fn moving_kink(&mut self, tr: &Trial, herm: &Hermite) -> Option<f64> {
+        let edges = if self.call.sim.kinks.sides_from_edge {
+            [
+                self.edge_at(tr.t, tr.y0[0], self.hint),
+                self.edge_at(tr.t_new, tr.out.y[0], tr.hint),
+            ]
+        } else {
+            [f64::NAN; 2]
+        };
+        let with_edge = |(phi, n), edge| (phi, n, edge);
         let ends = (
-            self.point_on_step(tr, herm, 0.0),
-            self.point_on_step(tr, herm, 1.0),
+            with_edge(self.point_on_step(tr, herm, 0.0), edges[0]),
+            with_edge(self.point_on_step(tr, herm, 1.0), edges[1]),
         );
         let tau = self
             .call
@@ -399,6 +408,17 @@ impl<'c, 'm> StepCx<'c, 'm> {
         }
         self.kink_level = herm.theta(tau).abs();
         Some(tau)
+    }
+
+    /// The edge `a` of the contact at `(t, theta)` (m,
+    /// [`Eom::contact_edge`], the solve warm started from `hint`).
+    fn edge_at(&self, t: f64, theta: f64, hint: f64) -> f64 {
+        let (phi, n) = (theta.abs(), self.call.eom.apparent_weight(t));
+        let eom = self.call.eom;
+        self.call
+            .sim
+            .threshold_limits
+            .edge(phi, n, || eom.contact_edge(phi, n, hint))
     }
 
     /// The zero of the `i`-th margin on the step, bracketed by `f0` at 0 and

@@ -4,6 +4,7 @@
 
 use crate::interface::{solve_increasing, Law, Threshold, THRESHOLDS};
 use crate::model::Model;
+use crate::shape::Shape;
 
 use super::dense::{first_event, Hermite, Hit};
 
@@ -16,6 +17,12 @@ pub(super) struct Kinks {
     /// fixed order, and the level of each at the weight below `thetaOv`.
     pub thresholds: [Option<Threshold>; THRESHOLDS],
     pub at_weight: [Option<f64>; THRESHOLDS],
+    /// Which side of its point each threshold's edge is on is read from
+    /// the contact's edge where the bed resultant is dear: a circle's
+    /// takes arcsines (some 1000 instructions for a ring), the contact's
+    /// edge from the table some 300; a rectangle's is cheaper than either
+    /// (docs/performance.md).
+    pub sides_from_edge: bool,
 }
 
 impl Kinks {
@@ -35,6 +42,10 @@ impl Kinks {
         let it = &model.interface;
         let mut k = Kinks {
             thresholds: it.moving_thresholds(),
+            sides_from_edge: matches!(
+                it.shape(),
+                Shape::SolidCircle { .. } | Shape::HollowCircle { .. }
+            ),
             ..Kinks::default()
         };
         let (kn, fm) = match it.law() {
