@@ -189,6 +189,7 @@ impl<'a> Eom<'a> {
             (c, -phi / n * c.daf)
         } else {
             let (c, xel) = model.interface.contact_loaded(phi, n, *hint);
+            self.sim.threshold_limits.note_solved(phi, n, c.a);
             (c, (xel - c.af) / n)
         };
         if c.a.is_finite() {

@@ -387,7 +387,8 @@ impl<'c, 'm> StepCx<'c, 'm> {
         let edges = if self.call.sim.kinks.sides_from_edge {
             [
                 self.edge_at(tr.t, tr.y0[0], self.hint),
-                self.edge_at(tr.t_new, tr.out.y[0], tr.hint),
+                // the time of the step's last stage
+                self.edge_at(tr.t + tr.hh, tr.out.y[0], tr.hint),
             ]
         } else {
             [f64::NAN; 2]

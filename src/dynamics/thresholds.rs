@@ -30,6 +30,9 @@ pub(super) struct LimitCache {
     keys: [Cell<u64>; 2],
     limits: [[Cell<f64>; THRESHOLDS]; 2],
     edge: Cell<(u64, u64, f64)>,
+    /// The last contact solved at `N` by the equation of motion: a step's
+    /// last stage is at its end.
+    solved: Cell<(u64, u64, f64)>,
 }
 
 impl Default for LimitCache {
@@ -38,23 +41,32 @@ impl Default for LimitCache {
             keys: std::array::from_fn(|_| Cell::new(f64::NAN.to_bits())),
             limits: std::array::from_fn(|_| std::array::from_fn(|_| Cell::new(f64::NAN))),
             edge: Cell::new((f64::NAN.to_bits(), 0, f64::NAN)),
+            solved: Cell::new((f64::NAN.to_bits(), 0, f64::NAN)),
         }
     }
 }
 
 impl LimitCache {
-    /// The contact edge `a` (m) at `(phi, n)` from `find` (the contact
-    /// solved there), kept for the next call at the same point: a step's
-    /// end is the next step's start, across calls too. Found again, a
+    /// Notes the edge `a` (m) of a contact solved at `(phi, n)`.
+    #[inline]
+    pub(super) fn note_solved(&self, phi: f64, n: f64, a: f64) {
+        self.solved.set((phi.to_bits(), n.to_bits(), a));
+    }
+
+    /// The contact edge `a` (m) at `(phi, n)`: the last one asked for or
+    /// solved there, else from `find` (the contact solved there); kept for
+    /// the next call at the same point: a step's end is the next step's
+    /// start, across calls too. Found again, a
     /// solved edge may differ in its last bits with its warm start; it is
     /// only read where it is farther than `1e-8 D` from a threshold's point
     /// ([`Interface::threshold_side`]), so that changes no result.
     pub(super) fn edge(&self, phi: f64, n: f64, find: impl FnOnce() -> f64) -> f64 {
-        let (p, q, a) = self.edge.get();
-        if (p, q) == (phi.to_bits(), n.to_bits()) {
-            return a;
-        }
-        let a = find();
+        let key = (phi.to_bits(), n.to_bits());
+        let a = [&self.edge, &self.solved]
+            .iter()
+            .map(|c| c.get())
+            .find(|&(p, q, _)| (p, q) == key)
+            .map_or_else(find, |(_, _, a)| a);
         self.edge.set((phi.to_bits(), n.to_bits(), a));
         a
     }
