@@ -54,18 +54,19 @@ impl LimitCache {
     }
 
     /// The contact edge `a` (m) at `(phi, n)`: the last one asked for or
-    /// solved there, else from `find` (the contact solved there); kept for
-    /// the next call at the same point: a step's end is the next step's
-    /// start, across calls too. Found again, a
-    /// solved edge may differ in its last bits with its warm start; it is
-    /// only read where it is farther than `1e-8 D` from a threshold's point
-    /// ([`Interface::threshold_side`]), so that changes no result.
+    /// solved at `phi` under `n` to 1e-12, else from `find` (the contact
+    /// solved there); kept for the next call: a step's end is the next
+    /// step's start, across calls too, where the next call's interpolant
+    /// of `av` may put `N` an ulp apart. Such an edge moves by some 1e-12
+    /// of itself, and a solved one differs in its last bits with its warm
+    /// start; edges are only read where they are farther than `1e-8 D`
+    /// from a threshold's point ([`Interface::threshold_side`]), so neither
+    /// changes a result.
     pub(super) fn edge(&self, phi: f64, n: f64, find: impl FnOnce() -> f64) -> f64 {
-        let key = (phi.to_bits(), n.to_bits());
         let a = [&self.edge, &self.solved]
             .iter()
             .map(|c| c.get())
-            .find(|&(p, q, _)| (p, q) == key)
+            .find(|&(p, q, _)| p == phi.to_bits() && (f64::from_bits(q) - n).abs() <= 1e-12 * n)
             .map_or_else(find, |(_, _, a)| a);
         self.edge.set((phi.to_bits(), n.to_bits(), a));
         a
