@@ -5,6 +5,9 @@ native stepping loop), rtol 1e-11, 5 s past the record. CPU time of this process
 --repeats interleaved runs; prints a table.
 
     .venv/bin/python benches/vertical_record.py [--fmu path/to/RockingBlock.fmu] [--repeats 3]
+
+--dump PATH writes the two components (unscaled) for examples/vertical_record.rs instead: the
+time step, then `ag av` per sample, m/s².
 """
 
 import argparse
@@ -26,6 +29,17 @@ def darfield_dfhs():
     return rec, gm.vertical_of(rec)
 
 
+def dump(rec, vertical, path):
+    """The time step, then `ag av` per sample (m/s², shortest's length)."""
+    if vertical.dt != rec.dt:
+        raise SystemExit(f"{path}: the components' time steps differ ({rec.dt}, {vertical.dt})")
+    with open(path, "w") as f:
+        f.write(f"{rec.dt!r}\n")
+        for a, b in zip(rec.acc, vertical.acc):
+            f.write(f"{float(a)!r} {float(b)!r}\n")
+    print(f"{path}: {min(len(rec.acc), len(vertical.acc))} samples at {rec.dt} s")
+
+
 def outcome(run):
     if run.overturned:
         return f"overturns at {run.t_overturn:.2f} s"
@@ -36,8 +50,12 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--fmu", default=None, help="default: target/fmu/RockingBlock.fmu")
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--dump", metavar="PATH", help="write the record for examples/vertical_record.rs")
     args = ap.parse_args()
     rec, vertical = darfield_dfhs()
+    if args.dump:
+        dump(rec, vertical, args.dump)
+        return
     cases = dharahara_cases()
     fmu = RockingFMU(args.fmu)
     print(f"{rec.name} [{rec.component}] x{SCALE:g}, av: [{vertical.component}]")

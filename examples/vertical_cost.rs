@@ -24,8 +24,12 @@ use rocking::dynamics::{GroundInput, Simulator, VerticalInput};
 use rocking::model::LawKind;
 use rocking::Params;
 
+#[path = "support/cpu.rs"]
+mod cpu;
 #[path = "support/dharahara.rs"]
 mod dharahara;
+
+use cpu::cpu;
 
 const DT: f64 = 0.01;
 const N: usize = 2000;
@@ -71,27 +75,6 @@ fn run(sim: &Simulator, ag: &[f64], av: &[f64]) -> (u64, u64) {
         }
     }
     (steps, sum)
-}
-
-/// CPU time of the process so far, s.
-fn cpu() -> f64 {
-    let mut ts = Timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // CLOCK_PROCESS_CPUTIME_ID = 2 on Linux
-    unsafe { clock_gettime(2, &mut ts) };
-    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
-}
-
-#[repr(C)]
-struct Timespec {
-    tv_sec: i64,
-    tv_nsec: i64,
-}
-
-extern "C" {
-    fn clock_gettime(clk: i32, ts: *mut Timespec) -> i32;
 }
 
 /// The Dharahara tower of docs/dharahara.md on its F170_fm5 foundation
