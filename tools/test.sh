@@ -18,10 +18,10 @@ cargo test --workspace --profile ci
 stage "the release binaries the Python tests run: rocking-corner, the Dharahara curves example"
 cargo build --release -p corner
 cargo build --release -p rocking --example dharahara_curves
-stage "the library crates as another FMU author gets them: rustdoc without warnings, and"
-echo "   cargo publish --dry-run (packaged, then built from the package; 33 s cold, a few s warm)"
+stage "rustdoc of every crate without warnings; the library crates as another FMU author gets"
+echo "   them: cargo publish --dry-run (packaged, then built from the package; 33 s cold, a few s warm)"
 crates="-p rocking -p model-description -p fmi2-export -p corner"
-RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --quiet $crates
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --quiet --workspace
 cargo publish --dry-run --allow-dirty --quiet $crates
 stage "valgrind memcheck of an instance's whole life through the C API"
 tools/memcheck.sh

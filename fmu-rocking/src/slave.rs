@@ -1,6 +1,6 @@
 //! The rocking model as an FMI 2.0 co-simulation slave: parameters from the
 //! stored values, outputs from `rocking::dynamics`, one `advance` per step;
-//! and as a Model Exchange model ([`model_exchange`]).
+//! and as a Model Exchange model (the `model_exchange` module).
 
 mod model_exchange;
 
