@@ -427,6 +427,9 @@ def test_shear_frame_3_0_declares_arrays_sized_by_n():
     n = three["n"]
     assert (n.type, n.causality, n.variability, int(n.start)) == ("UInt64", "structuralParameter", "fixed", 3)
     assert n.valueReference == two["n"].valueReference
+    # 3.0 has no elements past n: n's description says it sizes the arrays
+    assert "past n" in two["n"].description and "past n" not in n.description
+    assert "length of every per-floor array" in n.description
     import zipfile
 
     with zipfile.ZipFile(SHEAR3) as z:  # fmpy 0.3.32 reads no min/max of a UInt64

@@ -413,6 +413,7 @@ pub static LOG_CATEGORIES: &[LogCategory] = &[
 /// (`Fx[i]` is element `i` of `Fx`), `n` a structural parameter.
 pub const ARRAYS3: Arrays3 = Arrays3 {
     size: "n",
+    size_description: "Number of storeys (floors above the ground), 1 to 20: the length of every per-floor array (set in configuration mode)",
     len: MAX_STOREYS,
     arrays: &[
         ("m", "Mass of each floor, floor 1 first"),

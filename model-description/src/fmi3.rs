@@ -23,6 +23,9 @@ pub struct Arrays3 {
     /// An Integer parameter of the table: in 3.0 a `UInt64` structural
     /// parameter (1 to `len`), set in configuration mode.
     pub size: &'static str,
+    /// The size's description in 3.0, where it sizes the arrays (the
+    /// table's says what 2.0 does with the scalars past it).
+    pub size_description: &'static str,
     /// The table's scalars per array: the largest `size`.
     pub len: usize,
     /// Each array: its name and description.

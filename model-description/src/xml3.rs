@@ -77,6 +77,9 @@ fn naming(
     md: &ModelDescription,
     v: &Variable,
 ) -> Option<(&'static str, &'static str, Option<u32>)> {
+    if let Some(a) = md.arrays3.filter(|a| a.size == v.name) {
+        return Some((v.name, a.size_description, None));
+    }
     match md.fmi3_element(v.name) {
         None => Some((v.name, v.description, None)),
         Some((name, description, 1)) => Some((name, description, md.fmi3_size().map(|n| n.vr))),
