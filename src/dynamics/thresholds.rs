@@ -197,33 +197,31 @@ mod tests {
     use crate::model::{LawKind, MassKind, ShapeKind};
     use crate::Params;
 
-    /// The Dharahara tower on its F85_fm2 foundation (docs/dharahara.md)
-    /// and a box section, both crushing.
+    /// Crushing beds under a stone ring (the width's breaks at the inner
+    /// circle) and a box section (at the flanges).
     fn bodies() -> [Params; 2] {
-        let tower = Params {
-            shape: ShapeKind::HollowCircle,
-            ro: 3.99,
-            ri: 2.12,
-            mass_model: MassKind::Lumped,
-            w: 24003940.0,
-            hg: 30.202496990460777,
-            ic: 756496606.9897003,
+        let crushing = Params {
             interface: LawKind::ElastoPlastic,
-            kn: 8.5e7,
-            fm: 2e6,
+            kn: 1e8,
+            fm: 1.5e6,
             ..Params::default()
+        };
+        let ring = Params {
+            shape: ShapeKind::HollowCircle,
+            ro: 1.0,
+            ri: 0.6,
+            mass_model: MassKind::Lumped,
+            w: 2e5,
+            hg: 4.0,
+            ic: 1.16e5,
+            ..crushing
         };
         let hollow_box = Params {
             shape: ShapeKind::HollowRectangle,
-            b: 0.5,
-            l: 1.0,
-            t: 0.1,
-            interface: LawKind::ElastoPlastic,
-            kn: 1e8,
-            fm: 1e6,
-            ..Params::default()
+            t: 0.12,
+            ..crushing
         };
-        [tower, hollow_box]
+        [ring, hollow_box]
     }
 
     /// The points `(phi, N)` of a grid: 40 rotations below `thetaOv`, `N`
@@ -288,7 +286,7 @@ mod tests {
             let eom =
                 Eom::with_vertical(&sim, 0.0, GroundInput::default(), VerticalInput::default());
             let points = grid(&sim);
-            let mut crossings = 0;
+            let (mut crossings, mut breaks) = (0, 0);
             for (k, &(phi0, n0)) in points.iter().enumerate() {
                 for &(phi1, n1) in [1, 29, 30, 31, 600]
                     .iter()
@@ -313,10 +311,15 @@ mod tests {
                     );
                     assert_eq!(with, without, "({phi0}, {n0}) to ({phi1}, {n1})");
                     crossings += with.len();
+                    breaks += with.iter().filter(|c| c.0 >= 2).count();
                 }
             }
-            // measured: 1452 crossings on the tower, 229 on the box
-            assert!(crossings > 100, "{crossings} crossings");
+            // measured: 691 crossings on the ring (236 at its breaks), 216 on
+            // the box (all at its flanges)
+            assert!(
+                crossings > 100 && breaks > 100,
+                "{crossings} crossings, {breaks} at breaks"
+            );
         }
     }
 }
