@@ -16,7 +16,7 @@ use crate::model::Formulation;
 
 use super::eom::{side_of, Eom};
 use super::output_rates::{
-    jet_add, jet_div, jet_mul, jet_scale, theta_jet, Jet, Motion, OutputRates,
+    apparent_weight, jet_add, jet_div, jet_mul, jet_scale, theta_jet, Jet, Motion, OutputRates,
 };
 use super::{GroundInput, Simulator, State, VerticalInput};
 
@@ -144,7 +144,7 @@ impl Simulator {
         let m = &self.model;
         let b = &m.body;
         let GroundInput { ag, dag } = input;
-        let n_jet = [b.weight + b.mass * v.av, b.mass * v.dav, 0.0];
+        let n_jet = apparent_weight(b, v);
         let n = n_jet[0];
         let s = side_of(state.theta, state.omega, ag);
         let phi = state.theta.abs();

@@ -86,7 +86,7 @@ impl OutputRates {
 }
 
 /// The jet of `N = W + m (av + dav t)`, N (the weight without `av`).
-fn apparent_weight(b: &crate::Body, v: VerticalInput) -> Jet {
+pub(super) fn apparent_weight(b: &crate::Body, v: VerticalInput) -> Jet {
     if v.av == 0.0 && v.dav == 0.0 {
         [b.weight, 0.0, 0.0]
     } else {
@@ -252,12 +252,12 @@ impl Simulator {
         v: VerticalInput,
     ) -> OutputRates {
         let m = &self.model;
-        if (v.av != 0.0 || v.dav != 0.0) && m.interface.law() != Law::Rigid {
+        let vertical = v.av != 0.0 || v.dav != 0.0;
+        if vertical && m.interface.law() != Law::Rigid {
             return self.loaded_rates_in_motion(state, input, v);
         }
         let b = &m.body;
         let GroundInput { ag, dag } = input;
-        let vertical = v.av != 0.0 || v.dav != 0.0;
         let n_jet = apparent_weight(b, v);
         let rigid = m.interface.law() == Law::Rigid;
         let s = side_of(state.theta, state.omega, ag);

@@ -17,6 +17,26 @@ pub struct Rocked {
     pub work_g: u64,
 }
 
+impl Rocked {
+    /// The two runs rocked alike: at least 3 impacts, their times within
+    /// 1e-7 s, the run under `av` at most `work_ratio` times the other's
+    /// work. `what` names the case in the messages.
+    pub fn assert_alike(&self, what: &str, work_ratio: f64) {
+        assert!(self.impacts >= 3, "{what}: {} impacts", self.impacts);
+        assert!(
+            self.max_dt <= 1e-7,
+            "{what}: impacts {} s apart",
+            self.max_dt
+        );
+        assert!(
+            (self.work_av as f64) <= work_ratio * self.work_g as f64,
+            "{what}: {} steps under av, {} under g'",
+            self.work_av,
+            self.work_g
+        );
+    }
+}
+
 /// Free rocking from `theta0` (rad) until 6 impacts, rest or overturning,
 /// event to event at `rtol`, of `params(g + av)` and of `params(g)` under
 /// `av` (m/s²).
