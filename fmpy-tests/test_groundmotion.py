@@ -532,3 +532,62 @@ def test_to_csv_round_trip(tmp_path):
     assert back.dt == pytest.approx(rec.dt, rel=1e-12)
     assert (back.name, back.component, back.units_in_file) == (rec.name, "Up", "m/s2")
     assert back.notes == rec.notes
+
+
+# ---------------------------------------------------------------------------
+# Folder scans: what is not a record is passed over, a bad record is not
+
+def _folder_with_extras(tmp_path):
+    """A record folder as a wheel leaves it: the stand-in and its generator, the generator's
+    compiled cache (written by Python's own py_compile, as pip does), a README, licence and
+    provenance notes, hidden files and a hidden folder. Returns (folder, the one record)."""
+    import py_compile
+    import shutil
+    folder = tmp_path / "records"
+    (folder / "katnp-standin").mkdir(parents=True)
+    record = folder / "katnp-standin" / "KATNP_NS_standin.csv"
+    shutil.copy(DATA / KATNP, record)
+    script = folder / "katnp-standin" / "gen_katnp_standin.py"
+    shutil.copy(DATA / "katnp-standin" / "gen_katnp_standin.py", script)
+    compiled = py_compile.compile(str(script), doraise=True)
+    assert "__pycache__" in compiled and Path(compiled).is_file()
+    (folder / "README.md").write_text("# Records\nprovenance...\n")
+    (folder / "LICENSE").write_text("Public domain.\n")
+    (folder / "katnp-standin" / "PROVENANCE.txt").write_text("where these came from\n")
+    (folder / ".DS_Store").write_bytes(b"\0\0\0\1Bud1\0")
+    (folder / ".git").mkdir()
+    (folder / ".git" / "HEAD").write_text("ref: refs/heads/main\n")
+    (folder / "study.toml").write_text('records = ["."]\n')
+    return folder, record
+
+
+def test_record_files_pass_over_caches_scripts_and_notes(tmp_path):
+    folder, record = _folder_with_extras(tmp_path)
+    assert gm.record_files(folder) == [record]
+
+
+def test_every_folder_scan_reads_only_the_record(tmp_path):
+    """load_suite (ida, msa), sweep's --records and a record set's siblings read the same one file."""
+    from rocking.cli.sweep import collect_records
+    from rocking.fragility.suite import load_suite
+    folder, record = _folder_with_extras(tmp_path)
+    expected = np.loadtxt(DATA / KATNP, delimiter=",", comments="#", skiprows=5)[:, 1]  # m/s², as its header says
+    suite = load_suite([folder])
+    assert len(suite) == 1 and next(iter(suite)).startswith("katnp-standin/KATNP_NS_standin.csv")
+    (rec,) = suite.values()
+    np.testing.assert_allclose(rec.acc, expected, rtol=1e-12)
+    swept, vertical = collect_records([folder], None)
+    assert len(swept) == 1 and vertical == []
+    assert [r.source for r in gm.components(record)] == [str(record)]
+
+
+@pytest.mark.parametrize("name, text", [
+    ("mystery.dat", "station KATNP\nsome words\nno numbers here\n"),
+    ("broken.V2", "Corrected accelerogram, chan 1\nnothing else\n"),
+])
+def test_a_file_that_looks_like_a_record_but_is_not_read_is_named(tmp_path, name, text):
+    from rocking.fragility.suite import load_suite
+    folder, _ = _folder_with_extras(tmp_path)
+    (folder / name).write_text(text)
+    with pytest.raises(GroundMotionFormatError, match=re.escape(name)):
+        load_suite([folder])

@@ -9,6 +9,7 @@ import time
 import tomllib
 from pathlib import Path
 
+from ..groundmotion.files import record_files
 from .common import (FMU_HELP, CLIError, add_record_options, check_parameter, drop_unused, horizontal_record,
                      open_fmu, read_components, seconds)
 
@@ -17,10 +18,6 @@ PRECEDENCE = ("CASES.toml: an optional [defaults] table, then one [cases.NAME] t
               "parameters: [defaults] first, its preset (`preset = \"...\"`, or [defaults]' preset) over "
               "them, the case's own keys over both: a preset is a whole body, which a default does not "
               "change; only the case's own keys do.")
-
-#: Files that `--records DIR` passes over (documentation, scripts, results).
-NOT_RECORDS = {".md", ".py", ".toml", ".json", ".png", ".pdf", ".svg", ".parquet", ".zip", ".gz"}
-
 
 def parse_scales(text):
     """'0.5:3:0.25' (start:stop:step, stop included), '0.5,1,2' or '1.5' -> list of floats."""
@@ -111,8 +108,7 @@ def collect_records(sources, component, units=None, fmt=None):
         if not source.exists():
             raise CLIError(f"{source}: no such record file or folder")
         if source.is_dir():
-            files = sorted(p for p in source.rglob("*") if p.is_file() and not p.name.startswith(".")
-                           and p.suffix.lower() not in NOT_RECORDS)
+            files = record_files(source)
             base = source
         else:
             files, base = [source], source.parent

@@ -14,17 +14,10 @@ relative to the folder, with the component in brackets.
 from pathlib import Path
 
 from .. import groundmotion as gm
+from ..groundmotion.files import record_files
 from ..groundmotion.orientation import is_vertical_label
 
-#: Files passed over in a folder (documentation, scripts, results).
-NOT_RECORDS = {".md", ".py", ".toml", ".json", ".png", ".pdf", ".svg", ".parquet", ".zip", ".gz"}
 is_vertical = is_vertical_label  # the name this module gave it first
-
-
-def record_files(folder):
-    """The files of `folder` (recursive, sorted) that may be records."""
-    return sorted(p for p in Path(folder).rglob("*")
-                  if p.is_file() and not p.name.startswith(".") and p.suffix.lower() not in NOT_RECORDS)
 
 
 def load_suite(sources):

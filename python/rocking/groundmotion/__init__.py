@@ -10,13 +10,16 @@ USGS SMC (`smc`), plain "npts dt" ASCII (`nptsdt`), PEER NGA AT2 (`peer`),
 `time,acc` CSV (`csvfile`). Accelerations are converted to m/s² with
 g = 9.80665 m/s². Each Record says whether it is the vertical component
 (`rec.orientation`, `rec.vertical`, from the file's header); `components(path)` gives
-the whole record set (sibling files too) and `vertical_of(rec)` its vertical. Malformed files raise `GroundMotionFormatError` (a
+the whole record set (sibling files too) and `vertical_of(rec)` its vertical;
+`record_files(folder)` the files of a folder that may be records (`files`: caches,
+scripts and READMEs are passed over). Malformed files raise `GroundMotionFormatError` (a
 ValueError) naming the file, the line and what was expected there.
 """
 
 from .csmip import read_csmip_v2
 from .csvfile import read_csv
 from .detect import READERS, detect_format, read, read_all
+from .files import is_record_file, record_files
 from .geonet import read_geonet_v2a
 from .katnp import DATA_DIR, STANDIN_PATH, katnp, katnp_standin
 from .nptsdt import read_npts_dt
@@ -33,4 +36,5 @@ __all__ = [
     "canonical_unit", "detect_format", "katnp", "katnp_standin", "read", "read_all",
     "read_csmip_v2", "read_csv", "read_geonet_v2a", "read_npts_dt", "read_peer_at2",
     "read_smc", "to_m_s2", "components", "set_key", "vertical_of", "with_vertical",
+    "is_record_file", "record_files",
 ]

@@ -15,6 +15,7 @@ same.
 from pathlib import Path
 
 from .detect import detect_format, read_all
+from .files import is_record_file
 from .record import GroundMotionFormatError
 
 
@@ -41,7 +42,7 @@ def components(path, units=None, fmt=None):
     key = set_key(own[0])
     found = list(own)
     for other in sorted(path.parent.iterdir()):
-        if other == path or not other.is_file() or other.suffix.lower() in (".py", ".md", ".png"):
+        if other == path or not other.is_file() or not is_record_file(other):
             continue
         try:
             if detect_format(other) != fmt:
