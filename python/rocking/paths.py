@@ -8,7 +8,7 @@ Two layouts, found the same way by every caller (`REPO`, `target_dir()`, `data_d
   helpers what `cargo xtask fmu` and `cargo build --release` write to
   target/fmu and target/release ($CARGO_TARGET_DIR honoured);
 - a wheel (`cargo xtask wheel`): the package carries the same files in
-  rocking/_bundled/, laid out like a clone's (data/ground-motions,
+  rocking/_bundled/, laid out like a clone's (data/ground-motions, examples,
   target/fmu, target/release) with BUILD.json (the commit it was built from).
 
 Installed any other way (the sdist without Rust, a plain non-editable
@@ -67,6 +67,12 @@ def repo():
 def data_dir():
     """data/ground-motions of the repository (the shipped records; a wheel carries a sample of them)."""
     return repo() / "data" / "ground-motions"
+
+
+def examples_dir():
+    """examples/ of the repository (the study files: fragility.toml, sweep.toml, cosim/...; a
+    wheel carries them at rocking/_bundled/examples). `rocking examples DIR` copies them."""
+    return repo() / "examples"
 
 
 def target_dir():

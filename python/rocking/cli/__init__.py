@@ -9,6 +9,7 @@
     rocking corner ARGS...          (the Rust binary rocking-corner)
     rocking corner-blocks lp|dem|draw|study ...   (the corner block by block)
     rocking cosim CASE.toml --out DIR   (a block on a floor of a shear frame, co-simulated)
+    rocking examples DIR [--force]      (the records and the example studies, copied into DIR)
 
 Errors are one line on stderr naming the file, the variable or the parameter,
 with exit status 2; `--debug` shows the traceback instead.
@@ -33,6 +34,7 @@ COMMANDS = (
     "corner",
     "corner_blocks",  # `rocking corner-blocks`
     "cosim",
+    "examples",
 )
 
 from .common import CLIError  # noqa: E402 - after COMMANDS, which .main reads

@@ -9,7 +9,9 @@ from pathlib import Path
 from .. import paths
 
 PROG = "rocking"
-FMU_HELP = "the FMU (default: target/fmu/RockingBlock.fmu of the repository, built by `cargo xtask fmu`)"
+#: True for a wheel user and in a clone alike: paths.default_fmu() is the bundled FMU or the clone's.
+FMU_HELP = ("the FMU (default: the RockingBlock.fmu an installed wheel carries; in a clone "
+            "target/fmu/RockingBlock.fmu, written by `cargo xtask fmu`)")
 
 
 class CLIError(Exception):
@@ -42,7 +44,7 @@ def seconds(minimum, strict):
 # Where things are
 
 def fmu_path(arg):
-    """--fmu, else target/fmu/RockingBlock.fmu of the repository."""
+    """--fmu, else the wheel's bundled RockingBlock.fmu or the clone's target/fmu/RockingBlock.fmu."""
     if arg:
         path = Path(arg)
         if not path.is_file():
@@ -52,7 +54,8 @@ def fmu_path(arg):
         raise CLIError("no --fmu given and " + paths._NOT_IN_REPO)
     path = paths.default_fmu()
     if not path.is_file():
-        raise CLIError(f"{path} does not exist: run `cargo xtask fmu` (or pass --fmu PATH)")
+        build = "this wheel does not carry it" if paths.BUNDLE is not None else "run `cargo xtask fmu` in the clone"
+        raise CLIError(f"{path} does not exist: {build} (or pass --fmu PATH)")
     return path
 
 

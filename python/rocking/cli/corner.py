@@ -21,7 +21,8 @@ from .common import CLIError
 
 
 def corner_binary():
-    """target/release/rocking-corner of the repository, else rocking-corner on PATH, else None."""
+    """The wheel's bundled rocking-corner or the clone's target/release/rocking-corner, else
+    rocking-corner on PATH, else None."""
     if paths.REPO is not None:
         local = paths.target_dir() / "release" / ("rocking-corner" + paths.EXE)
         if local.is_file() and os.access(local, os.X_OK):
@@ -64,8 +65,9 @@ def forward(argv):
                        "their ends; --ends is for --method lp or dem")
     exe = corner_binary()
     if exe is None:
-        raise CLIError("rocking-corner not found (target/release of the repository, PATH): "
-                       "build it with `cargo build --release -p corner`")
+        raise CLIError("rocking-corner not found (neither bundled with this installation nor in a clone's "
+                       "target/release, nor on PATH): install a wheel, or in a clone build it with "
+                       "`cargo build --release -p corner`")
     status = subprocess.call([exe, *argv])
     body = body_file(argv)
     if status == 0 and body is not None and body.is_file():

@@ -65,11 +65,13 @@ def register(sub, common):
                    help="also solve the monolithic coupled equations (elastic solid rectangle only) and "
                         "report the co-simulation's error against them")
     p.add_argument("--fmi", type=int, choices=(2, 3), default=2,
-                   help="the FMI standard of both FMUs (default 2; 3: the archives in target/fmu/fmi3/, "
-                        "input rates through their der(x) inputs, [coupling] early_return available)")
-    p.add_argument("--frame-fmu", metavar="PATH", help="default: target/fmu/ShearFrame.fmu (--fmi 3: "
+                   help="the FMI standard of both FMUs (default 2; 3: the 3.0 archives, fmi3/ beside the "
+                        "2.0 ones; input rates through their der(x) inputs, [coupling] early_return available)")
+    p.add_argument("--frame-fmu", metavar="PATH", help="default: the ShearFrame.fmu an installed wheel carries; "
+                                                       "in a clone target/fmu/ShearFrame.fmu (--fmi 3: "
                                                        "target/fmu/fmi3/ShearFrame.fmu)")
-    p.add_argument("--block-fmu", metavar="PATH", help="default: target/fmu/RockingBlock.fmu (--fmi 3: "
+    p.add_argument("--block-fmu", metavar="PATH", help="default: the RockingBlock.fmu an installed wheel carries; "
+                                                       "in a clone target/fmu/RockingBlock.fmu (--fmi 3: "
                                                        "target/fmu/fmi3/RockingBlock.fmu)")
     p.set_defaults(func=cmd_cosim)
 
@@ -184,7 +186,9 @@ def cmd_cosim(args, _params):
     block_fmu2 = block_fmu if args.fmi == 2 else fmu_dir / "RockingBlock.fmu"
     for f in (frame_fmu, block_fmu, block_fmu2):
         if not f.is_file():
-            raise _error(f"{f}: no such FMU (run `cargo xtask fmu`, or pass --frame-fmu/--block-fmu)")
+            build = ("this wheel does not carry it" if paths.BUNDLE is not None
+                     else "in a clone `cargo xtask fmu` writes it")
+            raise _error(f"{f}: no such FMU ({build}; or pass --frame-fmu/--block-fmu)")
     with CoupledFMUs(frame_fmu, block_fmu, fmi=args.fmi) as fmus:
         try:
             res = fmus.run(frame, block, ground=ground, vertical=av, **opts)

@@ -23,7 +23,7 @@ import tomllib
 from pathlib import Path
 
 from .. import jsonfile
-from .common import CLIError, check_parameter, fmu_path, open_fmu
+from .common import FMU_HELP, CLIError, check_parameter, fmu_path, open_fmu
 from .sweep import parse_scales
 
 STUDY_FILE_HELP = """SUITE_OR_TOML: a folder of records (every horizontal component of every file the readers
@@ -107,7 +107,7 @@ def register(sub, common):
         p.add_argument("--scheduler", metavar="ADDRESS", help="a running Dask scheduler, e.g. tcp://host:8786")
         p.add_argument("--workers", type=int, help="LocalCluster worker processes (default: one per core)")
         p.add_argument("--boot", type=int, default=1000, help="bootstrap resamples (default 1000; 0: none)")
-        p.add_argument("--fmu", metavar="PATH", help="the FMU (default: target/fmu/RockingBlock.fmu)")
+        p.add_argument("--fmu", metavar="PATH", help=FMU_HELP)
         p.set_defaults(func=cmd_study, method=method)
 
 
