@@ -403,7 +403,7 @@ def test_rocking_ida_command_runs_and_resumes(client, fmu_path, tmp_path, capsys
             "--scheduler", client.scheduler.address, "--fmu", fmu_path, "--out", str(tmp_path / "out")]
     assert main(argv) == 0
     err = capsys.readouterr().err
-    assert "dashboard" in err and "run/s" in err and "runs in" in err
+    assert "dashboard" in err and "record/s" in err and "runs in" in err  # the bar counts the searches
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     entry = summary["bodies"]["block"]
     assert entry["median"] > 0 and entry["n"] == 2 and set(entry["records"]) == {"pulse_H1.AT2[H1]", "pulse_H2.AT2[H2]"}

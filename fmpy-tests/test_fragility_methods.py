@@ -459,3 +459,37 @@ def test_batches_shrink_largest_first_within_bounds(costs):
     # two workers taking the batches in order end within the last batches' size of each other
     makespan = _list_schedule(batches, lambda u: u[1], 2)
     assert makespan <= total / 2 + max(sizes[-3:] if len(sizes) > 2 else sizes)
+
+
+def test_the_ida_progress_bar_counts_what_it_will_do(monkeypatch):
+    """`rocking ida`'s bar ends where it started: 9 searches of at most 5 runs that take 4 or 5
+    each (it started at 0/45 and ended at 40/40), and 3 tasks of stripes of 4 runs each."""
+    import contextlib
+    import io
+
+    import tqdm
+
+    from rocking.cli import ida
+    from rocking.fragility import cluster, runner
+
+    bars = []
+
+    class Bar(tqdm.tqdm):
+        def __init__(self, *a, **kw):
+            super().__init__(*a, **dict(kw, file=io.StringIO()))
+            self.first_total = self.total
+            bars.append(self)
+
+    monkeypatch.setattr(tqdm, "tqdm", Bar)
+    monkeypatch.setattr(cluster, "open_client", lambda *a: contextlib.nullcontext(None))
+    monkeypatch.setattr(cluster, "register_fmu", lambda *a: None)
+    for todo, done in (([(f"h{k}", runner.run_hunt, (), 5) for k in range(9)], [4] * 5 + [5] * 4),
+                       ([(f"s{k}", runner.run_batch, (), 4) for k in range(3)], [4] * 3)):
+        def execute(client, tasks, store, progress, todo=todo, done=done):
+            for (_, _, _, expected), rows in zip(tasks, done):
+                progress(rows, expected)
+            return len(tasks), sum(done), {}
+        monkeypatch.setattr(cluster, "execute", execute)
+        ida.run_tasks(argparse.Namespace(scheduler=None, workers=1, method="ida"), None, todo, None)
+        bar = bars[-1]
+        assert bar.n == bar.total == bar.first_total, (bar.n, bar.total, bar.first_total)

@@ -381,13 +381,9 @@ def run_tasks(args, fmu_file, todo, store):
     with cluster.open_client(args.scheduler, args.workers) as client:
         cluster.register_fmu(client, fmu_file)
         t0 = time.perf_counter()
-        with tqdm(total=sum(t[3] for t in todo), unit="run", desc=args.method, file=sys.stderr,
-                  dynamic_ncols=True, mininterval=0.5, smoothing=0.1) as bar:
-            def progress(rows, expected):
-                if rows != expected:
-                    bar.total -= expected - rows
-                bar.update(rows)
-            _, runs, failures = cluster.execute(client, todo, store, progress)
+        with tqdm(file=sys.stderr, dynamic_ncols=True, mininterval=0.5, smoothing=0.1,
+                  **progress_counts(todo, args.method)) as bar:
+            _, runs, failures = cluster.execute(client, todo, store, progress_callback(bar, todo))
         wall = time.perf_counter() - t0
     print(f"{args.method}: {runs} runs in {wall:.1f} s ({runs / wall if wall else 0:.2f} runs/s)"
           + (f"; {len(failures)} task(s) failed, rerun the command to retry them" if failures else ""),
@@ -395,6 +391,35 @@ def run_tasks(args, fmu_file, todo, store):
     for key, err in list(failures.items())[:3]:
         print(f"  {key}: {err}", file=sys.stderr)
     return failures
+
+
+def _searches(todo):
+    """Whether `todo` are IDA searches, whose runs are known only when each ends (the 4th item
+    of a task, max_runs, is a bound), not runs at fixed intensities (exact counts)."""
+    from ..fragility import runner
+    return any(t[1] is runner.run_hunt for t in todo)
+
+
+def progress_counts(todo, method):
+    """tqdm's total, unit and description for `todo`: the runs of tasks at fixed intensities
+    (known in advance), or the records of IDA searches (each one's runs known when it ends)."""
+    if _searches(todo):
+        return dict(total=len(todo), unit="record", desc=f"{method} (records searched)")
+    return dict(total=sum(t[3] for t in todo), unit="run", desc=method)
+
+
+def progress_callback(bar, todo):
+    """progress(rows, expected) for cluster.execute that advances `bar` (progress_counts) by a
+    record per search and shows the runs so far, or by the runs of a task at fixed intensities."""
+    if not _searches(todo):
+        return lambda rows, _expected: bar.update(rows)
+    runs = [0]
+
+    def progress(rows, _expected):
+        runs[0] += rows
+        bar.set_postfix_str(f"{runs[0]} runs", refresh=False)
+        bar.update(1)
+    return progress
 
 
 def _safe(name):
