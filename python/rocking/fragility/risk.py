@@ -6,11 +6,14 @@ the probability of collapse in a number of years, and the collapse margin ratio.
 
 lambda_c = integral of lambda(x) f(x) dx (by parts), f the fragility's density: the
 hazard is interpolated linearly in log-log between its points and extended beyond
-them along its end segments (a power law there); the integral runs over the
-fragility's +-8 beta in ln x. For a power-law hazard lambda(x) = k0 x^-k and a
-lognormal fragility the closed form is lambda_c = k0 median^-k exp(k² beta² / 2)
-(the tests check against it). P(collapse in t years) = 1 - exp(-lambda_c t), the
-Poisson model. The collapse margin ratio (FEMA P695) is the median over the MCE
+them along its end segments, so it is a power law lambda_i (x / x_i)^-k_i on each
+segment and on the two unbounded ends, and the integral is a sum of closed forms, one per
+segment: lambda_i (x_i / median)^k_i exp(k_i² beta² / 2) [Phi(z_i+1 + k_i beta) -
+Phi(z_i + k_i beta)], z = ln(x / median) / beta. No range is cut off: the
+hazard-weighted density, centred at ln median - k beta², is counted wherever it lies (a
+fixed range of +-8 beta in ln x under-counted by 2.3 % at k = 4, beta = 1.5). For a single
+power law lambda(x) = k0 x^-k it is lambda_c = k0 median^-k exp(k² beta² / 2).
+P(collapse in t years) = 1 - exp(-lambda_c t), the Poisson model. The collapse margin ratio (FEMA P695) is the median over the MCE
 intensity.
 """
 
@@ -20,7 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from scipy.special import ndtr
+from scipy.special import log_ndtr, ndtr
 
 
 @dataclass(frozen=True)
@@ -75,13 +78,31 @@ def read_hazard(path):
     return hazard_from(*zip(*rows), where=str(path)) if rows else hazard_from([], [], str(path))
 
 
-def collapse_frequency(median, beta, hazard, points=4001):
-    """Mean annual frequency of collapse, integral of lambda(x) f(x) dx over ln x (f the
-    lognormal density of median, beta)."""
-    u = np.linspace(-8.0, 8.0, points)
-    x = median * np.exp(beta * u)
-    density = np.exp(-0.5 * u * u) / math.sqrt(2 * math.pi)  # per unit u
-    return float(np.trapezoid(hazard(x) * density, u))
+def _log_mass(a, b):
+    """ln(Phi(b) - Phi(a)) for a < b (either may be infinite), accurate in both tails."""
+    if a >= 0:  # upper tail: Phi(-a) - Phi(-b)
+        a, b = -b, -a
+    hi, lo = log_ndtr(b), log_ndtr(a)
+    return hi + math.log1p(-math.exp(lo - hi)) if lo < hi else -math.inf
+
+
+def collapse_frequency(median, beta, hazard):
+    """Mean annual frequency of collapse, integral of lambda(x) f(x) dx (f the lognormal
+    density of median, beta), in closed form on each power-law segment of the hazard and on
+    its two power-law extensions."""
+    lx, lf = np.log(hazard.x), np.log(hazard.frequency)
+    k = -np.diff(lf) / np.diff(lx)  # the segments' slopes, >= 0
+    k = np.concatenate([k[:1], k, k[-1:]])  # the ends extend the end segments
+    anchor = np.concatenate([lx[:1], lx])  # a point of each piece: lambda = exp(lf) there
+    level = np.concatenate([lf[:1], lf])
+    z = np.concatenate([[-math.inf], (lx - math.log(median)) / beta, [math.inf]])
+    total = 0.0
+    for i in range(k.size):
+        kb = k[i] * beta
+        log_term = (level[i] + k[i] * (anchor[i] - math.log(median)) + 0.5 * kb * kb
+                    + _log_mass(z[i] + kb, z[i + 1] + kb))
+        total += math.exp(log_term)
+    return total
 
 
 def outside_range(median, beta, hazard):
