@@ -461,6 +461,54 @@ def test_batches_shrink_largest_first_within_bounds(costs):
     assert makespan <= total / 2 + max(sizes[-3:] if len(sizes) > 2 else sizes)
 
 
+def test_capacities_censored_from_below_fit_as_an_independent_optimiser_does():
+    """Capacities known only to lie below a floor (reached already at the search's lowest
+    run) enter the likelihood as Phi((ln floor - mu) / beta): Newton against Nelder-Mead."""
+    from scipy.optimize import minimize
+    from scipy.special import log_ndtr
+    rng = np.random.default_rng(11)
+    checked = 0
+    for _ in range(40):
+        k = int(rng.integers(6, 40))
+        x = math.exp(rng.normal(0, 0.7)) * np.exp(rng.uniform(0.15, 1.2) * rng.standard_normal(k))
+        lo, hi = np.quantile(x, rng.uniform(0.0, 0.4)), np.quantile(x, rng.uniform(0.6, 1.0))
+        below, above = x <= lo, x > hi
+        caps = np.clip(x, lo, hi)
+        try:
+            m, b = fit.fit_capacities(caps, above, below=below)
+        except fit.Undetermined:
+            continue
+        ln = np.log(caps)
+        xs, xa, xb = ln[~(below | above)], ln[above], ln[below]
+
+        def nll(q):
+            beta = math.exp(q[1])
+            zs = (xs - q[0]) / beta
+            return (0.5 * zs @ zs + xs.size * q[1] - log_ndtr((q[0] - xa) / beta).sum()
+                    - log_ndtr((xb - q[0]) / beta).sum())
+
+        r = minimize(nll, [math.log(m) + 0.1, math.log(b) - 0.1], method="Nelder-Mead",
+                     options=dict(xatol=1e-11, fatol=1e-13, maxiter=20000))
+        assert nll([math.log(m), math.log(b)]) <= r.fun + 1e-9
+        assert abs(r.x[0] - math.log(m)) < 1e-6 and abs(math.exp(r.x[1]) - b) < 1e-6 * b
+        checked += 1
+    assert checked > 30
+
+
+@pytest.mark.parametrize("capacities,censored,match", [
+    # the issue's data: every capacity the first run's intensity, differing in the last digit
+    ([0.25008540123283696, 0.2500854012328369] * 2 + [0.25008540123283696], [False] * 5, "distinct"),
+    ([0.25, 0.25 * (1 + 1e-9), 0.25, 0.3], [False, False, False, True], "distinct"),
+    ([0.25, 0.25 * (1 + 1e-5), 0.25, 0.25 * (1 - 1e-5)], [False] * 4, "below the floor"),
+    ([0.25] * 5, [False] * 5, "distinct"),
+])
+def test_capacities_that_fix_no_fit_whatever_the_rounding(capacities, censored, match):
+    with pytest.raises(fit.Undetermined, match=match):
+        fit.fit_capacities(capacities, censored)
+    with pytest.raises(fit.Undetermined, match=match):
+        fit.ida_fragility(capacities, censored, n_boot=0)
+
+
 @pytest.mark.parametrize("k", [1.0, 2.0, 3.0, 4.0, 5.0, 6.0])
 def test_collapse_frequency_over_slopes_and_dispersions(k):
     """The power-law closed form lambda_c = k0 median^-k exp(k² beta² / 2) to 1e-6 for beta up

@@ -14,8 +14,11 @@ structural analysis data", Earthquake Spectra 31(1)).
   (deviance) test against one probability per stripe (MSA).
 
 Where the data do not determine a fit (no collapse, fewer than two distinct collapse
-intensities, stripes that separate standing from overturning), the fits raise
-`Undetermined` with the reason instead of returning the optimiser's last step.
+intensities, stripes that separate standing from overturning, a beta below BETA_FLOOR), the
+fits raise `Undetermined` with the reason instead of returning the optimiser's last step.
+A capacity may be censored either way: from above (the state was not reached up to the
+highest intensity run: survival term) or from below (reached at the lowest intensity run, the
+search's floor: distribution-function term).
 """
 
 import math
@@ -28,6 +31,15 @@ from scipy.special import log_ndtr, ndtr
 _LOG_SQRT_2PI = 0.5 * math.log(2 * math.pi)
 ESTIMATORS = ("mle", "moments")
 
+#: Capacities closer than this (relative) are one intensity when counting distinct ones:
+#: searches bracket to a few percent, so a difference in the last digits is rounding, not data.
+DISTINCT_RTOL = 1e-6
+
+#: The smallest beta a fit returns: a dispersion under 0.1 % of the intensity is below the
+#: resolution of any capacity a search or a grid locates (5 % and 6.9 % by default), so the
+#: data say the capacities coincide, not how they scatter.
+BETA_FLOOR = 1e-3
+
 
 class Undetermined(ValueError):
     """The data do not determine a lognormal fit; the message says why."""
@@ -38,6 +50,8 @@ class Fragility:
     """median (IM units), beta (record-to-record dispersion of ln IM), n records, and the
     bootstrap's (lo, hi) intervals of both at `level` (nan without a bootstrap).
 
+    censored: capacities censored from above (never reached); censored_below: from below
+    (reached already at the search's floor).
     beta_modelling: the modelling-uncertainty dispersion combined with beta as FEMA P-58
     does, beta_total = sqrt(beta² + beta_modelling²). boot: (medians, betas) of the
     resamples that could be fitted; boot_undetermined: how many could not; gof: the
@@ -50,6 +64,7 @@ class Fragility:
     beta_ci: tuple = (math.nan, math.nan)
     level: float = 0.9
     censored: int = 0
+    censored_below: int = 0
     estimator: str = "mle"
     beta_modelling: float = 0.0
     boot: tuple = field(default=((), ()), repr=False)
@@ -82,28 +97,40 @@ class Fragility:
 def _finite_fit(median, beta, what):
     if not (math.isfinite(median) and math.isfinite(beta) and median > 0 and 0 < beta < 1e3):
         raise Undetermined(f"{what}: the likelihood has no maximum (median {median:.3g}, beta {beta:.3g})")
+    if beta < BETA_FLOOR:
+        raise Undetermined(f"{what}: beta {beta:.3g} is below the floor {BETA_FLOOR:g} (the data put every "
+                           f"capacity at one intensity, {median:.4g}): beta is not determined")
     return median, beta
 
 
-def _censored_loglik(xs, xc, a, b):
+def distinct(values, rtol=DISTINCT_RTOL):
+    """How many of `values` (> 0) differ from each other by more than `rtol`, relative."""
+    v = np.sort(np.asarray(values, dtype=float))
+    if v.size == 0:
+        return 0
+    return 1 + int(np.count_nonzero(np.diff(np.log(v)) > math.log1p(rtol)))
+
+
+def _censored_loglik(xs, xc, sc, a, b):
     r = b * xs - a
-    return float(-0.5 * r @ r + xs.size * math.log(b) + log_ndtr(a - b * xc).sum())
+    return float(-0.5 * r @ r + xs.size * math.log(b) + log_ndtr(sc * (a - b * xc)).sum())
 
 
-def _censored_newton(xs, xc, iterations=100):
-    """Maximum of the log-likelihood of ln-capacities `xs` and lower bounds `xc` under a
-    normal of mean mu and deviation beta, by Newton's method with step halving in
-    (a, b) = (mu/beta, 1/beta), where it is concave (Olsen 1978, the Tobit model):
-    l = sum_s [ln b - (b x - a)²/2] + sum_c ln Phi(a - b x) + const. Returns (mu, beta)."""
+def _censored_newton(xs, xc, sc, iterations=100):
+    """Maximum of the log-likelihood of ln-capacities `xs` and bounds `xc` (sc +1: a lower
+    bound, the capacity above it; -1: an upper bound) under a normal of mean mu and deviation
+    beta, by Newton's method with step halving in (a, b) = (mu/beta, 1/beta), where it is
+    concave (Olsen 1978, the Tobit model): l = sum_s [ln b - (b x - a)²/2]
+    + sum_c ln Phi(s (a - b x)) + const. Returns (mu, beta)."""
     a, b = xs.mean() / xs.std(), 1.0 / xs.std()
-    ll = _censored_loglik(xs, xc, a, b)
+    ll = _censored_loglik(xs, xc, sc, a, b)
     sx, sxx = xs.sum(), xs @ xs
     for _ in range(iterations):
         r = b * xs - a
-        u = a - b * xc
+        u = sc * (a - b * xc)
         lam = np.exp(-0.5 * u * u - _LOG_SQRT_2PI - log_ndtr(u))  # inverse Mills ratio
         k = lam * (u + lam)                                       # -d lambda/du > 0
-        g = np.array([r.sum() + lam.sum(), -(r @ xs) + xs.size / b - lam @ xc])
+        g = np.array([r.sum() + sc @ lam, -(r @ xs) + xs.size / b - (sc * lam) @ xc])
         h = np.array([[xs.size + k.sum(), -sx - k @ xc],
                       [-sx - k @ xc, sxx + xs.size / (b * b) + k @ (xc * xc)]])  # -Hessian
         det = h[0, 0] * h[1, 1] - h[0, 1] * h[1, 0]
@@ -114,7 +141,7 @@ def _censored_newton(xs, xc, iterations=100):
         while t > 1e-10:
             a1, b1 = a + t * step[0], b + t * step[1]
             if b1 > 0:
-                ll1 = _censored_loglik(xs, xc, a1, b1)
+                ll1 = _censored_loglik(xs, xc, sc, a1, b1)
                 if ll1 >= ll - 1e-13 * abs(ll):
                     break
             t /= 2
@@ -127,57 +154,77 @@ def _censored_newton(xs, xc, iterations=100):
     return a / b, 1.0 / b
 
 
-def fit_capacities(capacities, censored=None, estimator="mle"):
+def fit_capacities(capacities, censored=None, estimator="mle", below=None):
     """(median, beta) from collapse intensities; censored[i] True where capacities[i] is
-    only a lower bound. estimator 'mle' (1/n) or 'moments' (n-1, uncensored only).
-    Undetermined when fewer than two distinct intensities collapsed."""
+    only a lower bound (never reached up to it), below[i] True where it is only an upper bound
+    (reached already there, the search's floor). estimator 'mle' (1/n) or 'moments' (n-1,
+    uncensored only). Undetermined when fewer than two distinct intensities (DISTINCT_RTOL)
+    are exact, or beta comes out below BETA_FLOOR."""
     if estimator not in ESTIMATORS:
         raise ValueError(f"beta estimator {estimator!r}: expected one of {', '.join(ESTIMATORS)}")
     x = np.log(np.asarray(capacities, dtype=float))
     c = np.zeros(x.size, bool) if censored is None else np.asarray(censored, bool)
-    xs, xc = x[~c], x[c]
+    lb = np.zeros(x.size, bool) if below is None else np.asarray(below, bool)
+    if np.any(c & lb):
+        raise ValueError("a capacity cannot be censored from above and from below")
+    exact = ~(c | lb)
+    xs = x[exact]
     if xs.size == 0:
-        raise Undetermined("no record collapsed: no fragility can be fitted")
-    if np.unique(xs).size < 2:
-        raise Undetermined(f"fewer than two distinct collapse intensities ({xs.size} of {x.size} "
-                           "record(s) collapsed): beta is not determined")
+        raise Undetermined("no record collapsed: no fragility can be fitted" if not lb.any() else
+                           f"no capacity located ({int(c.sum())} never reached, {int(lb.sum())} reached "
+                           "already at the search's floor): no fragility can be fitted")
+    n_distinct = distinct(np.exp(xs))
+    if n_distinct < 2:
+        raise Undetermined(f"fewer than two distinct collapse intensities ({xs.size} of {x.size} record(s) located, "
+                           f"{n_distinct} distinct to {DISTINCT_RTOL:g} relative): beta is not determined")
     if estimator == "moments":
-        if xc.size:
-            raise Undetermined(f"the moments estimator needs every record to collapse ({xc.size} censored); "
-                               "use the MLE")
-        return math.exp(xs.mean()), float(xs.std(ddof=1))
-    if xc.size == 0:
-        return math.exp(xs.mean()), float(xs.std())
+        if not exact.all():
+            raise Undetermined(f"the moments estimator needs every record to collapse ({int(c.sum() + lb.sum())} "
+                               "censored); use the MLE")
+        return _finite_fit(math.exp(xs.mean()), float(xs.std(ddof=1)), "collapse intensities")
+    if exact.all():
+        return _finite_fit(math.exp(xs.mean()), float(xs.std()), "collapse intensities")
 
-    mu, beta = _censored_newton(xs, xc)
+    xc = x[~exact]
+    sc = np.where(c[~exact], 1.0, -1.0)
+    mu, beta = _censored_newton(xs, xc, sc)
     return _finite_fit(math.exp(mu), beta, "censored collapse intensities")
 
 
-def stripes_determined(im, n, collapsed):
+def stripe_counts(im, n, collapsed, event="overturned"):
+    """What happened at each stripe, in words: 'overturned in 0 of 9 at 0.2, 3 of 9 at 0.45, ...'."""
+    parts = [f"{int(z)} of {int(k)} at {x:.4g}" for x, k, z in zip(im, n, collapsed) if k > 0]
+    return f"{event} in {', '.join(parts)}"
+
+
+def stripes_determined(im, n, collapsed, event="overturned"):
     """Why the stripes (intensity, runs, collapsed) do not determine a fit, or '' if they do:
-    a probit fit on ln x has a maximum when some run overturned below an intensity at which
-    another stood, and some run stood below one that overturned."""
+    a probit fit on ln x has a maximum when some run reached the state (`event`, a past
+    participle: 'overturned', 'reached DS1') below an intensity at which another did not, and
+    some run did not below one that did. The reason ends with the counts at each stripe."""
     im, n, z = (np.asarray(v, dtype=float) for v in (im, n, collapsed))
     ran = n > 0
+    counts = stripe_counts(im, n, z, event)
     if np.unique(im[ran]).size < 2:
-        return "runs at fewer than two distinct intensities"
+        return f"runs at fewer than two distinct intensities ({counts})"
     if z.sum() == 0:
-        return "no run overturned"
+        return f"no run {event} ({counts})"
     if z.sum() == n.sum():
-        return "every run overturned"
-    overturned, stood = im[z > 0], im[(n - z) > 0]
-    if not overturned.min() < stood.max():
-        return ("the stripes separate standing from overturning (no run overturned below an intensity "
-                "at which another stood): beta is not determined")
-    if not stood.min() < overturned.max():
-        return "the fraction overturned does not increase with the intensity"
+        return f"every run {event} ({counts})"
+    hit, missed = im[z > 0], im[(n - z) > 0]
+    if not hit.min() < missed.max():
+        return (f"the stripes separate the runs that {event} from those that did not (no run {event} below an "
+                f"intensity at which another did not): beta is not determined ({counts})")
+    if not missed.min() < hit.max():
+        return f"the fraction {event} does not increase with the intensity ({counts})"
     return ""
 
 
-def fit_stripes(im, n, collapsed):
-    """(median, beta) from stripes: at intensity im[j], collapsed[j] of n[j] records collapsed.
-    Undetermined when the counts cannot fix both (stripes_determined)."""
-    why = stripes_determined(im, n, collapsed)
+def fit_stripes(im, n, collapsed, event="overturned"):
+    """(median, beta) from stripes: at intensity im[j], collapsed[j] of n[j] records reached the
+    state (`event` names it in the reasons). Undetermined when the counts cannot fix both
+    (stripes_determined) or beta is below BETA_FLOOR."""
+    why = stripes_determined(im, n, collapsed, event)
     if why:
         raise Undetermined(why)
     im, n, z = (np.asarray(v, dtype=float) for v in (im, n, collapsed))
@@ -187,7 +234,8 @@ def fit_stripes(im, n, collapsed):
     mid = np.interp(0.5, np.maximum.accumulate(frac), x) if frac.max() >= 0.5 else x.max()
     a, b = _probit_newton(x, n, z, -mid / 0.4, 1 / 0.4)
     if not b > 1e-3:  # beta > 1000: a flat curve, the maximum at beta -> infinity
-        raise Undetermined("the fraction overturned does not increase with the intensity")
+        raise Undetermined(f"the fraction {event} does not increase with the intensity "
+                           f"({stripe_counts(np.exp(x), n, z, event)})")
     return _finite_fit(math.exp(-a / b), 1 / b, "stripes")
 
 
@@ -265,28 +313,32 @@ def _flat(sample):
 
 
 def ida_fragility(capacities, censored, n_boot=1000, level=0.9, seed=0, estimator="mle",
-                  beta_modelling=0.0, stations=None):
+                  beta_modelling=0.0, stations=None, below=None):
     """Fragility (with a bootstrap over records, or over `stations` if given: the station
-    of each record) from IDA collapse intensities. Undetermined if the data fix no fit."""
-    pairs = list(zip(capacities, censored))
-    median, beta = fit_capacities(capacities, censored, estimator)
+    of each record) from IDA collapse intensities, `censored` from above and `below` from
+    below (fit_capacities). Undetermined if the data fix no fit."""
+    below = np.zeros(len(capacities), bool) if below is None else np.asarray(below, bool)
+    triples = list(zip(capacities, censored, below))
+    median, beta = fit_capacities(capacities, censored, estimator, below)
 
     def refit(sample):
-        xs, cs = zip(*_flat(sample))
-        return fit_capacities(xs, cs, estimator)
+        xs, cs, bs = zip(*_flat(sample))
+        return fit_capacities(xs, cs, estimator, bs)
 
-    f = Fragility(median, beta, len(pairs), level=level, censored=int(np.sum(censored)), estimator=estimator,
-                  beta_modelling=beta_modelling)
+    f = Fragility(median, beta, len(triples), level=level, censored=int(np.sum(censored)),
+                  censored_below=int(below.sum()), estimator=estimator, beta_modelling=beta_modelling)
     if n_boot:
         f.median_ci, f.beta_ci, f.boot, f.boot_undetermined = bootstrap(
-            refit, _groups(pairs, stations), n_boot, level, seed)
-    f.gof = gof_capacities(capacities, censored, median, beta)
+            refit, _groups(triples, stations), n_boot, level, seed)
+    f.gof = gof_capacities(capacities, np.asarray(censored, bool) | below, median, beta)
     return f
 
 
-def msa_fragility(stripes, outcomes, n_boot=1000, level=0.9, seed=0, beta_modelling=0.0, stations=None):
+def msa_fragility(stripes, outcomes, n_boot=1000, level=0.9, seed=0, beta_modelling=0.0, stations=None,
+                  event="overturned"):
     """Fragility from stripes: `outcomes` one row per record, collapsed (bool) at each
-    intensity of `stripes` (nan where the run failed); bootstrap over records or stations."""
+    intensity of `stripes` (nan where the run failed); bootstrap over records or stations;
+    `event` names the state in the reasons of a fit that is undetermined."""
     stripes = np.asarray(stripes, dtype=float)
     table = np.asarray(outcomes, dtype=float)
 
@@ -303,7 +355,7 @@ def msa_fragility(stripes, outcomes, n_boot=1000, level=0.9, seed=0, beta_modell
         key = (n.tobytes(), z.tobytes())
         if key not in fits:
             try:
-                fits[key] = fit_stripes(stripes, n, z)
+                fits[key] = fit_stripes(stripes, n, z, event)
             except (ValueError, OverflowError, FloatingPointError) as exc:
                 fits[key] = exc
         if isinstance(fits[key], Exception):
@@ -311,7 +363,7 @@ def msa_fragility(stripes, outcomes, n_boot=1000, level=0.9, seed=0, beta_modell
         return fits[key]
 
     n, z = counts(table)
-    median, beta = fit_stripes(stripes, n, z)
+    median, beta = fit_stripes(stripes, n, z, event)
     f = Fragility(median, beta, len(table), level=level, beta_modelling=beta_modelling)
     if n_boot:
         f.median_ci, f.beta_ci, f.boot, f.boot_undetermined = bootstrap(
