@@ -108,8 +108,8 @@ def test_hunt_and_fill_brackets_the_collapse_of_an_oracle():
         lo, hi = hunt.bracket(trace)
         assert lo < c <= hi and hi / lo < 1 + options.tol and hunt.unresolved(trace, options) == ""
         assert len(trace) <= options.max_runs and len({t[0] for t in trace}) == len(trace)
-        cap, censored = hunt.capacity(trace)
-        assert not censored and lo <= cap <= hi
+        cap, censored, below = hunt.capacity(trace)
+        assert not censored and not below and lo <= cap <= hi
         # the hunt's steps grow by a fixed amount: start (step + k grow)
         ims = [t[0] for t in trace if t[3] == "hunt"]
         if trace[0][1]:  # collapsed at the start: halved instead
@@ -124,7 +124,7 @@ def test_hunt_and_fill_brackets_the_collapse_of_an_oracle():
     lo, hi = hunt.bracket(trace)
     assert lo < 0.70 <= hi and hi / lo < 1.05, trace
     trace = hunt.hunt_and_fill(lambda im: (False, im), 0.5, options)
-    assert hunt.capacity(trace) == (max(t[0] for t in trace), True)
+    assert hunt.capacity(trace) == (max(t[0] for t in trace), True, False)
     trace = hunt.hunt_and_fill(lambda im: (im >= 0.2, im), 1.0, options)  # the first run collapses
     lo, hi = hunt.bracket(trace)
     assert lo < 0.2 <= hi and trace[1][0] == 0.5

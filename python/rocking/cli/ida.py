@@ -1,7 +1,7 @@
 """`rocking ida` and `rocking msa`: fragility studies over a suite of records on Dask.
 
     rocking ida SUITE_OR_TOML [--preset NAME ...] [--params FILE ...] [--im PGV] --out DIR
-                [--scheduler ADDRESS | --workers N] [--max-runs 60] [--grid N] [--hazard CSV] ...
+                [--scheduler ADDRESS | --workers N] [--max-runs 80] [--grid N] [--hazard CSV] ...
     rocking msa SUITE_OR_TOML ... --stripes 0.1:1.5:0.1 --out DIR
 
 SUITE_OR_TOML is a folder of records (or one record file), with the bodies
@@ -31,9 +31,10 @@ know: PEER AT2, CSMIP V2, GeoNet V2A, USGS SMC, npts-dt ASCII, CSV), or a study 
   records = ["../data/ground-motions"]    # folders or files, relative to the study file
   im = "PGV"             # PGA (g), PGV (m/s), SA(T) (g, 5 %), AvgSA(T1-T2), PGA/gtana, PGV/(gtana/p)
   stripes = "0.2:2:0.2"                   # msa: target intensities (or a list)
-  max_runs = 60                           # ida: runs per record at most
+  max_runs = 80                           # ida: runs per record at most
   resolution = 0.1                        # ida: widest gap left below the first collapse
   damage_states = { uplift = 0.05, DS1 = 0.2, DS2 = 0.5 }   # on peak |theta| / alpha
+  damage_capacity = "bracket"             # ida: or "interpolate" (the IDA curve at the threshold)
   beta_modelling = 0.25                   # FEMA P-58 modelling dispersion (SRSS with beta)
   hazard = "hazard.csv"                   # intensity, annual frequency of exceedance
   mce = 0.9                               # the MCE intensity: collapse margin ratio
@@ -50,8 +51,8 @@ Options on the command line override the file's. --scheduler ADDRESS: workers st
 OPTIONS = {"records": "--records", "im": "--im", "stripes": "--stripes", "max_runs": "--max-runs",
            "tol": "--tol", "resolution": "--resolution", "grid": "--grid", "tail": "--tail", "rtol": "--rtol",
            "chunk": "--chunk", "beta_estimator": "--beta-estimator", "beta_modelling": "--beta-modelling",
-           "damage_states": "--damage-states", "bootstrap": "--bootstrap", "hazard": "--hazard",
-           "mce": "--mce", "years": "--years", "vertical": "--vertical"}
+           "damage_states": "--damage-states", "damage_capacity": "--damage-capacity", "bootstrap": "--bootstrap",
+           "hazard": "--hazard", "mce": "--mce", "years": "--years", "vertical": "--vertical"}
 STUDY_KEYS = set(OPTIONS) | {"bodies"}
 
 
@@ -78,7 +79,7 @@ def register(sub, common):
         if method == "msa":
             p.add_argument("--stripes", help="target intensities: start:stop:step or a,b,c")
         else:
-            p.add_argument("--max-runs", type=int, help="runs per record at most (default 60)")
+            p.add_argument("--max-runs", type=int, help="runs per record at most (default 80)")
             p.add_argument("--tol", type=float, help="relative width of the collapse bracket (default 0.05)")
             p.add_argument("--resolution", type=float,
                            help="widest relative gap left between runs below the first collapse (default 0.1)")
@@ -87,6 +88,9 @@ def register(sub, common):
                                 "intensity to 50 times it) instead of the hunt")
             p.add_argument("--beta-estimator", choices=("mle", "moments"),
                            help="beta of the IDA fit: mle (1/n, default) or moments (n-1, Baker)")
+            p.add_argument("--damage-capacity", choices=("bracket", "interpolate"),
+                           help="a damage state's capacity: bracket (searched for as overturning is, default) "
+                                "or interpolate (the IDA curve at the threshold, Vamvatsikos & Cornell 2002)")
         p.add_argument("--chunk", type=int,
                        help="runs per task of stripes or grid (default: about half a second of runs a task)")
         p.add_argument("--tail", type=float, help="seconds simulated after each record's end (default 5)")
@@ -312,7 +316,7 @@ def study_options(args, data, source):
             raise CLIError("msa: give the target intensities, --stripes start:stop:step or `stripes = [...]`")
         opts["stripes"] = _intensities(stripes, name)
     else:
-        opts["max_runs"] = pick("max_runs", 60, _number, kind=int, minimum=2)
+        opts["max_runs"] = pick("max_runs", 80, _number, kind=int, minimum=2)
         opts["tol"] = pick("tol", 0.05, _number, minimum=0.0, open_min=True)
         opts["resolution"] = pick("resolution", 0.1, _number, minimum=0.0, open_min=True)
         opts["grid"] = pick("grid", 0, _number, kind=int, minimum=2)
@@ -320,6 +324,10 @@ def study_options(args, data, source):
         if est not in (None, "mle", "moments"):
             raise CLIError(f"{name} {est!r}: expected 'mle' or 'moments'")
         opts["estimator"] = est or "mle"
+        how, name = _pick(args, data, "damage_capacity", source)
+        if how not in (None, "bracket", "interpolate"):
+            raise CLIError(f"{name} {how!r}: expected 'bracket' or 'interpolate'")
+        opts["damage_capacity"] = how or "bracket"
     if args.workers is not None:
         _number(args.workers, "--workers", int, 1)
     _number(args.boot, "--boot", int, 0)
@@ -350,6 +358,7 @@ def cmd_study(args, _params):
         else:
             study.hunt = HuntOptions(max_runs=opts["max_runs"], tol=opts["tol"], resolution=opts["resolution"])
             study.grid, study.estimator = opts["grid"], opts["estimator"]
+            study.damage_capacity = opts["damage_capacity"]
         store = ResultStore(out / "runs")
         try:
             tasks = study.tasks(fmu, cluster.fmu_digest(path))
@@ -447,13 +456,23 @@ def _fit_line(f, unit, study):
     return text, boot
 
 
+def _censored_words(f, never):
+    """', 2 censored (no collapse up to their last run), 1 at the floor (...)' of a Fragility."""
+    text = f", {f.censored} censored ({never} up to their last run)" if f.censored else ""
+    if f.censored_below:
+        text += (f", {f.censored_below} censored from below (reached already at the lowest run, "
+                 "the search's floor)")
+    return text
+
+
 def _fit_json(entry, risk_of=None):
     f = entry["fragility"]
     if f is None:
         return dict(median=None, beta=None, error=entry["error"])
     out = dict(median=f.median, beta=f.beta, estimator=f.estimator, beta_modelling=f.beta_modelling,
                beta_total=f.beta_total, median_ci=list(f.median_ci), beta_ci=list(f.beta_ci), level=f.level, n=f.n,
-               censored=f.censored, bootstrap_fits=len(f.boot[0]), bootstrap_undetermined=f.boot_undetermined,
+               censored=f.censored, censored_below=f.censored_below, bootstrap_fits=len(f.boot[0]),
+               bootstrap_undetermined=f.boot_undetermined,
                goodness_of_fit=f.gof, error="")
     if risk_of is not None:
         out["risk"] = risk_of(f)
@@ -483,7 +502,7 @@ def write_outputs(out, study, df, result, args, opts):
         if f is None:
             lines.append(f"  {body}: no fit: {entry['error']}")
         else:
-            cens = f", {f.censored} censored (no collapse up to their last run)" if f.censored else ""
+            cens = _censored_words(f, "no collapse")
             text, boot = _fit_line(f, im.unit, study)
             lines.append(f"  {body}: {text}, n = {f.n}{cens}")
             if boot:
@@ -500,7 +519,8 @@ def write_outputs(out, study, df, result, args, opts):
         for name, thr in study.states()[:-1]:
             st = entry["states"][name]
             g = st["fragility"]
-            text = _fit_line(g, im.unit, study)[0] if g is not None else f"no fit: {st['error']}"
+            text = (_fit_line(g, im.unit, study)[0] + _censored_words(g, "not reached") if g is not None
+                    else f"no fit: {st['error']}")
             if g is not None and g.boot_undetermined > 0.1 * (len(g.boot[0]) + g.boot_undetermined):
                 text += (f"; bootstrap unreliable ({g.boot_undetermined} of "
                          f"{len(g.boot[0]) + g.boot_undetermined} resamples undetermined)")
@@ -519,8 +539,8 @@ def write_outputs(out, study, df, result, args, opts):
             records=entry["records"], unresolved_records=len(unresolved), runs=int(len(rows)))
         if study.method == "ida":
             fine = [r for r in entry["records"].values() if "error" not in r]
-            caps = [r["capacity"] for r in fine if not r["censored"]]
-            cens_n = sum(r["censored"] for r in fine)
+            caps = [r["capacity"] for r in fine if not (r["censored"] or r.get("below"))]
+            cens_n = sum(bool(r["censored"] or r.get("below")) for r in fine)
             fits[body] = (f, (caps, cens_n))
             plots.plot_ida(out / f"ida-{_safe(body)}.png", rows, entry, im, f"IDA: {body}")
         else:
@@ -537,7 +557,8 @@ def write_outputs(out, study, df, result, args, opts):
                    damage_states=study.damage_states, bootstrap="stations" if study.by_station else "records",
                    boot=args.boot, mce=opts.get("mce"), years=opts.get("years"))
     if study.method == "ida":
-        options.update(vars(study.hunt), grid=study.grid, beta_estimator=study.estimator)
+        options.update(vars(study.hunt), grid=study.grid, beta_estimator=study.estimator,
+                       damage_capacity=study.damage_capacity)
     else:
         options.update(stripes=list(study.stripes))
     summary = dict(method=study.method, im=im.name, im_unit=im.unit, records=list(study.suite),

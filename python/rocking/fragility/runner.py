@@ -113,8 +113,10 @@ def run_batch(digest, parts, opts, phase="stripe"):
     return [row for job, ims in parts for row in run_stripes(digest, job, ims, opts, phase)]
 
 
-def run_hunt(digest, job, start, hunt, opts):
-    """Rows of one record's search for its first collapse from intensity `start` (HuntOptions fields in `hunt`)."""
+def run_hunt(digest, job, start, hunt, opts, states=None):
+    """Rows of one record's search for its first collapse, and for the first intensity of each
+    damage state of `states` {name: threshold on peak |theta| / alpha}, from intensity `start`
+    (HuntOptions fields in `hunt`)."""
     fmu = process_fmu(digest, opts.get("fmu_path"))
     job = _with_record(job)
     rows = []
@@ -128,10 +130,10 @@ def run_hunt(digest, job, start, hunt, opts):
 
     options = HuntOptions(**hunt)
     try:
-        trace = hunt_and_fill(collapses, start, options)
+        trace = hunt_and_fill(collapses, start, options, states)
         for row, (_, _, _, phase) in zip(rows, trace):
             row["phase"] = phase
-        why = unresolved(trace, options)
+        why = unresolved(trace, options, states)
     except _RunFailed:
         why = "the hunt stopped on a failed run"  # the failed row is kept and reported
     for row in rows:

@@ -22,7 +22,12 @@ import numpy as np
 
 from . import runner
 from .fit import ida_fragility, msa_fragility
-from .hunt import HuntOptions, capacity
+from .hunt import HuntOptions, capacity, interpolated
+
+#: How an IDA locates a damage state's capacity: "bracket", as overturning (the search
+#: brackets the first run that reaches it to the tolerance); "interpolate", where the IDA
+#: curve, linear between the runs, first reaches the threshold (Vamvatsikos & Cornell 2002).
+DAMAGE_CAPACITY = ("bracket", "interpolate")
 
 
 #: Largest task of runs at fixed intensities (chunk 0), in integration steps: about a third
@@ -105,8 +110,9 @@ class Study:
     stop) instead of the hunt; tail s simulated after each record's end; chunk runs per task
     of stripes or grid (0: shrinking_batches, a third of a second of runs down to 0.04 s); estimator of
     beta ('mle' or 'moments', IDA); beta_modelling the FEMA P-58 modelling dispersion;
-    damage_states {name: threshold on peak |theta| / alpha}, each
-    fitted beside overturning; by_station: the bootstrap resamples stations (station_of)."""
+    damage_states {name: threshold on peak |theta| / alpha}, each searched for (IDA) and
+    fitted beside overturning; damage_capacity one of DAMAGE_CAPACITY; by_station: the
+    bootstrap resamples stations (station_of)."""
 
     bodies: dict
     suite: dict
@@ -121,7 +127,12 @@ class Study:
     estimator: str = "mle"
     beta_modelling: float = 0.0
     damage_states: dict = field(default_factory=dict)
+    damage_capacity: str = "bracket"
     by_station: bool = True
+
+    def __post_init__(self):
+        if self.damage_capacity not in DAMAGE_CAPACITY:
+            raise ValueError(f"damage_capacity {self.damage_capacity!r}: expected one of {', '.join(DAMAGE_CAPACITY)}")
 
     def opts(self):
         return {"tail": self.tail, "rtol": self.rtol}
@@ -168,9 +179,11 @@ class Study:
                 if self.grid:
                     fixed.append((tag, job, [float(x) for x in np.geomspace(start, start * self.hunt.stop, self.grid)]))
                     continue
-                key = f"ida|{tag}|{_hash(hunt)}|{salt}"
+                states = dict(self.damage_states)
+                # the damage states steer the search: their thresholds are in the key
+                key = f"ida|{tag}|{_hash(dict(hunt, damage_states=states) if states else hunt)}|{salt}"
                 meta["task"] = key
-                out.append((key, runner.run_hunt, (digest, job, start, hunt, opts), self.hunt.max_runs))
+                out.append((key, runner.run_hunt, (digest, job, start, hunt, opts, states), self.hunt.max_runs))
             else:
                 fixed.append((tag, job, [float(x) for x in self.stripes]))
         return out + self._batches(fixed, digest, opts, salt)
@@ -238,8 +251,8 @@ class Study:
         entry = {"records": {}, "states": {}}
         broken = failed.groupby("record")["error"].first()
         for rname, err in broken.items():  # a hunt that stopped on an error
-            entry["records"][rname] = dict(capacity=math.nan, censored=True, runs=0, error=err)
-        per_state = {name: ([], []) for name, _ in self.states()}
+            entry["records"][rname] = dict(capacity=math.nan, censored=True, below=False, runs=0, error=err)
+        per_state = {name: ([], [], []) for name, _ in self.states()}
         names = []
         for rname, r in rows[~rows["record"].isin(broken.index)].groupby("record"):
             ims = r["im"].to_numpy(float)
@@ -247,21 +260,22 @@ class Study:
             peak = r["peak_theta_over_alpha"].to_numpy(float)
             why = r["unresolved"].dropna() if "unresolved" in r else []
             info = dict(runs=len(r), unresolved=str(why.iloc[0]) if len(why) else "")
+            trace = list(zip(ims, over, peak))
             for name, thr in self.states():
-                hit = over if thr is None else over | (peak >= thr)
-                cap, cens = capacity(list(zip(ims, hit)))
-                per_state[name][0].append(cap)
-                per_state[name][1].append(cens)
+                locate = interpolated if thr is not None and self.damage_capacity == "interpolate" else capacity
+                cap, cens, below = locate(trace, thr)
+                for column, value in zip(per_state[name], (cap, cens, below)):
+                    column.append(value)
                 if thr is None:
-                    info.update(capacity=cap, censored=cens)
+                    info.update(capacity=cap, censored=cens, below=below)
                 else:
-                    info.setdefault("damage_states", {})[name] = dict(capacity=cap, censored=cens)
+                    info.setdefault("damage_states", {})[name] = dict(capacity=cap, censored=cens, below=below)
             entry["records"][rname] = info
             names.append(rname)
-        for name, (caps, cens) in per_state.items():
+        for name, (caps, cens, below) in per_state.items():
             entry["states"][name] = (self._fit(ida_fragility, caps, cens, n_boot=n_boot, seed=seed,
                                                estimator=self.estimator, beta_modelling=self.beta_modelling,
-                                               stations=self._stations(names))
+                                               stations=self._stations(names), below=below)
                                      if caps else dict(fragility=None, error="no runs"))
         return entry
 
@@ -281,8 +295,9 @@ class Study:
             entry["records"][rname] = dict(collapsed=int(np.nansum(tables["overturning"][-1])), runs=len(r))
             names.append(rname)
         for name, table in tables.items():
+            event = "overturned" if name == "overturning" else f"reached {name}"
             entry["states"][name] = (self._fit(msa_fragility, stripes, table, n_boot=n_boot, seed=seed,
                                                beta_modelling=self.beta_modelling,
-                                               stations=self._stations(names))
+                                               stations=self._stations(names), event=event)
                                      if table else dict(fragility=None, error="no runs"))
         return entry
