@@ -9,6 +9,7 @@
 
 mod support;
 
+use rocking::dynamics::continuous::Continuous;
 use rocking::dynamics::{GroundInput, OutOfRange, Simulator, State, VerticalInput};
 use rocking::model::{LawKind, Restitution};
 use rocking::Formulation;
@@ -865,7 +866,8 @@ fn a_rocking_flexible_body_ends_in_lift_off() {
 /// closed form. Returns the centres checked and the worst relative errors
 /// of orders 1 and 2 (relative to the difference, floored at 1e-6 of the
 /// value), over `theta`, `omega`, `theta''`, `af`, `contactLength`, `MR`,
-/// `Fx`, `Fz`.
+/// `Fx`, `Fz` and `omegaW` (`Simulator::omega_w_rates` against the
+/// differences of `Simulator::to_weight_referred`).
 fn rates_under_av_error(m: Model, theta0: f64, t_step: f64, h: f64, amp: f64) -> (usize, [f64; 2]) {
     let sim = Simulator::new(m, 1e-13);
     let (ag0, dag, av0, dav) = (-0.25 * G * amp, 0.3 * G * amp, 0.2 * G, -0.25 * G);
@@ -899,6 +901,12 @@ fn rates_under_av_error(m: Model, theta0: f64, t_step: f64, h: f64, amp: f64) ->
                 VerticalInput { av: v0, dav },
             );
             let o = sim.outputs_loaded(&st, ag(t), VerticalInput { av: av(t), dav });
+            let c = Continuous {
+                state: st,
+                side: 1.0,
+                left_with: 0.0,
+            };
+            let omega_w = sim.to_weight_referred(c, av(t)).state.omega;
             let y = [
                 st.theta,
                 st.omega,
@@ -908,6 +916,7 @@ fn rates_under_av_error(m: Model, theta0: f64, t_step: f64, h: f64, amp: f64) ->
                 o.mr,
                 o.fx,
                 o.fz,
+                omega_w,
             ];
             pts.push((st, margins(&st, t), y));
         }
@@ -924,14 +933,23 @@ fn rates_under_av_error(m: Model, theta0: f64, t_step: f64, h: f64, amp: f64) ->
             let input = GroundInput { ag: ag(t), dag };
             sim.output_rates_vertical(&pts[j].0, input, VerticalInput { av: av(t), dav })
         };
+        // the outputs' jets and omegaW's
+        let jets = |j: usize| {
+            let t = tc + (j as f64 - 2.0) * h;
+            let r = rates(j);
+            let w = sim.omega_w_rates(&pts[j].0, ag(t), VerticalInput { av: av(t), dav }, &r);
+            let mut all = output_jets(&r).to_vec();
+            all.push(w);
+            all
+        };
         let r = rates(2);
         let b = &m.body;
         assert_eq!(
             r.apparent_weight,
             [b.weight + b.mass * av(tc), b.mass * dav, 0.0]
         );
-        let around: Vec<_> = (0..5).map(|j| output_jets(&rates(j))).collect();
-        for (i, jet) in output_jets(&r).iter().enumerate() {
+        let around: Vec<_> = (0..5).map(jets).collect();
+        for (i, jet) in jets(2).iter().enumerate() {
             let y: Vec<f64> = pts.iter().map(|p| p.2[i]).collect();
             let d1 = (-y[4] + 8.0 * y[3] - 8.0 * y[1] + y[0]) / (12.0 * h);
             // order 2 against the differences of order 1 at the stencil's

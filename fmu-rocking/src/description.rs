@@ -455,7 +455,7 @@ variables! {
     }
     THETA_C = 39 => {
         name: "thetaC",
-        description: "Rotation at which the toe starts to crush (inf without crushing)",
+        description: "Rotation at which the toe starts to crush; 1e60 (Modelica's inf: never) for the rigid and elastic interfaces",
         causality: CalcParam, variability: Fixed, initial: Some(Calculated),
         ty: real(Some("rad"), Some("deg"), None),
         depends_on: D_THRESHOLD,
@@ -530,7 +530,7 @@ variables! {
     }
     FRICTION_DEMAND = 50 => {
         name: "frictionDemand",
-        description: "Friction coefficient the no-sliding assumption needs, |Fx|/Fz (+inf when Fz <= 0); compare with the base's friction coefficient mu",
+        description: "Friction coefficient the no-sliding assumption needs, |Fx|/Fz, at most 1e60 (Modelica's inf), which it is where Fz <= 0; compare with the base's friction coefficient mu",
         causality: Output, variability: Continuous, initial: Some(Calculated),
         ty: real(Some("1"), None, None),
         depends_on: D_DYNAMIC,

@@ -75,10 +75,21 @@ pub fn params(v: Values<'_>) -> Result<Params, String> {
     crate::params::params(|r| v.real(r), |r| v.integer(r))
 }
 
-/// Outputs whose `+inf` is a value, not an overflow: `thetaC` without
-/// crushing, `frictionDemand` while `Fz <= 0`.
-fn may_be_infinite(r: u32, x: f64) -> bool {
-    x == f64::INFINITY && matches!(r, vr::THETA_C | vr::FRICTION_DEMAND)
+/// What stands for `+inf` at the FMI boundary, which no non-finite value
+/// crosses (hosts such as OMSimulator refuse them): Modelica's
+/// `Modelica.Constants.inf`, the convention of the Modelica tools and of
+/// their FMI hosts. `thetaC` of a law that never crushes, `frictionDemand`
+/// where `Fz <= 0` (docs/model.md §5: "Values that stand for infinity").
+pub const UNBOUNDED: f64 = 1e60;
+
+/// `x` as variable `r` reports it: `thetaC` and `frictionDemand` at most
+/// [`UNBOUNDED`], their `+inf` included (a NaN stays NaN, an overflow).
+fn bounded(r: u32, x: f64) -> f64 {
+    if matches!(r, vr::THETA_C | vr::FRICTION_DEMAND) && x > UNBOUNDED {
+        UNBOUNDED
+    } else {
+        x
+    }
 }
 
 fn regime_name(r: Regime) -> &'static str {
@@ -135,7 +146,10 @@ impl RockingSlave {
         if mu == 0.0 || warned {
             return;
         }
-        let demand = self.outputs(ag, av, dav).friction_demand();
+        let demand = bounded(
+            vr::FRICTION_DEMAND,
+            self.outputs(ag, av, dav).friction_demand(),
+        );
         if demand > mu {
             self.sliding.warned = true;
             log.warn(format!(
@@ -398,11 +412,12 @@ impl Slave for RockingSlave {
             vr::DER_THETA | vr::DER_OMEGA_W => self.me_derivative(r, inputs)?,
             _ => return Err(format!("no computed Real with value reference {r}")),
         };
-        // thetaC is +inf without crushing, frictionDemand where Fz <= 0;
-        // anything else not finite is an overflow of a finite but absurd
-        // start value or input, refused rather than returned as if it were
-        // a result.
-        if !x.is_finite() && !may_be_infinite(r, x) {
+        // thetaC is +inf without crushing, frictionDemand where Fz <= 0:
+        // both reported as UNBOUNDED; anything else not finite is an
+        // overflow of a finite but absurd start value or input, refused
+        // rather than returned as if it were a result.
+        let x = bounded(r, x);
+        if !x.is_finite() {
             return Err(self.overflow(x, ag));
         }
         Ok(x)
@@ -457,11 +472,16 @@ impl Slave for RockingSlave {
             vr::FZ => rates.fz[k],
             vr::FX_SUPPORT => -rates.fx[k],
             vr::FZ_SUPPORT => -rates.fz[k],
-            vr::FRICTION_DEMAND => rates.friction_demand()[k],
+            // constant where the value is UNBOUNDED (Fz <= 0, or beyond)
+            vr::FRICTION_DEMAND => match rates.friction_demand() {
+                d if bounded(r, d[0]) == UNBOUNDED => 0.0,
+                d => d[k],
+            },
             vr::APPARENT_WEIGHT => rates.apparent_weight[k],
+            vr::OMEGA_W => self.sim.omega_w_rates(&self.motion(v.av), ag, v, &rates)[k],
             _ => return Err(format!("no Real output with value reference {r}")),
         };
-        if !x.is_finite() && !may_be_infinite(r, x) {
+        if !x.is_finite() {
             return Err(self.overflow(x, ag));
         }
         Ok(x)

@@ -105,3 +105,38 @@ fn the_embedded_guid_is_the_xmls() {
     assert!(MODEL_DESCRIPTION_XML.contains(&format!("guid=\"{GUID}\"")));
     assert!(MODEL_DESCRIPTION_XML.contains("modelIdentifier=\"ShearFrame\""));
 }
+
+/// Every Real of the table and every output's derivatives up to the
+/// declared order, walked from the table: `fmi2OK` and finite, before and
+/// after steps under a ground acceleration and a floor force with rates.
+#[test]
+fn every_getter_is_finite_and_every_output_has_its_derivatives() {
+    let host = instantiate();
+    let c = host.c;
+    assert_eq!(host.initialize(), fmi2OK);
+    let check = |what: &str| {
+        for (name, s, x) in host.every_real() {
+            assert!(s == fmi2OK && x.is_finite(), "{what}: {name} = {x} ({s})");
+        }
+        let rates = host.every_output_derivative();
+        assert!(!rates.is_empty());
+        for (name, k, s, x) in rates {
+            assert!(
+                s == fmi2OK && x.is_finite(),
+                "{what}: d^{k} {name} = {x} ({s})"
+            );
+        }
+    };
+    check("at rest");
+    set_real(c, vr::AG, 2.0);
+    set_real(c, vr::at(vr::FX, 1), 1e4);
+    let (r, k, d) = (vr::AG, 1, 5.0);
+    assert_eq!(
+        unsafe { fmi2SetRealInputDerivatives(c, &r, 1, &k, &d) },
+        fmi2OK
+    );
+    for i in 0..10 {
+        assert_eq!(unsafe { fmi2DoStep(c, 0.01 * i as f64, 0.01, 1) }, fmi2OK);
+    }
+    check("after 10 steps");
+}

@@ -54,6 +54,16 @@ DEFAULT_OUTPUTS = ("theta", "omega", "thetaOverAlpha", "MR", "af", "regime", "im
 #: Calculated parameters (docs/model.md §5), read once per run after initialization.
 CALCULATED = ("mass", "weight", "R0", "alpha", "IO", "etaHousner", "thetaJo", "thetaC", "thetaOv")
 
+#: What the FMU reports for +inf (docs/model.md §5, "Values that stand for infinity").
+UNBOUNDED = 1e60
+
+
+def _infinite(x):
+    """A calculated parameter as Python's tables keep it: the FMU's stand-in for +inf
+    (`thetaC` of a law that never crushes) back to inf."""
+    return math.inf if x >= UNBOUNDED else x
+
+
 _STATUS = ["OK", "WARNING", "DISCARD", "ERROR", "FATAL", "PENDING"]
 
 
@@ -432,7 +442,7 @@ class RockingFMU:
             vr_c = (c_uint32 * len(calc))(*[self.variables[n].valueReference for n in calc])
             buf_c = (c_double * len(calc))()
             slave.fmi2GetReal(component, vr_c, len(calc), buf_c)
-            calculated = dict(zip(calc, list(buf_c)))
+            calculated = {n: _infinite(x) for n, x in zip(calc, buf_c)}
 
             if native:
                 times, rows_r, rows_i, rows_b, overturned = self._native_loop(

@@ -31,8 +31,9 @@
 use crate::interface::{Law, Threshold, THRESHOLDS};
 use crate::model::Formulation;
 
-use super::eom::Eom;
+use super::eom::{side_of, Eom};
 use super::events::count_crossing;
+use super::output_rates::{jet_div, jet_mul, jet_scale, Jet, OutputRates};
 use super::{Events, GroundInput, OutOfRange, Simulator, State, VerticalInput};
 
 /// Event-indicator slots for the kinks of `af` (docs/model.md §2: `thetaJo`,
@@ -204,6 +205,48 @@ impl Simulator {
             c.state.omega *= r;
         }
         c
+    }
+
+    /// The jet `[omegaW, omegaW', omegaW'']` (rad/s per s^order) along the
+    /// motion at `state` (co-simulation's, with `omega`) whose output rates
+    /// under `ag` (m/s²) and `v` are `rates`: `omegaW = omega r`,
+    /// `r = sqrt(I(phi, N)/I(phi, W))` (docs/model-exchange.md, "The state
+    /// omegaW"), with `I = Ic + m (R0² + af² - 2 R0 af sin(alpha))`
+    /// (docs/model.md §3) along `af(phi(t), N(t))` (the rates' `af`) and
+    /// along `af(phi(t), W)`. `omega`'s own jet where `r` is 1 at all times
+    /// (no vertical input, the rigid law, `costa`) and at rest, where `r`
+    /// and `r'` are 1 and 0 (the full contact's `af` does not move with N).
+    pub fn omega_w_rates(
+        &self,
+        state: &State,
+        ag: f64,
+        v: VerticalInput,
+        rates: &OutputRates,
+    ) -> Jet {
+        let loaded = v.av != 0.0 || v.dav != 0.0;
+        if !loaded || !self.inertia_moves_with_n() || state.at_rest {
+            return rates.omega;
+        }
+        let b = &self.model.body;
+        let inertia = |af: Jet| -> Jet {
+            let lever = 2.0 * (af[0] - b.r0 * b.sin_alpha);
+            [
+                b.ic + b.mass * (b.r0 * b.r0 + af[0] * af[0] - 2.0 * b.r0 * b.sin_alpha * af[0]),
+                b.mass * lever * af[1],
+                b.mass * (2.0 * af[1] * af[1] + lever * af[2]),
+            ]
+        };
+        let s = side_of(state.theta, state.omega, ag);
+        let p = jet_scale(s, rates.theta);
+        let it = &self.model.interface;
+        let c = it.contact(p[0]);
+        let (af2, _) = it.second_derivatives(&c);
+        let af_w = [c.af, c.daf * p[1], af2 * p[1] * p[1] + c.daf * p[2]];
+        let q = jet_div(inertia(rates.af), inertia(af_w));
+        let r0 = q[0].sqrt();
+        let r1 = q[1] / (2.0 * r0);
+        let r = [r0, r1, (q[2] - 2.0 * r1 * r1) / (2.0 * r0)];
+        jet_mul(rates.omega, r)
     }
 
     /// `[theta', omegaW']` at `cw` (whose `state.omega` is `omegaW`) under

@@ -17,6 +17,7 @@ use std::ptr;
 pub use log::{Keep, Log, Message};
 
 use crate::ffi;
+use crate::model_description::{Causality, Type, Variability};
 use crate::slave::Slave;
 use crate::types::*;
 
@@ -262,6 +263,44 @@ impl<S: Slave> Host<S> {
         // SAFETY: n value references and room for n values.
         let s = unsafe { get(self.c, vrs.as_ptr(), vrs.len(), x.as_mut_ptr()) };
         (s, x)
+    }
+
+    /// Every Real variable of `S`'s table read with `fmi2GetReal`, one call
+    /// each: `(name, status, value)`.
+    pub fn every_real(&self) -> Vec<(&'static str, fmi2Status, f64)> {
+        S::description()
+            .variables
+            .iter()
+            .filter(|v| matches!(v.ty, Type::Real { .. }))
+            .map(|v| {
+                let (s, x) = self.get_real_vr(v.vr);
+                (v.name, s, x)
+            })
+            .collect()
+    }
+
+    /// Every continuous Real output of `S`'s table with its
+    /// `fmi2GetRealOutputDerivatives` of each order from 1 to the declared
+    /// `maxOutputDerivativeOrder`, one call each: `(name, order, status,
+    /// value)`.
+    pub fn every_output_derivative(&self) -> Vec<(&'static str, i32, fmi2Status, f64)> {
+        let md = S::description();
+        let orders = 1..=md.co_simulation.max_output_derivative_order as i32;
+        let outputs = md.variables.iter().filter(|v| {
+            v.causality == Causality::Output
+                && v.variability == Variability::Continuous
+                && matches!(v.ty, Type::Real { .. })
+        });
+        outputs
+            .flat_map(|v| orders.clone().map(move |k| (v, k)))
+            .map(|(v, k)| {
+                let mut x = f64::NAN;
+                // SAFETY: one value reference, one order, room for one value.
+                let s =
+                    unsafe { ffi::get_real_output_derivatives::<S>(self.c, &v.vr, 1, &k, &mut x) };
+                (v.name, k, s, x)
+            })
+            .collect()
     }
 
     /// The value of a Real; panics unless `fmi2OK`.

@@ -294,14 +294,13 @@ impl Driver {
         for (&r, &x) in r.iter().zip(&out) {
             assert_ne!(x.to_bits(), SENTINEL, "fmi2GetReal: vr {r} not written");
             let v = VARIABLES.iter().find(|v| v.vr == r).expect("a Real vr");
+            // no computed value crosses the boundary non-finite: thetaC
+            // without crushing and frictionDemand while Fz <= 0 stand at
+            // 1e60 (docs/model.md §5); parameters and inputs are the
+            // host's own values (fm = inf is allowed), echoed
             let finite = match v.causality {
-                // frictionDemand is +inf while Fz <= 0 (docs/model.md §5)
-                Causality::Output => {
-                    x.is_finite() || (r == vr::FRICTION_DEMAND && x == f64::INFINITY)
-                }
-                // thetaC is +inf without crushing
-                Causality::CalculatedParameter => {
-                    x.is_finite() || (r == vr::THETA_C && x == f64::INFINITY)
+                Causality::Output | Causality::CalculatedParameter | Causality::Local => {
+                    x.is_finite()
                 }
                 _ => true,
             };

@@ -475,13 +475,9 @@ impl Driver {
                 ) {
                     for (r, x) in r.iter().zip(&out) {
                         assert_ne!(x.to_bits(), SENTINEL, "derivative of vr {r} not written");
-                        // frictionDemand is +inf in every order where Fz <= 0
-                        // (docs/model.md §5, "Friction demand")
-                        let infinite_demand = *r == vr::FRICTION_DEMAND && *x == f64::INFINITY;
-                        assert!(
-                            x.is_finite() || infinite_demand,
-                            "derivative of vr {r} = {x}"
-                        );
+                        // frictionDemand's are 0 where it stands at 1e60
+                        // (docs/model.md §5)
+                        assert!(x.is_finite(), "derivative of vr {r} = {x}");
                     }
                 }
             }

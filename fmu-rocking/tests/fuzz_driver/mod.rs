@@ -17,9 +17,10 @@
 //! - `fmi2ExitInitializationMode` succeeds exactly when the parameters the
 //!   driver set build a valid model (`rocking::Params::build`, fed from the
 //!   driver's own copy of the values) and fails with `fmi2Error` otherwise;
-//! - after `fmi2OK` from a getter every value was written; Real outputs are
-//!   finite, calculated parameters are not NaN (`thetaC` is `+inf` without
-//!   crushing), `regime` is 0..=4, `impacts` >= 0, `zeroCrossings` >= 0
+//! - after `fmi2OK` from a getter every value was written; Real outputs,
+//!   their derivatives, locals and calculated parameters are finite
+//!   (`thetaC` without crushing and `frictionDemand` at `Fz <= 0` stand at
+//!   1e60), `regime` is 0..=4, `impacts` >= 0, `zeroCrossings` >= 0
 //!   and not below `impacts` (every impact is a crossing) when both are
 //!   read in one call, Booleans are 0 or 1;
 //! - every non-OK status comes with a logger message of that status; every
