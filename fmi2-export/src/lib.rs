@@ -106,6 +106,7 @@ pub mod bytes;
 pub mod fail;
 pub mod ffi;
 pub mod ffi_me;
+pub mod fmi3_wording;
 pub mod fmu_state;
 pub mod instance;
 pub mod logging;

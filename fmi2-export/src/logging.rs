@@ -143,9 +143,11 @@ impl Logger {
                     escape_format(message).as_ptr(),
                 );
             },
-            // SAFETY: as above; FMI 3.0 passes the message as it is.
+            // SAFETY: as above; FMI 3.0 passes the message as it is, in
+            // its own names.
             Callback::Fmi3(cb) => unsafe {
-                let text = CString::new(message.replace('\0', "")).unwrap_or_default();
+                let words = crate::fmi3_wording::fmi3_words(message);
+                let text = CString::new(words.replace('\0', "")).unwrap_or_default();
                 cb(self.env, status.raw(), category.as_ptr(), text.as_ptr());
             },
         }
