@@ -8,7 +8,7 @@
 use std::borrow::Cow;
 
 /// 2.0 names whose 3.0 counterpart is not the same name with `fmi3`.
-const RENAMED: [(&str, &str); 20] = [
+const RENAMED: [(&str, &str); 22] = [
     ("fmi2SetReal", "fmi3SetFloat64"),
     ("fmi2GetReal", "fmi3GetFloat64"),
     ("fmi2SetInteger", "fmi3SetInt32"),
@@ -27,6 +27,10 @@ const RENAMED: [(&str, &str); 20] = [
     ("fmi2SerializeFMUstate", "fmi3SerializeFMUState"),
     ("fmi2DeSerializeFMUstate", "fmi3DeserializeFMUState"),
     ("fmi2Component", "fmi3Instance"),
+    // what fmi2GetBooleanStatus and fmi2GetRealStatus report, fmi3DoStep's
+    // output arguments in 3.0
+    ("fmi2Terminated", "terminateSimulation"),
+    ("fmi2LastSuccessfulTime", "lastSuccessfulTime"),
     ("fmi2Real", "fmi3Float64"),
     ("fmi2Integer", "fmi3Int32"),
     // the base types and the state machine's states, as words
@@ -89,6 +93,10 @@ mod tests {
         assert_eq!(
             fmi3_words("unknown Real value reference 7; fmi2Error, fmi2GetFMUstate"),
             "unknown Float64 value reference 7; fmi3Error, fmi3GetFMUState"
+        );
+        assert_eq!(
+            fmi3_words("the simulation ends at t = 0.5 (fmi2Terminated is true)"),
+            "the simulation ends at t = 0.5 (terminateSimulation is true)"
         );
         // only whole words: a longer name or one within a word stays
         assert_eq!(
