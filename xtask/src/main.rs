@@ -30,6 +30,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
 
+mod licences;
 mod wheel;
 
 use zip::write::SimpleFileOptions;
@@ -437,6 +438,10 @@ fn package(model: &Model) -> Res<(PathBuf, Built, Vec<&'static str>)> {
             0o644,
         ),
     ];
+    let what = format!("{}.fmu", model.identifier);
+    let licence = licences::file(&[model.package], &what)?.into_bytes();
+    entries.push((licences::FMU_ENTRY.into(), licence.clone(), 0o644));
+    entries3.push((licences::FMU_ENTRY.into(), licence, 0o644));
     let mut platforms = Vec::new();
     let mut add = |platform: &'static str, library: &Path, seconds: f64| -> Res<()> {
         let data = read(library)?;
