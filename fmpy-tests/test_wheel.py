@@ -19,6 +19,7 @@ import hashlib
 import io
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -135,18 +136,59 @@ def test_windows_wheel_contents_and_tags(wheels):
         pe = int.from_bytes(data[0x3C:0x40], "little")  # the PE header's offset (MS-DOS stub)
         assert data[:2] == b"MZ" and data[pe:pe + 4] == b"PE\0\0", exe
         assert int.from_bytes(data[pe + 4:pe + 6], "little") == 0x8664, f"{exe}: not x86-64"
+        # stripped: the COFF header's PointerToSymbolTable and NumberOfSymbols
+        assert data[pe + 12:pe + 20] == bytes(8), f"{exe}: a COFF symbol table"
     _check_fmus_and_records(files, bundle)
     assert not any(name.endswith((".so", ".so.1")) for name in files), "a Linux library in the Windows wheel"
 
 
 def _check_fmus_and_records(files, bundle):
+    """Both models in both standards, where `cargo xtask fmu` writes them (paths.target_dir()/fmu and fmu/fmi3)."""
     for model in ("RockingBlock", "ShearFrame"):
-        with zipfile.ZipFile(io.BytesIO(files[f"{bundle}target/fmu/{model}.fmu"])) as fmu:
-            names = set(fmu.namelist())
-        assert {f"binaries/linux64/{model}.so", f"binaries/win64/{model}.dll", "modelDescription.xml"} <= names
+        for folder, version, linux, windows in (("", "2.0", "linux64", "win64"),
+                                                 ("fmi3/", "3.0", "x86_64-linux", "x86_64-windows")):
+            with zipfile.ZipFile(io.BytesIO(files[f"{bundle}target/fmu/{folder}{model}.fmu"])) as fmu:
+                names = set(fmu.namelist())
+                xml = fmu.read("modelDescription.xml").decode()
+            assert {f"binaries/{linux}/{model}.so", f"binaries/{windows}/{model}.dll"} <= names, (model, version)
+            assert f'fmiVersion="{version}"' in xml, (model, version)
     for record in ("katnp-standin/KATNP_NS_standin.csv", "usgs-lomaprieta-1989/0111a.smc", "README.md"):
         assert files[f"{bundle}data/ground-motions/{record}"] == (REPO / "data/ground-motions" / record).read_bytes()
     assert "Provenance and terms" in files[f"{bundle}data/ground-motions/README.md"].decode()
+    _check_examples(files, bundle)
+
+
+def _check_examples(files, bundle):
+    """The README's study files, as in the clone, and what they name found beside them in the bundle."""
+    for name in ("examples/fragility.toml", "examples/sweep.toml", "examples/hazard-illustrative.csv",
+                 *(p.relative_to(REPO).as_posix() for p in (REPO / "examples/cosim").glob("*.toml"))):
+        assert files.get(bundle + name) == (REPO / name).read_bytes(), name
+    study = tomllib.loads(files[bundle + "examples/fragility.toml"].decode())
+    for path in [*study["records"], study["hazard"]]:
+        resolved = os.path.normpath(f"{bundle}examples/{path}")
+        assert any(n == resolved or n.startswith(resolved + "/") for n in files), f"fragility.toml: {path}"
+
+
+def _binaries(files):
+    """{name: bytes} of every native binary of a wheel: its own and those of the FMUs it carries."""
+    found = {}
+    for name, data in files.items():
+        if data[:4] == b"\x7fELF" or data[:2] == b"MZ":
+            found[name] = data
+        elif name.endswith(".fmu"):
+            with zipfile.ZipFile(io.BytesIO(data)) as fmu:
+                found.update({f"{name}:{i}": fmu.read(i) for i in fmu.namelist() if i.startswith("binaries/")})
+    return found
+
+
+def test_binaries_do_not_carry_the_build_folder(wheels):
+    """No binary of either wheel (stepping loop, rocking-corner, the FMUs' libraries) names where it was built."""
+    folders = {str(REPO).encode(), str(WHEELS.parent).encode()}
+    for tag in ("manylinux2014_x86_64", "win_amd64"):
+        binaries = _binaries(_members(wheels[tag]))
+        assert len(binaries) == 2 + 2 * 2 * 2, sorted(binaries)
+        leaks = {name: sorted(f.decode() for f in folders if f in data) for name, data in binaries.items()}
+        assert not {k: v for k, v in leaks.items() if v}, f"{tag}: build folder in {leaks}"
 
 
 def test_linux_wheel_contents_and_tags(wheels):
@@ -242,3 +284,91 @@ def test_installed_wheel_sweeps_two_cases(installed):
     assert sorted(table["case"]) == ["rigid", "soft"]
     assert table["error"].isna().all(), table["error"].tolist()
     assert (paths.data_dir() / record).read_bytes() == (bundled / "data/ground-motions" / record).read_bytes()
+
+
+#: The Rust targets of the shipped binaries (the wheels and FMUs carry both platforms' FMU libraries).
+TARGETS = ("x86_64-unknown-linux-gnu", "x86_64-pc-windows-gnu")
+#: A phrase of each licence's text, to tell that a crate's attached text is its licence's.
+PHRASES = {"MIT": "permission is hereby granted", "Apache-2.0": "apache license", "Zlib": "provided 'as-is'",
+           "BSD-2-Clause": "redistribution and use", "BSD-3-Clause": "redistribution and use",
+           "Unicode-3.0": "unicode", "Unlicense": "unlicense", "0BSD": "permission to use, copy, modify",
+           "ISC": "permission to use, copy, modify", "BSL-1.0": "boost software license"}
+
+
+def _crate_graph(packages):
+    """{(name, version): licence expression} of what `cargo tree` shows under `packages` (normal edges) for
+    either shipped target: an independent reading of the graph the licence file must cover, every crate
+    of which Cargo.lock lists."""
+    locked = {(p["name"], p["version"]) for p in tomllib.loads((REPO / "Cargo.lock").read_text())["package"]}
+    graph = {}
+    for target in TARGETS:
+        args = ["cargo", "tree", "--locked", "--edges", "normal", "--target", target, "--prefix", "none",
+                "--format", "{p}|{l}"]
+        for package in packages:
+            args += ["--package", package]
+        out = subprocess.run(args, cwd=REPO, capture_output=True, text=True, check=True).stdout
+        for line in filter(str.strip, out.splitlines()):
+            package, licence = line.removesuffix(" (*)").split("|", 1)
+            name, version = package.split()[:2]
+            graph[(name, version.removeprefix("v"))] = licence.strip()
+    assert set(graph) <= locked, set(graph) - locked
+    return graph
+
+
+def _check_licences(text, packages, where):
+    """Every crate of the graph listed with its expression and at least one attached text of one of its
+    licences."""
+    rows = re.findall(r"^  (\S+) (\S+): (.*) \[texts ([\d, ]+)\]$", text, re.MULTILINE)
+    listed = {(name, version): (expression, [int(k) for k in numbers.split(",")])
+              for name, version, expression, numbers in rows}
+    parts = re.split(r"^== Text (\d+): .*$", text, flags=re.MULTILINE)
+    texts = {int(k): body.lower() for k, body in zip(parts[1::2], parts[2::2])}
+    graph = _crate_graph(packages)
+    assert set(listed) == set(graph), f"{where}: {set(graph) ^ set(listed)}"
+    for crate, licence in graph.items():
+        expression, numbers = listed[crate]
+        assert expression.startswith(licence), (where, crate, expression, licence)
+        ids = set(re.findall(r"[A-Za-z0-9.+-]+", licence)) - {"OR", "AND", "WITH"}
+        unknown = ids - PHRASES.keys()
+        assert not unknown, f"{where}: {crate} {unknown}: add a phrase of its text to PHRASES"
+        bodies = [texts[k] for k in numbers]
+        assert any(PHRASES[i] in b and len(b) > 300 for i in ids for b in bodies), \
+            f"{where}: {crate}: no text of {licence}"
+    return len(listed)
+
+
+def test_wheels_list_the_licences_of_their_crates(wheels):
+    shipped = ["fmu-rocking", "fmu-shear-frame", "fmu-stepper", "corner"]
+    for tag in ("manylinux2014_x86_64", "win_amd64"):
+        files = _members(wheels[tag])
+        text = files["rocking/_bundled/THIRD-PARTY-LICENSES.txt"]
+        assert _dist_info(files, "licenses/THIRD-PARTY-LICENSES.txt").encode() == text
+        assert "License-File: THIRD-PARTY-LICENSES.txt" in _dist_info(files, "METADATA")
+        assert _check_licences(text.decode(), shipped, tag) > 50
+
+
+def test_fmus_list_the_licences_of_their_crates(wheels):
+    """Each archive's documentation/licenses/license.txt covers its own library's graph (the wheels
+    fixture wrote the FMUs)."""
+    for model, package in (("RockingBlock", "fmu-rocking"), ("ShearFrame", "fmu-shear-frame")):
+        for folder in ("", "fmi3/"):
+            with zipfile.ZipFile(WHEELS.parent / "fmu" / f"{folder}{model}.fmu") as fmu:
+                text = fmu.read("documentation/licenses/license.txt").decode()
+            # at least the project's own: the FMU crate, fmi2-export, fmi3-export, model-description, the engine
+            assert _check_licences(text, [package], f"{folder}{model}.fmu") >= 5
+
+
+def test_installed_wheel_cosims_fmi3_from_its_example(installed, tmp_path):
+    """`cosim --fmi 3` on the wheel's own examples/cosim/roof_block.toml finds the wheel's 3.0 archives
+    (paths.target_dir()/fmu/fmi3) and gives the clone's rows."""
+    bundled = next((Path(installed[0]).parent / "lib").glob("python*/site-packages/rocking/_bundled"))
+    case = bundled / "examples" / "cosim" / "roof_block.toml"
+    run_installed(installed, "cosim", case, "--fmi", "3", "--out", "cosim3")
+    code = ("from rocking import paths; print(sorted(str(p) for p in (paths.target_dir() / 'fmu' / 'fmi3')"
+            ".glob('*.fmu')))")
+    found = subprocess.run([installed[0] / "python", "-c", code], cwd=installed[1], capture_output=True,
+                           text=True, check=True).stdout
+    assert f"{bundled}/target/fmu/fmi3/RockingBlock.fmu" in found and "fmi3/ShearFrame.fmu" in found, found
+    ok("cosim", REPO / "examples" / "cosim" / "roof_block.toml", "--fmi", "3", "--out", tmp_path / "cosim3")
+    wheel = pd.read_csv(installed[1] / "cosim3" / "timehistory.csv")
+    pd.testing.assert_frame_equal(wheel, pd.read_csv(tmp_path / "cosim3" / "timehistory.csv"), check_exact=True)

@@ -10,6 +10,9 @@ The pure wheel is built by setuptools (pyproject.toml's metadata) from a copy of
 the sources in a temporary folder, so that the clone gets no build/ or egg-info.
 The platform wheel is that archive with the bundle added, `Root-Is-Purelib:
 false`, its tag, and RECORD written again; entries sorted, with fixed times.
+The bundle's licence file of the crates in its binaries (THIRD-PARTY-LICENSES.txt)
+also goes where a wheel's licence files are (.dist-info/licenses, named by a
+License-File line of METADATA).
 """
 
 import argparse
@@ -27,6 +30,8 @@ ROOT = Path(__file__).resolve().parents[1]
 #: What setuptools needs to build the pure wheel.
 SOURCES = ["pyproject.toml", "setup.py", "README.md", "LICENSE-MIT", "LICENSE-APACHE", "python"]
 EPOCH = (1980, 1, 1, 0, 0, 0)
+#: The bundle's third-party licence file (xtask/src/licences.rs).
+THIRD_PARTY = "THIRD-PARTY-LICENSES.txt"
 
 
 def build(kind, into):
@@ -69,6 +74,12 @@ def platform_wheel(pure, bundle, tag, out):
     lines = [ln for ln in wheel_text.splitlines() if not ln.startswith(("Root-Is-Purelib:", "Tag:"))]
     lines += ["Root-Is-Purelib: false", f"Tag: py3-none-{tag}"]
     files[f"{dist_info}/WHEEL"] = (("\n".join(lines) + "\n").encode(), 0o644)
+    third_party = Path(bundle) / THIRD_PARTY
+    if third_party.is_file():
+        files[f"{dist_info}/licenses/{THIRD_PARTY}"] = (third_party.read_bytes(), 0o644)
+        meta = files[f"{dist_info}/METADATA"][0].decode()
+        head, sep, body = meta.partition("\n\n")
+        files[f"{dist_info}/METADATA"] = ((head + f"\nLicense-File: {THIRD_PARTY}" + sep + body).encode(), 0o644)
     for path in sorted(Path(bundle).rglob("*")):
         if path.is_file():
             name = "rocking/_bundled/" + path.relative_to(bundle).as_posix()

@@ -2,10 +2,13 @@
 //! need neither the clone nor Rust, and its sdist, in `target/wheels`.
 //!
 //! Each wheel carries, in `rocking/_bundled/` (laid out like a clone, which
-//! is how python/rocking/paths.py finds it): both FMUs (`target/fmu`), the
-//! native stepping loop and `rocking-corner` built for its platform
-//! (`target/release`), a sample of the shipped records with their provenance
-//! and terms (`data/ground-motions`), and `BUILD.json` (the commit). The
+//! is how python/rocking/paths.py finds it): both FMUs in both standards
+//! (`target/fmu`, `target/fmu/fmi3`), the native stepping loop and
+//! `rocking-corner` built for its platform (`target/release`), a sample of the
+//! shipped records with their provenance and terms (`data/ground-motions`),
+//! the example study files (`examples`), the licences of every crate compiled
+//! into its binaries (`THIRD-PARTY-LICENSES.txt`, also in the wheel's
+//! `.dist-info/licenses`) and `BUILD.json` (the commit). The
 //! helpers are built like the FMUs' binaries (`target/platforms/<platform>`):
 //! linux64 by cargo-zigbuild against glibc 2.17 (manylinux2014), win64 by
 //! mingw-w64. tools/wheel.py turns the staged folder and setuptools' pure
@@ -17,8 +20,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use crate::{
-    all_messages, linux64_cargo, package, root, shipped_profile, target_dir, win64_cargo, Res,
-    LINUX64_TARGET, MODELS, WIN64_TARGET,
+    all_messages, licences, linux64_cargo, package, root, shipped_profile, target_dir, win64_cargo,
+    Res, LINUX64_TARGET, MODELS, WIN64_TARGET,
 };
 
 /// A wheel's platform: how its helpers are built and named.
@@ -34,6 +37,13 @@ struct Platform {
     corner: &'static str,
     /// cargo set up for the platform, or why it cannot be.
     cargo: fn() -> Res<Result<Command, String>>,
+    /// The helpers' `strip` setting. The Windows binaries lose their COFF
+    /// symbol table (3470 symbols, 250 kB of rocking-corner.exe): Windows
+    /// tools read PDB files, which the GNU toolchain does not write, so it
+    /// only told a reader the build's function names. The Linux ones keep
+    /// theirs for backtraces and profilers (the FMUs' libraries keep theirs
+    /// on both platforms: `cargo xtask fmu`'s profile).
+    strip: &'static str,
 }
 
 const PLATFORMS: [Platform; 2] = [
@@ -44,6 +54,7 @@ const PLATFORMS: [Platform; 2] = [
         stepper: "libfmu_stepper.so",
         corner: "rocking-corner",
         cargo: linux64_cargo,
+        strip: "debuginfo",
     },
     Platform {
         name: "win64",
@@ -52,6 +63,7 @@ const PLATFORMS: [Platform; 2] = [
         stepper: "fmu_stepper.dll",
         corner: "rocking-corner.exe",
         cargo: win64_cargo,
+        strip: "symbols",
     },
 ];
 
@@ -59,6 +71,32 @@ const PLATFORMS: [Platform; 2] = [
 /// README's examples and the tests' smallest, with the README that states
 /// their provenance and terms.
 const RECORDS: [&str; 3] = ["README.md", "katnp-standin", "usgs-lomaprieta-1989"];
+
+/// The study files of the README's commands (examples/), with what they
+/// name: fragility.toml's hazard curve; its records are `../data/ground-motions`,
+/// the sample above.
+const EXAMPLES: [&str; 4] = [
+    "fragility.toml",
+    "hazard-illustrative.csv",
+    "sweep.toml",
+    "cosim",
+];
+
+/// The workspace packages whose binaries a wheel carries: the FMUs' and the helpers'.
+const SHIPPED: [&str; 4] = ["fmu-rocking", "fmu-shear-frame", "fmu-stepper", "corner"];
+
+/// The licence file's name in the bundle (tools/wheel.py also puts it in .dist-info/licenses).
+const LICENCES: &str = "THIRD-PARTY-LICENSES.txt";
+
+/// The FMU archives of a model that `cargo xtask fmu` writes: 2.0, and 3.0 where it exports it.
+fn archives(model: &crate::Model) -> Vec<String> {
+    let name = format!("{}.fmu", model.identifier);
+    let mut all = vec![name.clone()];
+    if model.fmi3 {
+        all.push(format!("fmi3/{name}"));
+    }
+    all
+}
 
 /// `cargo xtask wheel [--reuse-fmus]`.
 pub fn wheels(args: &[String]) -> Res<()> {
@@ -68,8 +106,7 @@ pub fn wheels(args: &[String]) -> Res<()> {
     }
     let fmu_dir = target_dir().join("fmu");
     for model in MODELS {
-        let fmu = fmu_dir.join(format!("{}.fmu", model.identifier));
-        if !(reuse && fmu.is_file()) {
+        if !(reuse && archives(model).iter().all(|a| fmu_dir.join(a).is_file())) {
             package(model)?;
         }
     }
@@ -101,16 +138,18 @@ pub fn wheels(args: &[String]) -> Res<()> {
     ])
 }
 
-/// Fills a fresh `bundle` folder: the FMUs of target/fmu, the helpers
-/// (file name in the bundle, built file), the sample records, BUILD.json.
+/// Fills a fresh `bundle` folder: the FMUs of target/fmu (2.0 and 3.0), the
+/// helpers (file name in the bundle, built file), the sample records, the
+/// example studies, the licence file, BUILD.json.
 fn stage_bundle(bundle: &Path, helpers: &[(&str, PathBuf)], commit: &str, tag: &str) -> Res<()> {
     if bundle.exists() {
         fs::remove_dir_all(bundle).map_err(|e| format!("{}: {e}", bundle.display()))?;
     }
     for model in MODELS {
-        let name = format!("{}.fmu", model.identifier);
-        let fmu = target_dir().join("fmu").join(&name);
-        copy(&fmu, &bundle.join("target/fmu").join(&name))?;
+        for name in archives(model) {
+            let fmu = target_dir().join("fmu").join(&name);
+            copy(&fmu, &bundle.join("target/fmu").join(&name))?;
+        }
     }
     for (name, built) in helpers {
         copy(built, &bundle.join("target/release").join(name))?;
@@ -121,6 +160,15 @@ fn stage_bundle(bundle: &Path, helpers: &[(&str, PathBuf)], commit: &str, tag: &
             &bundle.join("data/ground-motions").join(entry),
         )?;
     }
+    for entry in EXAMPLES {
+        copy_tree(
+            &root().join("examples").join(entry),
+            &bundle.join("examples").join(entry),
+        )?;
+    }
+    let what = format!("the rocking wheel for {tag} (its FMUs, stepping loop and rocking-corner)");
+    let text = licences::file(&SHIPPED, &what)?;
+    write(&bundle.join(LICENCES), text.as_bytes())?;
     let info = serde_json::json!({ "commit": commit, "platform": tag });
     write(&bundle.join("BUILD.json"), info.to_string().as_bytes())
 }
@@ -176,6 +224,7 @@ fn build_helpers(mut cmd: Command, platform: &Platform) -> Res<(PathBuf, PathBuf
     cmd.args(["--target", platform.target, "--target-dir"]);
     cmd.arg(target_dir().join("platforms").join(platform.name));
     shipped_profile(&mut cmd);
+    cmd.env("CARGO_PROFILE_RELEASE_STRIP", platform.strip);
     let messages = all_messages(cmd)?;
     let artifact = |target: &str, file: &str| {
         messages
