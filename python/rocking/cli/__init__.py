@@ -3,6 +3,7 @@
     rocking simulate [RECORD] [--scale 1.5] [--component LABEL] [--preset NAME]
                      [--PARAM VALUE ...] [--fmu PATH] --out DIR
     rocking sweep CASES.toml --records DIR [--scales 0.5:3:0.25] --out results.parquet
+    rocking map [--preset NAME] [--PARAM VALUE ...] --frequencies F --amplitudes A --out DIR   (overturning maps)
     rocking ida|msa SUITE_OR_TOML [--preset NAME] [--im PGV] --out DIR   (fragility on Dask)
     rocking info [--presets]
     rocking record FILE [--plot out.png]
@@ -28,6 +29,7 @@ Shared helpers (CLIError, the FMU, parameters, records) are in `common`; the par
 COMMANDS = (
     "simulate",
     "sweep",
+    "map",
     "info",
     "record",
     "ida",  # registers both `ida` and `msa`

@@ -1,0 +1,281 @@
+"""Overturning maps: a body under a pulse family over a grid of frequency and amplitude, each
+frequency's overturning intervals located by bisection. docs/maps.md.
+
+    from rocking.maps import MapSpec, run_map, boundaries
+    spec = MapSpec(params={...}, shape="one-sine", frequencies=[2, 4, 8], amplitudes=[1, 2, 3, 4],
+                   dimensionless=True, tol=1e-3)
+    runs = run_map(spec, fmu_path, workers=2)     # one row per run (pandas)
+    bounds = boundaries(runs, spec)              # one row per overturning interval
+
+Overturning (the one definition, docs/maps.md): the run overturned when the FMU's
+`overturned` output became true, i.e. |theta| reached thetaOv, at any time during the pulse
+or its free tail; how: without an impact (impacts = 0 then) or after n impacts (the FMU's
+`impacts` output when it overturned). Outcome classes: SAFE, NO_IMPACT, AFTER_IMPACTS.
+
+The runs go through `RockingFMU.simulate` (the native stepping loop where built), in the
+process pool of `rocking.parametric` (one FMU extraction shared by the workers), one task per
+frequency: its grid column, then the bisections between neighbours whose outcome differs.
+"""
+
+import math
+import os
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from . import parametric
+from .pulses import Pulse
+
+SAFE, NO_IMPACT, AFTER_IMPACTS = 0, 1, 2
+OUTCOMES = {SAFE: "no overturning", NO_IMPACT: "overturning without impact",
+            AFTER_IMPACTS: "overturning after impacts"}
+
+#: A bisection stops after this many runs per bracket whatever the tolerance (2^-40 of the step).
+MAX_BISECTIONS = 40
+
+
+@dataclass
+class MapSpec:
+    """What a map runs.
+
+    params        the body's FMU parameters (enumerations by name)
+    shape         a pulse shape of rocking.pulses.SHAPES; user: its (tau, value)
+    frequencies   the grid's w_p: w_p / p when dimensionless, else rad/s
+    amplitudes    the grid's a_p: a_p / (g tan alpha) when dimensionless, else m/s2
+    dimensionless the grid in w_p / p and a_p / (g tan alpha) (p = sqrt(m g R0 / IO))
+    tol           relative width to which each boundary is bisected (of the amplitude)
+    tail          s of free motion (ag = 0) after the pulse
+    per_period    samples of the pulse per period T_p
+    """
+
+    params: dict
+    shape: str
+    frequencies: list
+    amplitudes: list
+    dimensionless: bool = True
+    tol: float = 1e-3
+    tail: float = 10.0
+    per_period: int = 400
+    user: tuple = None
+    scales: dict = field(default_factory=dict)  # p, alpha, g, thetaOv: filled by body_scales
+
+    def check(self):
+        for name in ("frequencies", "amplitudes"):
+            values = np.asarray(getattr(self, name), dtype=float)
+            if values.size == 0:
+                raise ValueError(f"{name}: the grid is empty")
+            if not np.all(np.isfinite(values)) or np.any(values <= 0):
+                raise ValueError(f"{name}: every value must be finite and > 0 "
+                                 f"(got {', '.join(f'{v:g}' for v in values if not v > 0 or not math.isfinite(v))})")
+        if not (0 < self.tol < 1):
+            raise ValueError(f"tol = {self.tol:g}: must be in (0, 1) (relative)")
+        if not (math.isfinite(self.tail) and self.tail >= 0):
+            raise ValueError(f"tail = {self.tail:g}: must be >= 0 s")
+
+
+def body_scales(fmu, params):
+    """{p (rad/s), alpha (rad), g (m/s2), thetaOv (rad), g_tan_alpha (m/s2)} of the body:
+    p = sqrt(m g R0 / IO) from the FMU's calculated parameters (3 g / (4 R) for a rectangle)."""
+    calc = fmu.calculated(params)
+    g = float(params.get("g", fmu.variables["g"].start or 9.81))
+    p = math.sqrt(calc["mass"] * g * calc["R0"] / calc["IO"])
+    return {"p": p, "alpha": calc["alpha"], "g": g, "thetaOv": calc["thetaOv"],
+            "g_tan_alpha": g * math.tan(calc["alpha"])}
+
+
+def physical(spec, w, a):
+    """(w_p rad/s, a_p m/s2) of the grid values (w, a)."""
+    if spec.dimensionless:
+        return w * spec.scales["p"], a * spec.scales["g_tan_alpha"]
+    return w, a
+
+
+def outcome(row):
+    if not row["overturned"]:
+        return SAFE
+    return NO_IMPACT if row["impacts"] == 0 else AFTER_IMPACTS
+
+
+def run_one(fmu, spec, w, a):
+    """One run at grid values (w, a): a row."""
+    w_p, a_p = physical(spec, w, a)
+    pulse = Pulse(spec.shape, a_p, w_p, spec.user)
+    t, ag = pulse.samples(spec.per_period)
+    t0 = time.perf_counter()
+    row = dict(w=float(w), a=float(a), w_p=w_p, a_p=a_p, overturned=None, t_overturn=math.nan,
+               impacts=-1, peak_theta_over_alpha=math.nan, pulse_end=pulse.duration, error="")
+    try:
+        run = fmu.simulate(spec.params, ag=(t, ag), stop_time=pulse.duration + spec.tail,
+                           outputs=("thetaOverAlpha", "impacts"), loop="auto")
+        row.update(overturned=bool(run.overturned), t_overturn=run.t_overturn, impacts=run.impacts,
+                   peak_theta_over_alpha=run.peak_theta_over_alpha)
+    except Exception as exc:  # noqa: BLE001 - the row says what failed
+        row["error"] = " ".join(str(exc).split())[:500]
+    row["wall_s"] = time.perf_counter() - t0
+    return row
+
+
+def run_column(spec, w, fmu=None):
+    """Rows of frequency w: the grid's amplitudes, then bisections (to spec.tol relative)
+    between neighbours whose outcome differs, every transition inside each bracket followed."""
+    fmu = fmu or parametric._WORKER_FMU
+    rows = []
+
+    def at(a, phase):
+        row = run_one(fmu, spec, w, a)
+        row["phase"] = phase
+        rows.append(row)
+        return row
+
+    grid = [at(a, "grid") for a in sorted(spec.amplitudes)]
+
+    def refine(lo, hi, depth):
+        if lo["error"] or hi["error"] or outcome(lo) == outcome(hi):
+            return
+        if hi["a"] - lo["a"] <= spec.tol * hi["a"] or depth >= MAX_BISECTIONS:
+            return
+        mid = at(0.5 * (lo["a"] + hi["a"]), "bisect")
+        refine(lo, mid, depth + 1)
+        refine(mid, hi, depth + 1)
+
+    for lo, hi in zip(grid, grid[1:]):
+        refine(lo, hi, 0)
+    return rows
+
+
+def _column_task(args):
+    spec, w = args
+    return run_column(spec, w)
+
+
+def run_map(spec, fmu, workers=None, progress=None):
+    """Every column of `spec` (spec.scales filled from the FMU): a DataFrame, one row per run,
+    sorted by w then a. fmu: a RockingFMU (its extraction shared with the workers).
+    progress(columns done, columns, rows of the column) after each column."""
+    spec.check()
+    if not spec.scales:
+        spec.scales = body_scales(fmu, spec.params)
+    columns = sorted(float(w) for w in spec.frequencies)
+    workers = max(1, min(int(workers or os.cpu_count() or 1), len(columns)))
+    rows = []
+    if workers == 1:
+        for k, w in enumerate(columns, 1):
+            got = run_column(spec, w, fmu)
+            rows += got
+            if progress:
+                progress(k, len(columns), got)
+    else:
+        with ProcessPoolExecutor(max_workers=workers, initializer=parametric._init_worker,
+                                 initargs=(str(fmu.unzipdir),)) as pool:
+            futures = [pool.submit(_column_task, (spec, w)) for w in columns]
+            for k, fut in enumerate(as_completed(futures), 1):
+                got = fut.result()
+                rows += got
+                if progress:
+                    progress(k, len(columns), got)
+    table = pd.DataFrame(rows)
+    table["outcome"] = [OUTCOMES[outcome(r)] if not r["error"] else "error" for r in rows]
+    table["w_p_over_p"] = table["w_p"] / spec.scales["p"]
+    table["a_p_over_g_tan_alpha"] = table["a_p"] / spec.scales["g_tan_alpha"]
+    table.insert(0, "shape", spec.shape)
+    return table.sort_values(["w", "a"], kind="stable").reset_index(drop=True)
+
+
+def boundaries(runs, spec):
+    """The overturning intervals of each frequency: one row per interval of amplitudes in which
+    the body overturns, its ends bracketed by runs (a_from_lo < start <= a_from_hi, a_to_lo <=
+    end < a_to_hi). An interval that begins at the grid's lowest amplitude says so
+    (below_grid), one that reaches its highest (above_grid, a_to_* nan); windows of safety
+    above the first overturning are the gaps between a frequency's intervals. `unresolved`
+    names what the runs leave open: a bracket wider than tol (a failed run, or the bisection
+    budget), and a change of overturning mode with no safe run between (a safe window narrower
+    than tol may lie there). Windows narrower than the grid's step between two grid runs of the
+    same outcome are not seen (the grid's resolution, in the file's metadata)."""
+    out = []
+    for w, col in runs.groupby("w", sort=True):
+        col = col.sort_values("a")
+        recs = col.to_dict("records")
+        classes = [outcome(r) if not r["error"] else None for r in recs]
+        k = 0
+        n = len(recs)
+        while k < n:
+            if classes[k] in (None, SAFE):
+                k += 1
+                continue
+            start = k
+            notes = []
+            modes = {classes[k]}
+            while k + 1 < n and classes[k + 1] not in (None, SAFE):
+                if classes[k + 1] != classes[k]:
+                    notes.append(f"mode changes at a = {recs[k]['a']:.6g}..{recs[k + 1]['a']:.6g} "
+                                 "with no safe run between")
+                modes.add(classes[k + 1])
+                k += 1
+            end = k
+            lo = recs[start - 1] if start > 0 else None
+            hi = recs[end + 1] if end + 1 < n else None
+            for a, b in ((lo, recs[start]), (recs[end], hi)):
+                if a is None or b is None:
+                    continue
+                if a["error"] or b["error"]:
+                    notes.append(f"failed run near a = {a['a']:.6g}..{b['a']:.6g}")
+                elif b["a"] - a["a"] > spec.tol * b["a"] * (1 + 1e-9):
+                    notes.append(f"bracket {a['a']:.6g}..{b['a']:.6g} wider than tol")
+            first = recs[start]
+            out.append(dict(
+                w=w, w_p=first["w_p"], w_p_over_p=first["w_p_over_p"],
+                a_from_lo=lo["a"] if lo else math.nan, a_from_hi=first["a"],
+                a_to_lo=recs[end]["a"], a_to_hi=hi["a"] if hi else math.nan,
+                start=(0.5 * (lo["a"] + first["a"])) if lo else first["a"],
+                end=(0.5 * (recs[end]["a"] + hi["a"])) if hi else math.inf,
+                mode_at_start=OUTCOMES[classes[start]],
+                modes=", ".join(OUTCOMES[m] for m in sorted(modes)),
+                impacts_at_start=int(first["impacts"]),
+                below_grid=lo is None, above_grid=hi is None,
+                unresolved="; ".join(notes)))
+            k += 1
+    columns = ["w", "w_p", "w_p_over_p", "start", "end", "a_from_lo", "a_from_hi", "a_to_lo", "a_to_hi",
+               "mode_at_start", "modes", "impacts_at_start", "below_grid", "above_grid", "unresolved"]
+    return pd.DataFrame(out, columns=columns)
+
+
+def first_overturning(bounds):
+    """{w: the least overturning amplitude (grid units)}: the first interval's start."""
+    return {w: float(g["start"].min()) for w, g in bounds.groupby("w")}
+
+
+def metadata(spec, extra=None):
+    """The map's inputs as a JSON-able dict (the Parquet files' metadata)."""
+    d = asdict(spec)
+    d["user"] = None if spec.user is None else [list(map(float, x)) for x in spec.user]
+    d["frequencies"] = [float(x) for x in spec.frequencies]
+    d["amplitudes"] = [float(x) for x in spec.amplitudes]
+    a = np.sort(np.asarray(spec.amplitudes, dtype=float))
+    d["grid_resolution"] = float(np.max(np.diff(a) / a[1:])) if a.size > 1 else None
+    d["units"] = ({"w": "w_p / p", "a": "a_p / (g tan alpha)"} if spec.dimensionless
+                  else {"w": "rad/s", "a": "m/s2"})
+    d.update(extra or {})
+    return d
+
+
+def write_parquet(table, path, meta):
+    """`table` to `path` with `meta` (JSON) under the schema's metadata key b"rocking"."""
+    import json
+
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    arrow = pa.Table.from_pandas(table, preserve_index=False)
+    arrow = arrow.replace_schema_metadata({**(arrow.schema.metadata or {}),
+                                           b"rocking": json.dumps(meta).encode()})
+    pq.write_table(arrow, path)
+
+
+def read_metadata(path):
+    import json
+
+    import pyarrow.parquet as pq
+    return json.loads(pq.read_schema(path).metadata[b"rocking"])
