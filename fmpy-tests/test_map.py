@@ -96,3 +96,180 @@ def test_bad_pulse_is_one_clear_error():
         Pulse("one-sine", A, 0.0)
     with pytest.raises(ValueError, match="not one of"):
         Pulse("sine", A, W)
+
+
+# ---------------------------------------------------------------------------
+# Maps of a rigid block against brute force, similarity, the command
+
+from scipy.integrate import solve_ivp  # noqa: E402
+
+from rocking.fmu import RockingFMU  # noqa: E402
+from rocking.maps import MapSpec, boundaries, first_overturning, read_metadata, run_map  # noqa: E402
+
+G = 9.81
+RIGID = dict(shape="solidRectangle", B=0.4, L=1.0, massModel="prism", H=2.0, interface="rigid")
+MAP_W = [1.5, 3.0, 5.0]  # w_p / p
+MAP_A = list(np.linspace(1.0, 6.0, 11))  # a_p / (g tan alpha)
+TOL = 1e-3
+
+
+def housner_overturns(alpha, p, eta, a_p, w_p, tail=5.0):
+    """Housner's rigid block (slender or not: the exact nonlinear equation)
+    theta'' = -p^2 [sin(s alpha - theta) + ag/g cos(s alpha - theta)], s = sgn(theta), under
+    ag = a_p sin(w_p t) for 0 <= t <= T_p, by solve_ivp: uplift when |ag| > g tan alpha (to
+    the side -sgn(ag)), omega <- eta omega at each return to theta = 0, overturned when
+    |theta| = alpha. Past the pulse, a free block whose energy omega^2/2 + p^2 cos(alpha -
+    |theta|) is below p^2 can no longer overturn."""
+    T = 2 * math.pi / w_p
+
+    def ag(t):
+        return a_p * math.sin(w_p * t) if t <= T else 0.0
+
+    t, th, om, s = 0.0, 0.0, 0.0, 0
+    while t < T + tail:
+        if s == 0:  # at rest: the first time |ag| exceeds g tan alpha
+            if t >= T:
+                return False
+            ts = np.linspace(t, T, 20001)
+            over = np.abs(a_p * np.sin(w_p * ts)) > G * math.tan(alpha)
+            if not over.any():
+                return False
+            t = float(ts[int(np.argmax(over))])
+            s, th, om = (-1 if ag(t) > 0 else 1), 0.0, 0.0
+        if t >= T and om ** 2 / 2 + p ** 2 * math.cos(alpha - abs(th)) < p ** 2 * (1 - 1e-12):
+            return False
+
+        def f(tt, y, s=s):
+            return [y[1], -p ** 2 * (math.sin(s * alpha - y[0]) + ag(tt) / G * math.cos(s * alpha - y[0]))]
+
+        def back(tt, y, s=s):
+            return s * y[0]
+        back.terminal, back.direction = True, -1
+
+        def topple(tt, y):
+            return alpha - abs(y[0])
+        topple.terminal = True
+        stop = T if t < T else T + tail  # the pulse and the tail apart: no step over its end
+        sol = solve_ivp(f, (t, stop), [th, om], events=(back, topple), rtol=1e-10, atol=1e-12, max_step=T / 50)
+        if sol.t_events[1].size:
+            return True
+        t, (th, om) = float(sol.t[-1]), sol.y[:, -1]
+        if sol.t_events[0].size:
+            th, om = 0.0, eta * om
+            s = 0 if abs(om) < 1e-9 * p else (1 if om > 0 else -1)
+    return False
+
+
+def reference_least_amplitude(alpha, p, eta, w, step=0.05, rel=1e-5):
+    """The least a_p / (g tan alpha) that overturns, by a scan from 1 in steps of `step` and a
+    bisection of the first overturning step to `rel`."""
+    gta = G * math.tan(alpha)
+    lo = 1.0
+    while not housner_overturns(alpha, p, eta, (lo + step) * gta, w * p):
+        lo += step
+        assert lo < 6.5, f"no overturning below 6.5 at w/p = {w}"
+    hi = lo + step
+    while hi - lo > rel * hi:
+        mid = 0.5 * (lo + hi)
+        if housner_overturns(alpha, p, eta, mid * gta, w * p):
+            hi = mid
+        else:
+            lo = mid
+    return 0.5 * (lo + hi)
+
+
+@pytest.fixture(scope="module")
+def fmu(fmu_path):
+    with RockingFMU(fmu_path) as f:
+        yield f
+
+
+@pytest.fixture(scope="module")
+def rigid_map(fmu):
+    spec = MapSpec(params=RIGID, shape="one-sine", frequencies=MAP_W, amplitudes=MAP_A, tol=TOL, tail=5.0)
+    runs = run_map(spec, fmu, workers=2)
+    return spec, runs, boundaries(runs, spec)
+
+
+def test_rigid_least_overturning_amplitude_against_housner(rigid_map):
+    spec, runs, bounds = rigid_map
+    assert not (runs["error"] != "").any()
+    first = first_overturning(bounds)
+    sc = spec.scales
+    # p = sqrt(3 g / (4 R)) for a rectangle, alpha = atan(B/H): by hand, not from the FMU
+    R = math.hypot(0.2, 1.0)
+    assert sc["p"] == pytest.approx(math.sqrt(3 * G / (4 * R)), rel=1e-12)
+    assert sc["alpha"] == pytest.approx(math.atan(0.2), rel=1e-12)
+    eta = 1 - 1.5 * math.sin(sc["alpha"]) ** 2  # Housner's restitution of a rectangle
+    lines = []
+    for w in MAP_W:
+        ref = reference_least_amplitude(sc["alpha"], sc["p"], eta, w)
+        lines.append(f"w/p = {w}: map {first[w]:.5f}, solve_ivp {ref:.5f}, diff {(first[w] - ref) / ref:+.2e}")
+        assert first[w] == pytest.approx(ref, rel=TOL), "\n".join(lines)
+    print("\n".join(lines))
+
+
+def test_bisection_brackets_are_within_tol_and_agree_with_the_runs(rigid_map):
+    spec, runs, bounds = rigid_map
+    for b in bounds.itertuples():
+        assert not b.below_grid
+        assert b.a_from_hi - b.a_from_lo <= TOL * b.a_from_hi * (1 + 1e-9)
+        col = runs[runs["w"] == b.w].set_index("a")
+        assert not col.loc[b.a_from_lo, "overturned"] and col.loc[b.a_from_hi, "overturned"]
+
+
+def test_similarity_two_rigid_blocks_one_slenderness(fmu, rigid_map):
+    """A block 3 times as large (p / sqrt 3) has the same dimensionless map."""
+    spec, runs, bounds = rigid_map
+    big = dict(RIGID, B=1.2, H=6.0)
+    spec3 = MapSpec(params=big, shape="one-sine", frequencies=MAP_W, amplitudes=MAP_A, tol=TOL, tail=5.0 * math.sqrt(3))
+    runs3 = run_map(spec3, fmu, workers=2)
+    bounds3 = boundaries(runs3, spec3)
+    assert spec3.scales["p"] == pytest.approx(spec.scales["p"] / math.sqrt(3), rel=1e-12)
+    g1, g3 = (r[r["phase"] == "grid"].sort_values(["w", "a"]) for r in (runs, runs3))
+    assert list(g1["outcome"]) == list(g3["outcome"])
+    assert len(bounds) == len(bounds3)
+    for a, b in zip(bounds.itertuples(), bounds3.itertuples()):
+        assert b.start == pytest.approx(a.start, rel=TOL)
+        assert b.mode_at_start == a.mode_at_start
+
+
+def _rocking(*args):
+    return subprocess.run([sys.executable, "-m", "rocking", *args], capture_output=True, text=True, timeout=120)
+
+
+def test_map_help():
+    r = _rocking("map", "--help")
+    assert r.returncode == 0
+    assert "--frequencies" in r.stdout and "thetaOv" in r.stdout
+
+
+def test_map_cli_tiny_run_writes_parquet_with_metadata(tmp_path, fmu_path):
+    from importlib.metadata import version
+
+    import pandas as pd
+    out = tmp_path / "m"
+    r = _rocking("map", "--fmu", fmu_path, "--shape", "solidRectangle", "--B", "0.4", "--H", "2",
+                 "--interface", "rigid", "--frequencies", "2,4", "--amplitudes", "1:4:3", "--tail", "3",
+                 "--workers", "1", "--quiet", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    runs = pd.read_parquet(out / "runs.parquet")
+    assert set(runs["w"]) == {2.0, 4.0} and {1.0, 2.5, 4.0} <= set(runs["a"])
+    assert {"overturned", "t_overturn", "impacts", "peak_theta_over_alpha", "outcome"} <= set(runs.columns)
+    meta = read_metadata(out / "runs.parquet")
+    assert meta["rocking_version"] == version("rocking")
+    assert meta["params"]["B"] == 0.4 and meta["shape"] == "one-sine" and meta["dimensionless"]
+    assert meta["frequencies"] == [2.0, 4.0] and meta["tol"] == 1e-3
+    assert read_metadata(out / "boundaries.parquet") == meta
+    assert (out / "map.png").stat().st_size > 0
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--frequencies", "1:2:0", "--amplitudes", "1,2"], "--frequencies 1:2:0: the grid is empty"),
+    (["--frequencies", "0,2", "--amplitudes", "1,2"], "--frequencies 0,2: every value must be > 0"),
+    (["--frequencies", "1,2", "--amplitudes", "1,2", "--pulse", "user"], "--pulse-file"),
+])
+def test_map_bad_input_is_one_line(tmp_path, args, message):
+    r = _rocking("map", *args, "--out", str(tmp_path / "x"))
+    assert r.returncode == 2
+    assert message in r.stderr and len(r.stderr.strip().splitlines()) == 1
