@@ -242,6 +242,19 @@ def boundaries(runs, spec):
     return pd.DataFrame(out, columns=columns)
 
 
+def mode_changes(runs):
+    """Where the overturning mode changes between neighbouring runs of a frequency with no safe
+    run between: one row per change (w, a_lo, a_hi, below: the mode under it, above)."""
+    out = []
+    for w, col in runs.sort_values("a").groupby("w", sort=True):
+        recs = [r for r in col.to_dict("records") if not r["error"]]
+        for lo, hi in zip(recs, recs[1:]):
+            c_lo, c_hi = outcome(lo), outcome(hi)
+            if SAFE not in (c_lo, c_hi) and c_lo != c_hi:
+                out.append(dict(w=w, a_lo=lo["a"], a_hi=hi["a"], below=OUTCOMES[c_lo], above=OUTCOMES[c_hi]))
+    return pd.DataFrame(out, columns=["w", "a_lo", "a_hi", "below", "above"])
+
+
 def first_overturning(bounds):
     """{w: the least overturning amplitude (grid units)}: the first interval's start."""
     return {w: float(g["start"].min()) for w, g in bounds.groupby("w")}

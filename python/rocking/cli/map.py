@@ -148,6 +148,11 @@ def plot_map(path, runs, bounds, spec, meta):
         finite = g[np.isfinite(g["end"])]
         if len(finite):
             ax.plot(finite["w"], finite["end"], "k--", lw=1.0, label="safe window above" if k == 0 else None)
+    from ..maps import mode_changes
+    modes = mode_changes(runs)
+    if len(modes):
+        ax.plot(modes["w"], 0.5 * (modes["a_lo"] + modes["a_hi"]), "k:", lw=1.0,
+                label="mode changes (no safe run between)")
     from matplotlib.patches import Patch
     handles, labels = ax.get_legend_handles_labels()
     handles += [Patch(color=colors[c]) for c in (SAFE, NO_IMPACT, AFTER_IMPACTS)]
@@ -155,8 +160,8 @@ def plot_map(path, runs, bounds, spec, meta):
     ax.legend(handles, labels, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=2, fontsize=8, frameon=False)
     ax.set_xlabel(meta["units"]["w"] if spec.dimensionless else "w_p (rad/s)")
     ax.set_ylabel(meta["units"]["a"] if spec.dimensionless else "a_p (m/s2)")
-    ax.set_title(f"{spec.shape} pulse; alpha = {spec.scales['alpha']:.3g} rad, p = {spec.scales['p']:.3g} rad/s",
-                 fontsize=9, loc="right", y=1.12)
+    ax.text(0.98, 0.03, f"{spec.shape} pulse\nalpha = {spec.scales['alpha']:.3g} rad, p = {spec.scales['p']:.3g} rad/s",
+            transform=ax.transAxes, ha="right", va="bottom", fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
