@@ -181,6 +181,33 @@ def test_the_ssp_file_reads_back_with_its_parameters_and_connections(ssp_system,
     assert factors[("frame", "a[3]", "block", "ag")] == 1.0
 
 
+def test_the_ssp_file_names_omsimulators_master_in_its_vendor_annotation(ssp_system, fmus, tmp_path):
+    """OMSimulator imports a system only if its own annotation (type "org.openmodelica")
+    names the master (docs/cosimulation-hosts.md, section 3): the fixed-step "oms-ma" at
+    the file's step. The annotation stays within the standard: fmpy's reader validates
+    the file against the SSP 1.0 schema and reads the system as before."""
+    import xml.etree.ElementTree as ET
+
+    from fmpy.ssp.ssd import read_ssd
+
+    ns = {"ssd": ssp.SSD_NS, "ssc": ssp.SSC_NS,
+          "oms": "https://raw.githubusercontent.com/OpenModelica/OMSimulator/master/schema/oms.xsd"}
+    for path, step in [(ssp_system[0], H),
+                       (ssp.write_ssp(tmp_path / "n.ssp", *fmus, {"n": 3}, {}, FLOOR, 0.0025, forces="negated"),
+                        0.0025)]:
+        root = ET.fromstring(ssp.ssd_text(path))
+        annotations = root.findall("ssd:System/ssd:Annotations/ssc:Annotation", ns)
+        assert [a.get("type") for a in annotations] == ["org.openmodelica"], path
+        masters = annotations[0].findall("oms:Annotations/oms:SimulationInformation/oms:FixedStepMaster", ns)
+        assert len(masters) == 1, path
+        assert masters[0].get("description") == "oms-ma"
+        assert float(masters[0].get("stepSize")) == step
+        assert 0.0 < float(masters[0].get("relativeTolerance")) <= 1e-6
+        ssd = read_ssd(str(path), validate=True)  # raises on a schema violation
+        assert [e.name for e in ssd.system.elements] == ["frame", "block"]
+        assert len(ssd.system.connections) == 6
+
+
 def test_the_container_refuses_a_sign_it_cannot_apply_unless_told_how(fmus, tmp_path):
     negated = ssp.write_ssp(tmp_path / "n.ssp", *fmus, {"n": 3}, {}, FLOOR, H, forces="negated")
     with pytest.raises(ValueError, match="factor -1.0"):

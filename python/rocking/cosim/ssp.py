@@ -13,7 +13,9 @@ values as they are couples them right) and every parameter value as an
 inline ParameterSet (ssv) in each component's ParameterBindings. With
 `forces="negated"` it connects `block.Fx`, `block.Fz` with a
 LinearTransformation of factor -1 instead, the standard's way of saying "the
-opposite" (the form for a block FMU without the support outputs).
+opposite" (the form for a block FMU without the support outputs). The system
+carries OMSimulator's vendor annotation (its master and step), which
+OMSimulator needs to import the file and other readers skip.
 
 `container_from_ssp` reads that description with fmpy's SSD parser (an
 independent reader of the standard) and hands components, connections and
@@ -35,6 +37,15 @@ from xml.sax.saxutils import quoteattr
 SSD_NS = "http://ssp-standard.org/SSP1/SystemStructureDescription"
 SSC_NS = "http://ssp-standard.org/SSP1/SystemStructureCommon"
 SSV_NS = "http://ssp-standard.org/SSP1/SystemStructureParameterValues"
+#: OMSimulator's vendor annotation: its type, and the namespace OMSimulator writes for its elements
+#: (an identifier: OMSimulator matches the prefix "oms:", nothing fetches the address).
+OMS_ANNOTATION = "org.openmodelica"
+OMS_NS = "https://raw.githubusercontent.com/OpenModelica/OMSimulator/master/schema/oms.xsd"
+#: The relative tolerance OMSimulator reads from the annotation: it passes it to every FMU's
+#: fmi2SetupExperiment as defined (0 when absent, which ShearFrame refuses), and it is the tolerance
+#: of its solver of the algebraic loop frame.a -> block.ag -> block.FxSupport -> frame.Fx. 1e-9 is
+#: the FMUs' own default (their DefaultExperiment), so they integrate as in any other host.
+OMS_TOLERANCE = 1e-9
 
 
 def _value(name, value):
@@ -73,6 +84,29 @@ def _connection(start, sconn, end, econn, factor=None):
             "    </ssd:Connection>"]
 
 
+def _openmodelica_annotation(step):
+    """The system's vendor annotation OMSimulator needs to import the file.
+
+    OMSimulator's SSD import takes the kind of a system (weakly coupled
+    co-simulation, or strongly coupled Model Exchange) and its master from
+    this annotation only; without it the import stops with "Unable to add
+    System". The master "oms-ma" is its fixed-step one, at the step `step`
+    (s; without it OMSimulator does not advance), with the tolerance
+    OMS_TOLERANCE. Other readers skip the annotation (the standard's
+    Annotation holds any element); docs/cosimulation-hosts.md §6.
+    """
+    return ['    <ssd:Annotations>',
+            f'      <ssc:Annotation type="{OMS_ANNOTATION}">',
+            f'        <oms:Annotations xmlns:oms="{OMS_NS}">',
+            "          <oms:SimulationInformation>",
+            f'            <oms:FixedStepMaster description="oms-ma" stepSize="{step!r}" '
+            f'relativeTolerance="{OMS_TOLERANCE!r}"/>',
+            "          </oms:SimulationInformation>",
+            "        </oms:Annotations>",
+            "      </ssc:Annotation>",
+            "    </ssd:Annotations>"]
+
+
 def system_structure(frame_parameters, block_parameters, floor, step, forces="support"):
     """The text of SystemStructure.ssd for a block on floor `floor` of the frame.
 
@@ -106,7 +140,9 @@ def system_structure(frame_parameters, block_parameters, floor, step, forces="su
     rows += _connection("block", out_z, "frame", fz, factor)
     rows += _connection("block", "theta", None, "theta")
     rows += _connection("frame", a, None, "aFloor")
-    rows += ["  </ssd:Connections>", "  </ssd:System>",
+    rows += ["  </ssd:Connections>"]
+    rows += _openmodelica_annotation(step)
+    rows += ["  </ssd:System>",
              "  <ssd:DefaultExperiment startTime=\"0.0\">",
              f'    <ssd:Annotations><ssc:Annotation type="org.rocking.step"><Step value="{step!r}"/></ssc:Annotation>'
              "</ssd:Annotations>",
