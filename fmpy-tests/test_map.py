@@ -273,3 +273,75 @@ def test_map_bad_input_is_one_line(tmp_path, args, message):
     r = _rocking("map", *args, "--out", str(tmp_path / "x"))
     assert r.returncode == 2
     assert message in r.stderr and len(r.stderr.strip().splitlines()) == 1
+
+
+def _rect_time(alpha, r, phi):
+    """Time (in 1/p) for a rigid block to rotate from rest to phi under a constant ag = r g
+    beyond uplift, by the first integral phi'^2 / 2 = p^2 F(phi),
+    F = 2 sin(phi/2) [r cos(alpha - phi/2) - sin(alpha - phi/2)], with phi = u^2 (no singularity)."""
+    from scipy.integrate import quad
+
+    def integrand(u):
+        if u == 0:
+            return 2 / math.sqrt(2 * (r * math.cos(alpha) - math.sin(alpha)))
+        F = 2 * math.sin(u * u / 2) * (r * math.cos(alpha - u * u / 2) - math.sin(alpha - u * u / 2))
+        return 2 * u / math.sqrt(2 * F)
+    return quad(integrand, 0, math.sqrt(phi), epsabs=1e-14, epsrel=1e-13, limit=200)[0]
+
+
+def rectangular_least_amplitude(alpha, w_over_p):
+    """The least a_p / (g tan alpha) of a rectangular pulse of duration pi / w_p that overturns
+    a rigid block, exact: it overturns during the pulse (phi reaches alpha by t_d), or its free
+    energy after it, phi'^2/2 + p^2 cos(alpha - phi), reaches p^2, which is
+    r (sin alpha - sin(alpha - phi_d)) >= 1 - cos alpha at phi_d = phi(t_d)."""
+    import warnings
+
+    from scipy.integrate import IntegrationWarning
+    from scipy.optimize import brentq
+    td = math.pi / w_over_p
+
+    def excess(A):
+        r = A * math.tan(alpha)
+        if _rect_time(alpha, r, alpha) <= td:
+            return 1.0
+        phid = brentq(lambda ph: _rect_time(alpha, r, ph) - td, 1e-14, alpha, xtol=1e-15, rtol=1e-14)
+        return r * (math.sin(alpha) - math.sin(alpha - phid)) - (1 - math.cos(alpha))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", IntegrationWarning)  # roundoff near u = 0, far below 1e-9
+        hi = 1.0 + 1e-6
+        while excess(hi) < 0:
+            hi *= 1.5
+        return brentq(excess, max(1 + 1e-12, hi / 1.5), hi, xtol=1e-14, rtol=1e-13)
+
+
+def test_rectangular_pulse_least_amplitude_exact(fmu):
+    """To 1e-6 relative against the first integral (the map bisected to 5e-7, 800 samples
+    per period: the ramp of the step's linear interpolation errs by O(dt^2), 9e-7 at 400)."""
+    spec = MapSpec(params=RIGID, shape="rectangular", frequencies=[2.0, 4.0, 8.0],
+                   amplitudes=list(np.geomspace(1.01, 6.0, 8)), tol=5e-7, tail=5.0, per_period=800)
+    first = first_overturning(boundaries(run_map(spec, fmu, workers=2), spec))
+    lines = []
+    for w in spec.frequencies:
+        ref = rectangular_least_amplitude(spec.scales["alpha"], w)
+        lines.append(f"w/p = {w}: map {first[w]:.8f}, first integral {ref:.8f}, diff {(first[w] - ref) / ref:+.2e}")
+    print("\n".join(lines))
+    for w in spec.frequencies:
+        ref = rectangular_least_amplitude(spec.scales["alpha"], w)
+        assert first[w] == pytest.approx(ref, rel=1e-6), "\n".join(lines)
+
+
+def test_short_rectangular_pulse_tends_to_housners_impulse_limit(fmu):
+    """A velocity impulse v = a_p t_d gives omega0 = v cos(alpha) p^2 / g; it overturns when
+    omega0^2 / 2 >= p^2 (1 - cos alpha): a_p / (g tan alpha) >= (w_p/p) sqrt(2 (1 - cos alpha))
+    / (pi sin alpha). The pulse's own duration t_d p = pi / (w_p/p) adds a gap of that order."""
+    spec = MapSpec(params=RIGID, shape="rectangular", frequencies=[100.0, 200.0, 400.0],
+                   amplitudes=list(np.geomspace(20, 200, 6)), tol=1e-5, tail=3.0, per_period=20)
+    first = first_overturning(boundaries(run_map(spec, fmu, workers=2), spec))
+    alpha = spec.scales["alpha"]
+    gaps = []
+    for w in spec.frequencies:
+        limit = w * math.sqrt(2 * (1 - math.cos(alpha))) / (math.pi * math.sin(alpha))
+        gaps.append((first[w] - limit) / limit)
+        assert 0 < gaps[-1] < math.pi / w, (w, first[w], limit)
+    print("gaps to the impulse limit:", ", ".join(f"{g:.2e}" for g in gaps))
+    assert gaps[1] == pytest.approx(gaps[0] / 2, rel=0.05) and gaps[2] == pytest.approx(gaps[1] / 2, rel=0.05)

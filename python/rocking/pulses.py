@@ -127,7 +127,9 @@ class Pulse:
         """(t, ag): the pulse sampled every T_p / per_period (s, m/s2), from 0 to its end, for
         RockingFMU.simulate(ag=...), which steps at these samples and sees their linear
         interpolation. The rectangular pulse's step down falls midway between two samples,
-        so that the ramp between them keeps the pulse's impulse a_p t_d exactly."""
+        so that the ramp between them keeps the pulse's impulse a_p t_d exactly; the ramp
+        still errs by O(dt^2) (a rigid block's least overturning amplitude by 9e-7 relative
+        at 400 samples per period, 2.4e-4 at 20: fmpy-tests/test_map.py)."""
         if self.shape == "rectangular":
             n = max(2, int(round(per_period / 2)))
             dt = self.duration / (n + 0.5)
