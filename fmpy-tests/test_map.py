@@ -345,3 +345,22 @@ def test_short_rectangular_pulse_tends_to_housners_impulse_limit(fmu):
         assert 0 < gaps[-1] < math.pi / w, (w, first[w], limit)
     print("gaps to the impulse limit:", ", ".join(f"{g:.2e}" for g in gaps))
     assert gaps[1] == pytest.approx(gaps[0] / 2, rel=0.05) and gaps[2] == pytest.approx(gaps[1] / 2, rel=0.05)
+
+
+def test_rigid_tail_skipped_by_energy_agrees_with_full_runs(fmu, rigid_map):
+    """A rigid block's tail is not run when its free energy at the pulse's end is below p^2
+    (it cannot overturn any more): the same outcomes, impacts aside, and peaks (to 1e-5,
+    sampled against the energy's) as runs through the whole tail, on the map's grid."""
+    from rocking.maps import body_scales, run_one
+    spec, runs, _ = rigid_map
+    full = MapSpec(params=RIGID, shape="one-sine", frequencies=MAP_W, amplitudes=MAP_A, tol=TOL, tail=5.0,
+                   scales=dict(body_scales(fmu, RIGID), housner=False))
+    grid = runs[runs["phase"] == "grid"]
+    assert grid["tail_skipped"].sum() >= 5
+    for r in grid.itertuples():
+        f = run_one(fmu, full, r.w, r.a)
+        assert not f["tail_skipped"]
+        assert f["overturned"] == r.overturned, (r.w, r.a)
+        if r.overturned:
+            assert f["impacts"] == r.impacts and f["t_overturn"] == pytest.approx(r.t_overturn, abs=1e-9)
+        assert f["peak_theta_over_alpha"] == pytest.approx(r.peak_theta_over_alpha, abs=1e-5)

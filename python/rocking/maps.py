@@ -82,8 +82,42 @@ def body_scales(fmu, params):
     calc = fmu.calculated(params)
     g = float(params.get("g", fmu.variables["g"].start or 9.81))
     p = math.sqrt(calc["mass"] * g * calc["R0"] / calc["IO"])
+    given = _item(fmu, params, "restitution") == "given"
+    eta = float(params.get("eta", fmu.variables["eta"].start)) if given else calc["etaHousner"]
+    # Housner's block (rigid, rocking both ways): its free energy after the pulse decides the tail
+    housner = _item(fmu, params, "interface") == "rigid" and _item(fmu, params, "restraint") in (None, "none")
     return {"p": p, "alpha": calc["alpha"], "g": g, "thetaOv": calc["thetaOv"],
-            "g_tan_alpha": g * math.tan(calc["alpha"])}
+            "g_tan_alpha": g * math.tan(calc["alpha"]), "eta": eta, "housner": housner}
+
+
+def _item(fmu, params, name):
+    """The enumeration item `name` of `params`, else the FMU's default (None if no such variable)."""
+    if name not in fmu.variables:
+        return None
+    value = params.get(name)
+    items = fmu.enumerations.get(name, {})
+    if value is None:
+        value = fmu.variables[name].start
+    if isinstance(value, str) and value in items:
+        return value
+    return next((i for i, v in items.items() if str(v) == str(value)), None)
+
+
+def free_rigid_fate(scales, theta, omega):
+    """(can overturn, peak |theta| of the free motion) of Housner's rigid block released at
+    (theta, omega) with no input: its energy omega^2/2 + p^2 cos(alpha - |theta|) is kept
+    between impacts and multiplied, above p^2 cos(alpha), by eta^2 at each; it overturns only
+    if the energy reaches p^2. The peak: of the excursion under way when it moves outward,
+    else of the next one, after the impact."""
+    p2, alpha, eta = scales["p"] ** 2, scales["alpha"], scales["eta"]
+    energy = omega ** 2 / 2 + p2 * math.cos(alpha - abs(theta))
+    outward = theta * omega > 0 or (theta == 0 and omega != 0)
+    if not outward and theta != 0:
+        energy = eta ** 2 * (energy - p2 * math.cos(alpha)) + p2 * math.cos(alpha)
+    if energy >= p2 * (1 - 1e-9):  # overturns, or too close to say: the full run decides
+        return True, math.nan
+    peak = alpha - math.acos(min(1.0, energy / p2)) if energy > p2 * math.cos(alpha) else 0.0
+    return False, max(peak, abs(theta))
 
 
 def physical(spec, w, a):
@@ -106,12 +140,29 @@ def run_one(fmu, spec, w, a):
     t, ag = pulse.samples(spec.per_period)
     t0 = time.perf_counter()
     row = dict(w=float(w), a=float(a), w_p=w_p, a_p=a_p, overturned=None, t_overturn=math.nan,
-               impacts=-1, peak_theta_over_alpha=math.nan, pulse_end=pulse.duration, error="")
+               impacts=-1, peak_theta_over_alpha=math.nan, pulse_end=pulse.duration, tail_skipped=False,
+               error="")
     try:
-        run = fmu.simulate(spec.params, ag=(t, ag), stop_time=pulse.duration + spec.tail,
-                           outputs=("thetaOverAlpha", "impacts"), loop="auto")
-        row.update(overturned=bool(run.overturned), t_overturn=run.t_overturn, impacts=run.impacts,
-                   peak_theta_over_alpha=run.peak_theta_over_alpha)
+        run = None
+        if spec.scales.get("housner") and spec.tail > 0:
+            # the pulse alone; the tail only if the free energy at its end can still overturn
+            # to the last sample (after the rectangular pulse's ramp down), where ag is 0
+            run = fmu.simulate(spec.params, ag=(t, ag), stop_time=float(t[-1]),
+                               outputs=("theta", "omega", "thetaOverAlpha", "impacts"), loop="auto")
+            if not run.overturned:
+                end = run.result[-1]
+                can, peak = free_rigid_fate(spec.scales, float(end["theta"]), float(end["omega"]))
+                if can:
+                    run = None
+                else:
+                    row.update(overturned=False, impacts=run.impacts, tail_skipped=True,
+                               peak_theta_over_alpha=max(run.peak_theta_over_alpha, peak / spec.scales["alpha"]))
+        if run is None:
+            run = fmu.simulate(spec.params, ag=(t, ag), stop_time=pulse.duration + spec.tail,
+                               outputs=("thetaOverAlpha", "impacts"), loop="auto")
+        if row["overturned"] is None:
+            row.update(overturned=bool(run.overturned), t_overturn=run.t_overturn, impacts=run.impacts,
+                       peak_theta_over_alpha=run.peak_theta_over_alpha)
     except Exception as exc:  # noqa: BLE001 - the row says what failed
         row["error"] = " ".join(str(exc).split())[:500]
     row["wall_s"] = time.perf_counter() - t0
