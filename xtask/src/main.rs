@@ -28,11 +28,13 @@ use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 mod licences;
 mod wheel;
 
+use sha2::{Digest, Sha256};
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, DateTime, ZipWriter};
 
@@ -80,8 +82,16 @@ const MODEL_IDENTIFIER: &str = ROCKING_BLOCK.identifier;
 
 type Res<T> = Result<T, String>;
 
+/// `--force`: write every archive even where its stamp says it is up to date.
+static FORCE: AtomicBool = AtomicBool::new(false);
+
 fn main() {
-    let args: Vec<String> = env::args().skip(1).collect();
+    let mut args: Vec<String> = env::args().skip(1).collect();
+    if args.first().is_some_and(|a| a != "wheel" && a != "bundle") {
+        let before = args.len();
+        args.retain(|a| a != "--force");
+        FORCE.store(args.len() != before, Ordering::Relaxed);
+    }
     let result = match args.first().map(String::as_str) {
         Some("fmu") => MODELS.iter().try_for_each(|m| package(m).map(|_| ())),
         Some("rocking-block") => package(&ROCKING_BLOCK).map(|_| ()),
@@ -110,7 +120,8 @@ fn usage() {
          tasks:\n  \
          fmu            build the release libraries for linux64 (glibc 2.17) and win64 and write\n                 \
          target/fmu/RockingBlock.fmu, target/fmu/ShearFrame.fmu (and\n                 \
-         target/release/run_direct, target/release/libfmu_stepper.so)\n  \
+         target/release/run_direct, target/release/libfmu_stepper.so); an archive\n                 \
+         whose entries and writer did not change is left as it is (--force: write it)\n  \
          rocking-block  only target/fmu/RockingBlock.fmu (and run_direct, libfmu_stepper.so)\n  \
          shear-frame    only target/fmu/ShearFrame.fmu\n  \
          crosscheck     the FMUs, then RockingBlock's FMI cross-check artefacts (FMU, input,\n                 \
@@ -392,9 +403,33 @@ fn contains(haystack: &[u8], needle: &[u8]) -> bool {
 }
 
 /// Writes the archive: sorted entries, fixed time stamps and permissions.
-fn write_fmu(path: &Path, entries: &mut [(String, Vec<u8>, u32)]) -> Res<()> {
+/// Returns false when the archive was left as it is: its stamp says it was
+/// written by this very xtask binary from the same entries, and it is still
+/// the file that was written then (`--force` writes it anyway).
+fn write_fmu(path: &Path, entries: &mut [(String, Vec<u8>, u32)]) -> Res<bool> {
+    write_archive(
+        path,
+        &stamp_path(path),
+        entries,
+        FORCE.load(Ordering::Relaxed),
+    )
+}
+
+/// [`write_fmu`] with its stamp file given.
+fn write_archive(
+    path: &Path,
+    stamp: &Path,
+    entries: &mut [(String, Vec<u8>, u32)],
+    force: bool,
+) -> Res<bool> {
     entries.sort_by(|a, b| a.0.cmp(&b.0));
-    let tmp = path.with_extension("fmu.tmp");
+    let inputs = inputs_digest(entries)?;
+    if !force && up_to_date(path, stamp, &inputs) {
+        return Ok(false);
+    }
+    // a name of this process's own: two packagings at once (two shells, a
+    // test beside the main job) would otherwise rename each other's file
+    let tmp = path.with_extension(format!("fmu.{}.tmp", std::process::id()));
     let file = fs::File::create(&tmp).map_err(|e| format!("{}: {e}", tmp.display()))?;
     let mut zip = ZipWriter::new(file);
     for (name, data, mode) in entries.iter() {
@@ -409,7 +444,73 @@ fn write_fmu(path: &Path, entries: &mut [(String, Vec<u8>, u32)]) -> Res<()> {
             .map_err(|e| format!("zip {name}: {e}"))?;
     }
     zip.finish().map_err(|e| format!("zip: {e}"))?;
-    fs::rename(&tmp, path).map_err(|e| format!("{}: {e}", path.display()))
+    fs::rename(&tmp, path).map_err(|e| format!("{}: {e}", path.display()))?;
+    // the stamp last: an archive written without one is written again next time
+    let written = hex(&Sha256::digest(read(path)?));
+    if let Some(dir) = stamp.parent() {
+        fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    fs::write(stamp, format!("inputs {inputs}\narchive {written}\n"))
+        .map_err(|e| format!("{}: {e}", stamp.display()))?;
+    Ok(true)
+}
+
+/// Where `write_fmu` records what an archive under the target directory was
+/// written from: `target/xtask-stamps/<the archive's path under target>.sha256`
+/// (outside the target directory: beside the archive).
+fn stamp_path(archive: &Path) -> PathBuf {
+    let target = target_dir();
+    let (dir, rel) = match archive.strip_prefix(&target) {
+        Ok(rel) => (target.join("xtask-stamps"), rel),
+        Err(_) => (PathBuf::new(), archive),
+    };
+    let mut name = rel.as_os_str().to_os_string();
+    name.push(".sha256");
+    dir.join(name)
+}
+
+/// SHA-256 of what decides an archive's bytes: the writer (this executable:
+/// its zip and deflate code, the options above) and every entry's name,
+/// mode and bytes, in the archive's order. The executable is named by its
+/// path, size and modification time rather than its bytes (tens of MB in
+/// the debug build `cargo xtask` runs): cargo relinks it on any change.
+fn inputs_digest(entries: &[(String, Vec<u8>, u32)]) -> Res<String> {
+    let exe = env::current_exe().map_err(|e| format!("the xtask executable: {e}"))?;
+    let meta = fs::metadata(&exe).map_err(|e| format!("{}: {e}", exe.display()))?;
+    let modified = meta
+        .modified()
+        .ok()
+        .and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok())
+        .map_or(0, |d| d.as_nanos());
+    let mut h = Sha256::new();
+    h.update(format!("{} {} {modified}\n", exe.display(), meta.len()).as_bytes());
+    for (name, data, mode) in entries {
+        h.update((name.len() as u64).to_le_bytes());
+        h.update(name.as_bytes());
+        h.update(mode.to_le_bytes());
+        h.update((data.len() as u64).to_le_bytes());
+        h.update(data);
+    }
+    Ok(hex(&h.finalize()))
+}
+
+/// Whether `stamp` names these `inputs` and the archive's present bytes.
+fn up_to_date(archive: &Path, stamp: &Path, inputs: &str) -> bool {
+    let Ok(text) = fs::read_to_string(stamp) else {
+        return false;
+    };
+    let mut lines = text.lines();
+    if lines.next() != Some(&format!("inputs {inputs}")) {
+        return false;
+    }
+    let Ok(bytes) = fs::read(archive) else {
+        return false;
+    };
+    lines.next() == Some(&format!("archive {}", hex(&Sha256::digest(bytes))))
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
 /// Builds and packages; returns the archive, the native build's products
@@ -486,16 +587,25 @@ fn package(model: &Model) -> Res<(PathBuf, Built, Vec<&'static str>)> {
     let dir = target_dir().join("fmu");
     fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let path = dir.join(format!("{}.fmu", model.identifier));
-    write_fmu(&path, &mut entries)?;
+    let status = |written| if written { "" } else { ", unchanged" };
+    let written = write_fmu(&path, &mut entries)?;
     let size = fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
-    println!("{} ({size} bytes, GUID {guid})", path.display());
+    println!(
+        "{} ({size} bytes, GUID {guid}{})",
+        path.display(),
+        status(written)
+    );
     if model.fmi3 {
         let dir3 = dir.join("fmi3");
         fs::create_dir_all(&dir3).map_err(|e| format!("{}: {e}", dir3.display()))?;
         let path3 = dir3.join(format!("{}.fmu", model.identifier));
-        write_fmu(&path3, &mut entries3)?;
+        let written = write_fmu(&path3, &mut entries3)?;
         let size = fs::metadata(&path3).map(|m| m.len()).unwrap_or(0);
-        println!("{} (FMI 3.0, {size} bytes, token {guid})", path3.display());
+        println!(
+            "{} (FMI 3.0, {size} bytes, token {guid}{})",
+            path3.display(),
+            status(written)
+        );
     }
     if let Some(r) = &built.run_direct {
         println!("{}", r.display());
@@ -624,4 +734,84 @@ fn crosscheck() -> Res<()> {
         println!("{}", other.display());
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn entries(doc: &[u8]) -> Vec<(String, Vec<u8>, u32)> {
+        vec![
+            (
+                "modelDescription.xml".into(),
+                b"<fmiModelDescription/>".to_vec(),
+                0o644,
+            ),
+            ("documentation/index.html".into(), doc.to_vec(), 0o644),
+            ("binaries/linux64/M.so".into(), vec![7; 100_000], 0o755),
+        ]
+    }
+
+    /// A scratch folder of this test's own under the target directory.
+    fn scratch(name: &str) -> PathBuf {
+        let dir = target_dir().join("xtask-test").join(name);
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn an_archive_is_written_again_exactly_when_its_inputs_or_bytes_change() {
+        let dir = scratch("stamps");
+        let (fmu, stamp) = (dir.join("M.fmu"), dir.join("M.fmu.sha256"));
+        // a full write elsewhere: the bytes every later state must equal
+        let fresh = |doc: &[u8], name: &str| {
+            let p = dir.join(name);
+            assert!(write_archive(&p, &dir.join("x.sha256"), &mut entries(doc), true).unwrap());
+            fs::read(p).unwrap()
+        };
+        assert!(write_archive(&fmu, &stamp, &mut entries(b"a"), false).unwrap());
+        assert_eq!(fs::read(&fmu).unwrap(), fresh(b"a", "a.fmu"));
+        // the same entries, in another order: left as it is
+        let mut shuffled = entries(b"a");
+        shuffled.reverse();
+        assert!(!write_archive(&fmu, &stamp, &mut shuffled, false).unwrap());
+        assert_eq!(fs::read(&fmu).unwrap(), fresh(b"a", "a2.fmu"));
+        // one entry's bytes changed: written, equal to a full write
+        assert!(write_archive(&fmu, &stamp, &mut entries(b"b"), false).unwrap());
+        assert_eq!(fs::read(&fmu).unwrap(), fresh(b"b", "b.fmu"));
+        // a mode changed
+        let mut exec = entries(b"b");
+        exec[1].2 = 0o755;
+        assert!(write_archive(&fmu, &stamp, &mut exec, false).unwrap());
+        assert!(write_archive(&fmu, &stamp, &mut entries(b"b"), false).unwrap());
+        // the archive altered behind the stamp's back: written again
+        let mut bytes = fs::read(&fmu).unwrap();
+        bytes.push(0);
+        fs::write(&fmu, bytes).unwrap();
+        assert!(write_archive(&fmu, &stamp, &mut entries(b"b"), false).unwrap());
+        assert_eq!(fs::read(&fmu).unwrap(), fresh(b"b", "b2.fmu"));
+        // the archive gone, or the stamp: written again
+        fs::remove_file(&fmu).unwrap();
+        assert!(write_archive(&fmu, &stamp, &mut entries(b"b"), false).unwrap());
+        fs::remove_file(&stamp).unwrap();
+        assert!(write_archive(&fmu, &stamp, &mut entries(b"b"), false).unwrap());
+        assert!(!write_archive(&fmu, &stamp, &mut entries(b"b"), false).unwrap());
+        // forced: written, the same bytes
+        assert!(write_archive(&fmu, &stamp, &mut entries(b"b"), true).unwrap());
+        assert_eq!(fs::read(&fmu).unwrap(), fresh(b"b", "b3.fmu"));
+    }
+
+    #[test]
+    fn the_stamps_of_the_archives_live_under_the_target_directory() {
+        let t = target_dir();
+        assert_eq!(
+            stamp_path(&t.join("fmu/fmi3/M.fmu")),
+            t.join("xtask-stamps/fmu/fmi3/M.fmu.sha256")
+        );
+        assert_eq!(
+            stamp_path(Path::new("/elsewhere/M.fmu")),
+            PathBuf::from("/elsewhere/M.fmu.sha256")
+        );
+    }
 }
