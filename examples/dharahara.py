@@ -21,13 +21,139 @@ Everything goes to one folder (default out/dharahara), named at the end.
 """
 
 import argparse
+import hashlib
+import json
 import math
+import os
 import subprocess
 import sys
+import sysconfig
 import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
+STAMP = ".dharahara-inputs.json"  # in the output folder: what its outputs were made from
+
+
+def log(msg):
+    print(msg, flush=True)
+    _LOG.append(msg)
+
+
+_LOG = []  # what this run printed: shown again by a run that finds its outputs up to date
+
+
+# --------------------------------------------------------------------------
+# 0. up to date: the outputs of the same inputs are already there
+# --------------------------------------------------------------------------
+
+def _sha256(path):
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    except OSError:
+        return "missing"
+
+
+def _target():
+    env = os.environ.get("CARGO_TARGET_DIR")
+    return REPO / env if env else REPO / "target"  # an absolute $CARGO_TARGET_DIR stays itself
+
+
+def inputs_digest(argv, fmu):
+    """SHA-256 of everything the outputs are made from: this script and its arguments, the
+    rocking package's sources, the FMU, the stepping loop, the curves' binary, the stand-in
+    record, the Python packages installed (their dist-info names carry their versions), the
+    interpreter and the environment variables the package reads. None with --record (a file
+    of the user's, read by whatever reader fits: always run)."""
+    if any(a == "--record" or a.startswith("--record=") for a in argv):
+        return None
+    import importlib.util
+    pkg = Path(importlib.util.find_spec("rocking").submodule_search_locations[0])
+    files = [Path(__file__).resolve(), *sorted(pkg.rglob("*.py")),
+             Path(fmu) if fmu else _target() / "fmu" / "RockingBlock.fmu",
+             Path(os.environ.get("ROCKING_STEPPER") or _target() / "release" / "libfmu_stepper.so"),
+             _target() / "release" / "examples" / "dharahara_curves",
+             REPO / "data" / "ground-motions" / "katnp-standin" / "KATNP_NS_standin.csv"]
+    dists = sorted({d for key in ("purelib", "platlib") if os.path.isdir(sysconfig.get_paths()[key])
+                    for d in os.listdir(sysconfig.get_paths()[key]) if d.endswith(".dist-info")})
+    env = sorted((k, v) for k, v in os.environ.items() if k.startswith(("ROCKING_", "CARGO_TARGET_DIR")))
+    what = {"argv": argv, "python": [sys.executable, sys.version], "dists": dists, "env": env,
+            "files": [[str(f), _sha256(f)] for f in files]}
+    return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()
+
+
+def _outputs(out, since):
+    """The outputs this run wrote (modified since `since`, s since the epoch): the folder may also hold
+    those of a run with other arguments."""
+    return {p.name: _sha256(p) for p in sorted(out.glob("dharahara_*")) if p.is_file() and p.stat().st_mtime >= since}
+
+
+def replay_if_unchanged(out, inputs):
+    """True (after printing the earlier run's log) when `out` holds the outputs of a run from the
+    same `inputs`, each file as that run wrote it."""
+    try:
+        stamp = json.loads((out / STAMP).read_text())
+    except (OSError, ValueError):
+        return False
+    if inputs is None or stamp.get("inputs") != inputs or not stamp.get("outputs"):
+        return False
+    if any(_sha256(out / name) != digest for name, digest in stamp["outputs"].items()):
+        return False
+    print(stamp["log"], flush=True)
+    print(f"\n(unchanged: these are the outputs and the log of the run of {stamp['when']}, made from the "
+          "same inputs: this script and its arguments, the rocking package, the FMU, the stepping loop, "
+          "the curves' binary, the record, the Python packages; --force runs it again)", flush=True)
+    return True
+
+
+def write_stamp(out, inputs, since):
+    if inputs is not None:
+        (out / STAMP).write_text(json.dumps({
+            "inputs": inputs, "when": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "outputs": _outputs(out, since),
+            "log": "\n".join(_LOG)}, indent=1))
+
+
+def build_curves():
+    """The curves' binary, built (as `cargo run` would) before its digest is taken."""
+    subprocess.run(["cargo", "build", "--release", "--quiet", "--example", "dharahara_curves"], cwd=REPO,
+                   check=True)
+
+
+def parser():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", default=str(REPO / "out" / "dharahara"), help="output folder (default out/dharahara)")
+    ap.add_argument("--record", help="the real KATNP record (e.g. the CESMD file) instead of the stand-in")
+    ap.add_argument("--component", help="component of --record to use (default: the north-south one)")
+    ap.add_argument("--workers", type=int, default=2, help="worker processes for the FMU runs (default 2)")
+    ap.add_argument("--fmu", default=None, help="the FMU (default target/fmu/RockingBlock.fmu)")
+    ap.add_argument("--stop-time", type=float, default=None, help="end of the time histories (default: the record's)")
+    ap.add_argument("--scales", default="0.99,1.01,1.5,2",
+                    help="scale factors of the scale study (default 0.99,1.01,1.5,2: robustness of the unscaled "
+                         "outcomes and stronger shaking; '' to skip it)")
+    ap.add_argument("--cases", help="comma-separated case ids to simulate (default: all 49)")
+    ap.add_argument("--rtol", type=float, default=1e-11,
+                    help="the FMU's relative tolerance (default 1e-11: converged outcomes, see docs/dharahara.md; "
+                         "the FMU's own default is looser)")
+    ap.add_argument("--hg", type=float, help="height of G, m, instead of R0 cos(alpha) = 30.20 (sensitivity)")
+    ap.add_argument("--ic", type=float, help="inertia about G, kg m2, instead of the hollow cylinder of height 2 hG")
+    ap.add_argument("--curves-only", action="store_true", help="moment-rotation curves only (no FMU)")
+    ap.add_argument("--force", action="store_true",
+                    help="run even when the output folder holds the outputs of the same inputs")
+    return ap
+
+
+def unchanged(argv):
+    """Whether the outputs are up to date (their log printed again), and the inputs' digest."""
+    args, _ = parser().parse_known_args(argv)
+    build_curves()
+    inputs = inputs_digest([a for a in argv if a != "--force"], args.fmu)
+    return (not args.force and replay_if_unchanged(Path(args.out).resolve(), inputs)), inputs
+
+
+if __name__ == "__main__":
+    _UNCHANGED, _INPUTS = unchanged(sys.argv[1:])
+    if _UNCHANGED:
+        sys.exit(0)
 
 import matplotlib  # noqa: E402
 
@@ -43,10 +169,6 @@ from rocking.cases import (FM_MPA, FOUNDATION_KN_MPA, HG, INTERFACE_KN_GPA,  # n
 
 STANDIN_LABEL = "KATNP N-S SYNTHETIC STAND-IN, not the real record"
 FM_COLORS = {2: "C3", 5: "C1", 15: "C2", math.inf: "C0"}
-
-
-def log(msg):
-    print(msg, flush=True)
 
 
 def fm_text(fm_pa):
@@ -425,28 +547,13 @@ def write_markdown(out, mr, th, study, claim_rows, rec_label, standin):
 
 # --------------------------------------------------------------------------
 
-def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", default=str(REPO / "out" / "dharahara"), help="output folder (default out/dharahara)")
-    ap.add_argument("--record", help="the real KATNP record (e.g. the CESMD file) instead of the stand-in")
-    ap.add_argument("--component", help="component of --record to use (default: the north-south one)")
-    ap.add_argument("--workers", type=int, default=2, help="worker processes for the FMU runs (default 2)")
-    ap.add_argument("--fmu", default=None, help="the FMU (default target/fmu/RockingBlock.fmu)")
-    ap.add_argument("--stop-time", type=float, default=None, help="end of the time histories (default: the record's)")
-    ap.add_argument("--scales", default="0.99,1.01,1.5,2",
-                    help="scale factors of the scale study (default 0.99,1.01,1.5,2: robustness of the unscaled "
-                         "outcomes and stronger shaking; '' to skip it)")
-    ap.add_argument("--cases", help="comma-separated case ids to simulate (default: all 49)")
-    ap.add_argument("--rtol", type=float, default=1e-11,
-                    help="the FMU's relative tolerance (default 1e-11: converged outcomes, see docs/dharahara.md; "
-                         "the FMU's own default is looser)")
-    ap.add_argument("--hg", type=float, help="height of G, m, instead of R0 cos(alpha) = 30.20 (sensitivity)")
-    ap.add_argument("--ic", type=float, help="inertia about G, kg m2, instead of the hollow cylinder of height 2 hG")
-    ap.add_argument("--curves-only", action="store_true", help="moment-rotation curves only (no FMU)")
-    args = ap.parse_args(argv)
-    t_start = time.perf_counter()
+def main(argv=None, inputs=None):
+    """The study; `inputs` (the digest of `inputs_digest`) is written beside the outputs at the end."""
+    args = parser().parse_args(argv)
+    t_start, since = time.perf_counter(), time.time() - 1  # mtimes may lag the clock by a tick
     out = Path(args.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
+    (out / STAMP).unlink(missing_ok=True)
 
     th = study = None
     standin = args.record is None
@@ -530,7 +637,8 @@ def main(argv=None):
         log(f"  - {claim}\n      paper: {paper}\n      ours:  {ours}")
     write_markdown(out, mr, th, study, rows, rec_label if th is not None else None, standin)
     log(f"\nall outputs in {out}  ({time.perf_counter() - t_start:.1f} s)")
+    write_stamp(out, inputs, since)
 
 
 if __name__ == "__main__":
-    main()
+    main(inputs=_INPUTS)

@@ -195,3 +195,27 @@ def test_dharahara_script_takes_a_real_record(tmp_path):
     text = (out / "dharahara_summary.csv").read_text()
     assert "0111a.smc" in text and "STAND-IN" not in text.upper()
     assert "Loma Prieta" in stdout
+
+
+def test_dharahara_script_runs_again_exactly_when_an_input_or_output_changed(tmp_path):
+    out = tmp_path / "dh"
+    args = ["examples/dharahara.py", "--out", str(out), "--cases", "rigid", "--stop-time", "1", "--workers", "1",
+            "--scales", ""]
+    first = run_script(args)
+    files = {p.name: p.read_bytes() for p in out.glob("dharahara_*")}
+    stamps = {p.name: p.stat().st_mtime_ns for p in out.glob("dharahara_*")}
+    # the same inputs: the earlier log, no file written
+    again = run_script(args)
+    assert "unchanged" in again and again.startswith(first.rstrip("\n"))
+    assert {p.name: p.stat().st_mtime_ns for p in out.glob("dharahara_*")} == stamps
+    # another argument, an output altered or removed, --force: run (the same bytes where the inputs are)
+    assert "unchanged" not in run_script(args[:-2] + ["--scales", "2"])
+    assert "unchanged" not in run_script(args)
+    (out / "dharahara_claims.csv").write_text("altered")
+    assert "unchanged" not in run_script(args)
+    (out / "dharahara_results.md").unlink()
+    assert "unchanged" not in run_script(args)
+    assert "unchanged" not in run_script(args + ["--force"])
+    assert "unchanged" in run_script(args)
+    timing = ("dharahara_summary.csv", "dharahara_results.md", "dharahara_mr_log.txt")
+    assert all((out / n).read_bytes() == b for n, b in files.items() if n not in timing)
