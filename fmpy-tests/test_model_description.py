@@ -46,6 +46,7 @@ def test_archive_layout_is_reproducible(fmu_path):
     assert [n for n in names if n != "binaries/win64/RockingBlock.dll"] == [
         "binaries/linux64/RockingBlock.so",
         "documentation/index.html",
+        "documentation/licenses/license.txt",  # the crates linked in (xtask/src/licences.rs)
         "modelDescription.xml",
     ]
     assert all(i.date_time == (1980, 1, 1, 0, 0, 0) for i in infos)
