@@ -364,3 +364,41 @@ def test_rigid_tail_skipped_by_energy_agrees_with_full_runs(fmu, rigid_map):
         if r.overturned:
             assert f["impacts"] == r.impacts and f["t_overturn"] == pytest.approx(r.t_overturn, abs=1e-9)
         assert f["peak_theta_over_alpha"] == pytest.approx(r.peak_theta_over_alpha, abs=1e-5)
+
+
+def test_boundaries_against_a_dense_grid_on_random_bodies(fmu):
+    """Random rigid bodies and pulses: the map (12 amplitudes, bisected to 1e-3) against 300
+    runs per frequency. Every dense run's outcome (overturns or not) is what the map's
+    intervals say, except next to a map boundary (within one dense step) or inside a window
+    (of overturning or of safety) narrower than the map's grid step, which a grid cannot see."""
+    from rocking.maps import run_one
+    rng = np.random.default_rng(34)
+    coarse, dense = np.geomspace(1.05, 20, 14), np.geomspace(1.05, 20, 300)
+    coarse_step = coarse[1] / coarse[0] - 1
+    report = []
+    for shape in ("one-cosine", "ricker", "ricker-antisymmetric"):
+        alpha, H = rng.uniform(0.12, 0.3), rng.uniform(1.0, 5.0)
+        body = dict(RIGID, B=H * math.tan(alpha), H=H)
+        ws = sorted(rng.uniform(0.8, 4.0, 2).round(3))
+        spec = MapSpec(params=body, shape=shape, frequencies=ws, amplitudes=list(coarse), tol=TOL, tail=5.0)
+        bounds = boundaries(run_map(spec, fmu, workers=2), spec)
+        for w in ws:
+            iv = bounds[bounds["w"] == w]
+            edges = np.concatenate([iv["start"], iv["end"][np.isfinite(iv["end"])]])
+            said = np.array([((iv["start"] <= a) & (a <= iv["end"])).any() for a in dense])
+            got = np.array([bool(run_one(fmu, spec, w, a)["overturned"]) for a in dense])
+            bad = np.flatnonzero(said != got)
+            # runs of consecutive disagreements, each explained or not
+            for group in np.split(bad, np.flatnonzero(np.diff(bad) > 1) + 1) if bad.size else []:
+                lo, hi = dense[max(group[0] - 1, 0)], dense[min(group[-1] + 1, len(dense) - 1)]
+                near_edge = len(group) <= 2 and any(lo <= e <= hi for e in edges)
+                # an island of the dense runs (a window) the grid stepped over
+                inside = set(got[group])
+                island = (len(inside) == 1 and 0 < group[0] and group[-1] + 1 < len(dense)
+                          and got[group[0] - 1] != got[group[0]] and got[group[-1] + 1] != got[group[0]])
+                narrow = island and hi / lo - 1 < coarse_step
+                assert near_edge or narrow, (shape, alpha, H, w, dense[group])
+            report.append(f"{shape} alpha {alpha:.3f} H {H:.2f} w/p {w}: {len(iv)} interval(s), "
+                          f"{bad.size} of 300 dense runs differ (next to a boundary or in a window "
+                          f"narrower than the grid's step)")
+    print("\n".join(report))

@@ -290,7 +290,10 @@ def boundaries(runs, spec):
             k += 1
     columns = ["w", "w_p", "w_p_over_p", "start", "end", "a_from_lo", "a_from_hi", "a_to_lo", "a_to_hi",
                "mode_at_start", "modes", "impacts_at_start", "below_grid", "above_grid", "unresolved"]
-    return pd.DataFrame(out, columns=columns)
+    table = pd.DataFrame(out, columns=columns)
+    numbers = ["w", "w_p", "w_p_over_p", "start", "end", "a_from_lo", "a_from_hi", "a_to_lo", "a_to_hi"]
+    return table.astype({**{c: float for c in numbers}, "impacts_at_start": int, "below_grid": bool,
+                         "above_grid": bool, "mode_at_start": str, "modes": str, "unresolved": str})
 
 
 def mode_changes(runs):
