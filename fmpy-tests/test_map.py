@@ -402,3 +402,23 @@ def test_boundaries_against_a_dense_grid_on_random_bodies(fmu):
                           f"{bad.size} of 300 dense runs differ (next to a boundary or in a window "
                           f"narrower than the grid's step)")
     print("\n".join(report))
+
+
+def test_similarity_on_flexible_beds_elastic_keeps_it_crushing_breaks_it(fmu):
+    """Scaled 3 times with the same bed, a no-tension Winkler bed keeps the dimensionless map
+    (stress and closure grow as the size, so the uplift rotation does not change, and the
+    bed's frequency squared falls as p^2 does); a crushing bed of the same strength fm does
+    not (the stress grows, fm does not): measured, at w_p/p = 5, -44 %."""
+    first = {}
+    for interface, extra in (("elastic", {}), ("elastoPlastic", {"fm": 2e5})):
+        for scale in (1, 3):
+            body = dict(RIGID, B=0.4 * scale, H=2.0 * scale, interface=interface, kn=1e9, **extra)
+            spec = MapSpec(params=body, shape="one-sine", frequencies=[3.0, 5.0], amplitudes=MAP_A, tol=TOL,
+                           tail=5.0 * math.sqrt(scale), dimensionless=True)
+            first[interface, scale] = first_overturning(boundaries(run_map(spec, fmu, workers=2), spec))
+    for w in (3.0, 5.0):
+        assert first["elastic", 3][w] == pytest.approx(first["elastic", 1][w], rel=TOL)
+    change = first["elastoPlastic", 3][5.0] / first["elastoPlastic", 1][5.0] - 1
+    print(f"crushing bed fm = 0.2 MPa, 3 times larger: least overturning a_p/(g tan alpha) at w_p/p = 5 "
+          f"{first['elastoPlastic', 1][5.0]:.4f} -> {first['elastoPlastic', 3][5.0]:.4f} ({change:+.1%})")
+    assert change < -0.2
