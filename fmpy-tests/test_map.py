@@ -422,3 +422,21 @@ def test_similarity_on_flexible_beds_elastic_keeps_it_crushing_breaks_it(fmu):
     print(f"crushing bed fm = 0.2 MPa, 3 times larger: least overturning a_p/(g tan alpha) at w_p/p = 5 "
           f"{first['elastoPlastic', 1][5.0]:.4f} -> {first['elastoPlastic', 3][5.0]:.4f} ({change:+.1%})")
     assert change < -0.2
+
+
+def test_map_cli_user_pulse_and_a_file_without_a_pulse(tmp_path, fmu_path):
+    import pandas as pd
+    good, empty = tmp_path / "half-sine.csv", tmp_path / "flat.csv"
+    tau = np.linspace(0, 0.5, 51)
+    good.write_text("tau,value\n" + "".join(f"{t},{math.sin(2 * math.pi * t)}\n" for t in tau))
+    empty.write_text("tau,value\n0,0\n0.5,0\n")
+    body = ["--fmu", fmu_path, "--shape", "solidRectangle", "--B", "0.4", "--H", "2", "--interface", "rigid",
+            "--frequencies", "3", "--amplitudes", "1,3", "--workers", "1", "--quiet", "--no-plot"]
+    r = _rocking("map", *body, "--pulse", "user", "--pulse-file", str(good), "--out", str(tmp_path / "u"))
+    assert r.returncode == 0, r.stderr
+    runs = pd.read_parquet(tmp_path / "u" / "runs.parquet")
+    # the pulse lasts tau_end T_p = 0.5 T_p
+    assert runs["pulse_end"].iloc[0] == pytest.approx(0.5 * 2 * math.pi / runs["w_p"].iloc[0])
+    assert read_metadata(tmp_path / "u" / "runs.parquet")["user"][0][-1] == 0.5
+    r = _rocking("map", *body, "--pulse", "user", "--pulse-file", str(empty), "--out", str(tmp_path / "e"))
+    assert r.returncode == 2 and "flat.csv: no pulse" in r.stderr and len(r.stderr.strip().splitlines()) == 1
