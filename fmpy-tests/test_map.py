@@ -440,3 +440,24 @@ def test_map_cli_user_pulse_and_a_file_without_a_pulse(tmp_path, fmu_path):
     assert read_metadata(tmp_path / "u" / "runs.parquet")["user"][0][-1] == 0.5
     r = _rocking("map", *body, "--pulse", "user", "--pulse-file", str(empty), "--out", str(tmp_path / "e"))
     assert r.returncode == 2 and "flat.csv: no pulse" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+
+
+def test_map_cli_beside_maps_variants_of_the_body(tmp_path, fmu_path):
+    """--beside: the body with parameters changed, its rows labelled, its parameters (and those
+    the body's interface left out, here kn) in the metadata, one panel each."""
+    import pandas as pd
+    out = tmp_path / "b"
+    r = _rocking("map", "--fmu", fmu_path, "--shape", "solidRectangle", "--B", "0.4", "--H", "2",
+                 "--interface", "rigid", "--kn", "1e9", "--dimensionless", "--beside", "interface=elastic",
+                 "--frequencies", "2,4", "--amplitudes", "1:4:3", "--tail", "3", "--workers", "1", "--quiet",
+                 "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    runs = pd.read_parquet(out / "runs.parquet")
+    assert set(runs["body"]) == {"body", "interface=elastic"}
+    meta = read_metadata(out / "runs.parquet")
+    assert meta["bodies"]["interface=elastic"]["params"]["kn"] == 1e9
+    assert "kn" not in meta["bodies"]["body"]["params"]
+    assert meta["bodies"]["interface=elastic"]["scales"]["thetaOv"] < meta["bodies"]["body"]["scales"]["thetaOv"]
+    bad = _rocking("map", "--fmu", fmu_path, "--beside", "interface", "--frequencies", "2", "--amplitudes", "1",
+                   "--out", str(tmp_path / "x"))
+    assert bad.returncode == 2 and "--beside 'interface': expected NAME=VALUE" in bad.stderr

@@ -79,17 +79,22 @@ def cmd_map(args, params_given):
         except ValueError as exc:
             raise CLIError(str(exc)) from None
         spec.scales = maps.body_scales(fmu, params)
-        runs_done = [0]
-        with tqdm(total=len(freqs), unit="frequency", desc="map", file=sys.stderr, dynamic_ncols=True,
-                  disable=args.quiet) as bar:
-            def progress(done, total, rows):
-                runs_done[0] += len(rows)
-                bar.set_postfix(runs=runs_done[0], refresh=False)
-                bar.update(1)
-            runs = maps.run_map(spec, fmu, workers=args.workers, progress=progress)
+        # a variant starts from every parameter given, also those the body's interface does not use
+        given = dict(params, **{name: v["value"] for name, v in ignored.items()})
+        bodies = [("body", spec)] + [(text, _variant(fmu, spec, given, text, maps)) for text in args.beside or []]
+        tables = []
+        for label, sp in bodies:
+            runs_done = [0]
+            with tqdm(total=len(freqs), unit="frequency", desc=f"map {label}", file=sys.stderr,
+                      dynamic_ncols=True, disable=args.quiet) as bar:
+                def progress(done, total, rows):
+                    runs_done[0] += len(rows)
+                    bar.set_postfix(runs=runs_done[0], refresh=False)
+                    bar.update(1)
+                runs = maps.run_map(sp, fmu, workers=args.workers, progress=progress)
+            tables.append((label, sp, runs, maps.boundaries(runs, sp)))
         guid = fmu.model_description.guid
     wall = time.perf_counter() - t0
-    bounds = maps.boundaries(runs, spec)
     try:
         package = version("rocking")
     except PackageNotFoundError:
@@ -99,16 +104,23 @@ def cmd_map(args, params_given):
                                 "rocking_version": package, "commit": paths.build_info()["commit"],
                                 "overturning": "the FMU's output overturned (|theta| reached thetaOv) at any "
                                                "time of the pulse or its tail; how: impacts before it"})
+    if len(tables) > 1:
+        meta["bodies"] = {label: {"params": sp.params, "scales": sp.scales} for label, sp, _, _ in tables}
+    runs = pd_concat([t[2].assign(body=t[0]) for t in tables])
+    bounds = pd_concat([t[3].assign(body=t[0]) for t in tables])
     out.mkdir(parents=True, exist_ok=True)
     maps.write_parquet(runs, out / "runs.parquet", meta)
     maps.write_parquet(bounds, out / "boundaries.parquet", meta)
     if not args.no_plot:
-        plot_map(out / "map.png", runs, bounds, spec, meta)
+        plot_map(out / "map.png", tables, meta)
     errors = int((runs["error"] != "").sum())
     unresolved = int((bounds["unresolved"] != "").sum())
     units = meta["units"]
-    print(f"body        p = {spec.scales['p']:.5g} rad/s, alpha = {spec.scales['alpha']:.5g} rad, "
-          f"g tan alpha = {spec.scales['g_tan_alpha']:.5g} m/s2 ({interface} interface)")
+    for label, sp, _, _ in tables:
+        name = sp.params.get("interface", interface)
+        print(f"{label:<11} p = {sp.scales['p']:.5g} rad/s, alpha = {sp.scales['alpha']:.5g} rad, "
+              f"g tan alpha = {sp.scales['g_tan_alpha']:.5g} m/s2, thetaOv = {sp.scales['thetaOv']:.5g} rad "
+              f"({name} interface)")
     print(f"grid        {len(freqs)} frequencies ({units['w']}) x {len(amps)} amplitudes ({units['a']}), "
           f"{args.pulse} pulse, boundaries to {args.tol:g} relative")
     print(f"runs        {len(runs)} in {wall:.1f} s ({len(runs) / wall:.1f} runs/s)"
@@ -120,15 +132,62 @@ def cmd_map(args, params_given):
     return 0
 
 
-def plot_map(path, runs, bounds, spec, meta):
-    """Regions by outcome (the grid's and bisection's runs as cells) and the boundaries."""
-    import numpy as np
+def pd_concat(frames):
+    import pandas as pd
+    return pd.concat(frames, ignore_index=True)
 
+
+def _variant(fmu, spec, given, text, maps):
+    """The map of --beside NAME=VALUE[,NAME=VALUE...]: the body with those parameters changed
+    (those the changed enumerations no longer use left out), the same grid in the same units."""
+    import dataclasses
+
+    from .common import check_parameter, drop_unused
+    changed = {}
+    for item in text.split(","):
+        name, eq, value = item.partition("=")
+        if not eq or not name.strip():
+            raise CLIError(f"--beside {text!r}: expected NAME=VALUE[,NAME=VALUE...], e.g. interface=elastic,kn=2e9")
+        changed[name.strip()] = check_parameter(fmu, name.strip(), value.strip(), f"--beside {text}: {name.strip()}")
+    params = dict(given, **changed)
+    drop_unused(fmu, params)
+    variant = dataclasses.replace(spec, params=params, scales={})
+    variant.scales = maps.body_scales(fmu, params)
+    return variant
+
+
+def plot_map(path, tables, meta):
+    """One panel per body [(label, spec, runs, boundaries)]: regions by outcome (the grid's
+    runs as cells) and the boundaries."""
     from .plots import _pyplot
     plt = _pyplot()
-    from ..maps import AFTER_IMPACTS, NO_IMPACT, OUTCOMES, SAFE
+    n = len(tables)
+    fig, axes = plt.subplots(1, n, figsize=(6.4 if n == 1 else 4.2 * n, 4.8), sharex=True, sharey=True,
+                             squeeze=False)
+    for k, (ax, (label, spec, runs, bounds)) in enumerate(zip(axes[0], tables)):
+        handles, labels = _panel(ax, spec, runs, bounds)
+        if n > 1:
+            ax.set_title(label if label != "body" else f"body: interface={meta['interface']}", fontsize=9)
+        ax.text(0.98, 0.03, f"{spec.shape} pulse\nalpha = {spec.scales['alpha']:.3g} rad, "
+                f"p = {spec.scales['p']:.3g} rad/s\nthetaOv = {spec.scales['thetaOv']:.3g} rad",
+                transform=ax.transAxes, ha="right", va="bottom", fontsize=7)
+        ax.set_xlabel(meta["units"]["w"] if spec.dimensionless else "w_p (rad/s)")
+        if k == 0:
+            ax.set_ylabel(meta["units"]["a"] if spec.dimensionless else "a_p (m/s2)")
+    fig.legend(handles, labels, loc="upper center", ncol=3 if n > 1 else 2, fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0, 1, 0.86 if n > 1 else 0.84))
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def _panel(ax, spec, runs, bounds):
+    import numpy as np
+    from matplotlib.colors import ListedColormap
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    from ..maps import AFTER_IMPACTS, NO_IMPACT, OUTCOMES, SAFE, mode_changes
     colors = {SAFE: "#dddddd", NO_IMPACT: "#d62728", AFTER_IMPACTS: "#ff9f40"}
-    fig, ax = plt.subplots(figsize=(6.4, 4.8))
     grid = runs[runs["phase"] == "grid"]
     classes = np.where(~grid["overturned"].fillna(False).astype(bool), SAFE,
                        np.where(grid["impacts"] == 0, NO_IMPACT, AFTER_IMPACTS))
@@ -137,34 +196,25 @@ def plot_map(path, runs, bounds, spec, meta):
         cell = np.full((len(as_), len(ws)), np.nan)
         for w, a, c in zip(grid["w"], grid["a"], classes):
             cell[np.searchsorted(as_, a), np.searchsorted(ws, w)] = c
-        from matplotlib.colors import ListedColormap
         ax.pcolormesh(ws, as_, cell, cmap=ListedColormap([colors[k] for k in (SAFE, NO_IMPACT, AFTER_IMPACTS)]),
                       vmin=-0.5, vmax=2.5, shading="nearest")
     else:
         ax.scatter(grid["w"], grid["a"], c=[colors[c] for c in classes], s=30, marker="s")
-    for k, (_, g) in enumerate(bounds.groupby(bounds.groupby("w").cumcount())):
+    for _, g in bounds.groupby(bounds.groupby("w").cumcount()):
         g = g.sort_values("w")
-        ax.plot(g["w"], g["start"], "k-", lw=1.2, label="overturning begins" if k == 0 else None)
+        ax.plot(g["w"], g["start"], "k-", lw=1.2)
         finite = g[np.isfinite(g["end"])]
         if len(finite):
-            ax.plot(finite["w"], finite["end"], "k--", lw=1.0, label="safe window above" if k == 0 else None)
-    from ..maps import mode_changes
+            ax.plot(finite["w"], finite["end"], "k--", lw=1.0)
     modes = mode_changes(runs)
     if len(modes):
-        ax.plot(modes["w"], 0.5 * (modes["a_lo"] + modes["a_hi"]), "k:", lw=1.0,
-                label="mode changes (no safe run between)")
-    from matplotlib.patches import Patch
-    handles, labels = ax.get_legend_handles_labels()
+        ax.plot(modes["w"], 0.5 * (modes["a_lo"] + modes["a_hi"]), "k:", lw=1.0)
+    handles = [Line2D([], [], color="k", lw=1.2), Line2D([], [], color="k", lw=1.0, ls="--"),
+               Line2D([], [], color="k", lw=1.0, ls=":")]
+    labels = ["overturning begins", "safe window above", "mode changes (no safe run between)"]
     handles += [Patch(color=colors[c]) for c in (SAFE, NO_IMPACT, AFTER_IMPACTS)]
     labels += [OUTCOMES[c] for c in (SAFE, NO_IMPACT, AFTER_IMPACTS)]
-    ax.legend(handles, labels, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=2, fontsize=8, frameon=False)
-    ax.set_xlabel(meta["units"]["w"] if spec.dimensionless else "w_p (rad/s)")
-    ax.set_ylabel(meta["units"]["a"] if spec.dimensionless else "a_p (m/s2)")
-    ax.text(0.98, 0.03, f"{spec.shape} pulse\nalpha = {spec.scales['alpha']:.3g} rad, p = {spec.scales['p']:.3g} rad/s",
-            transform=ax.transAxes, ha="right", va="bottom", fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    return handles, labels
 
 
 def register(sub, common):
@@ -203,6 +253,10 @@ def register(sub, common):
                        help="grid in w_p/p and a_p/(g tan alpha) (default for a rigid interface)")
     units.add_argument("--dimensional", dest="dimensionless", action="store_false",
                        help="grid in rad/s and m/s2 (default for a flexible interface)")
+    p.add_argument("--beside", action="append", metavar="NAME=VALUE[,...]",
+                   help="also map the body with these parameters changed, in a panel beside it and as "
+                        "rows of body NAME=VALUE in the tables (repeatable), e.g. --beside interface=rigid "
+                        "--beside interface=elastic; the same grid and units")
     p.add_argument("--tol", type=float, default=1e-3, help="relative width of each boundary's bracket "
                    "(default 1e-3)")
     p.add_argument("--tail", type=float, default=10.0, help="s of free motion after the pulse (default 10)")
