@@ -68,7 +68,10 @@ def inputs_digest(argv, fmu):
     if any(a == "--record" or a.startswith("--record=") for a in argv):
         return None
     import importlib.util
-    pkg = Path(importlib.util.find_spec("rocking").submodule_search_locations[0])
+    spec = importlib.util.find_spec("rocking")
+    if spec is None:  # not installed: the import below says so
+        return None
+    pkg = Path(spec.submodule_search_locations[0])
     files = [Path(__file__).resolve(), *sorted(pkg.rglob("*.py")),
              Path(fmu) if fmu else _target() / "fmu" / "RockingBlock.fmu",
              Path(os.environ.get("ROCKING_STEPPER") or _target() / "release" / "libfmu_stepper.so"),
