@@ -216,6 +216,9 @@ def test_bisection_brackets_are_within_tol_and_agree_with_the_runs(rigid_map):
         assert b.a_from_hi - b.a_from_lo <= TOL * b.a_from_hi * (1 + 1e-9)
         col = runs[runs["w"] == b.w].set_index("a")
         assert not col.loc[b.a_from_lo, "overturned"] and col.loc[b.a_from_hi, "overturned"]
+    over = runs[runs["overturned"]]
+    assert ((over["overturned_in"] == "pulse") == (over["t_overturn"] <= over["pulse_end"])).all()
+    assert set(over["overturned_in"]) == {"pulse", "tail"} and (runs[~runs["overturned"]]["overturned_in"] == "").all()
 
 
 def test_similarity_two_rigid_blocks_one_slenderness(fmu, rigid_map):

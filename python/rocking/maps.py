@@ -229,6 +229,8 @@ def run_map(spec, fmu, workers=None, progress=None):
                     progress(k, len(columns), got)
     table = pd.DataFrame(rows)
     table["outcome"] = [OUTCOMES[outcome(r)] if not r["error"] else "error" for r in rows]
+    over = table["overturned"].fillna(False).astype(bool)
+    table["overturned_in"] = np.where(over, np.where(table["t_overturn"] <= table["pulse_end"], "pulse", "tail"), "")
     table["w_p_over_p"] = table["w_p"] / spec.scales["p"]
     table["a_p_over_g_tan_alpha"] = table["a_p"] / spec.scales["g_tan_alpha"]
     table.insert(0, "shape", spec.shape)
