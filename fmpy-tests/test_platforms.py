@@ -227,6 +227,17 @@ def test_win64_imports_only_windows_system_dlls(win64_dll):
     assert "fmi2DoStep" in out  # the export table
 
 
+def test_win64_binary_carries_no_coff_symbol_table(win64_dll):
+    """Stripped (xtask): the exports are the export table; the COFF header's
+    PointerToSymbolTable and NumberOfSymbols are 0."""
+    data = open(win64_dll, "rb").read()
+    pe = struct.unpack_from("<I", data, 0x3C)[0]
+    assert data[pe:pe + 4] == b"PE\0\0"
+    assert data[pe + 12:pe + 20] == bytes(8), "a COFF symbol table"
+    out = subprocess.run([MINGW_OBJDUMP, "-p", win64_dll], capture_output=True, text=True, check=True).stdout
+    assert "fmi2GetRealOutputDerivatives" in out and "fmi3DoStep" in out
+
+
 def test_win64_binary_carries_no_link_time(win64_dll):
     """The archive is reproducible: GNU ld's PE time stamp is off (xtask)."""
     out = subprocess.run([MINGW_OBJDUMP, "-p", win64_dll], capture_output=True, text=True, check=True).stdout

@@ -346,6 +346,11 @@ fn build_platform(
     ]);
     cmd.arg(target_dir().join("platforms").join(platform));
     shipped_profile(&mut cmd);
+    if platform == "win64" {
+        // a DLL's exports are its export table: the COFF symbol table
+        // (5715 symbols) is only a debugger's, and no Windows user has ours
+        cmd.env("CARGO_PROFILE_RELEASE_STRIP", "symbols");
+    }
     let messages = cargo_messages(cmd, model)?;
     cdylib(&messages, model, extension)
         .ok_or_else(|| format!("cargo reported no {} {extension} for {target}", model.lib))
