@@ -51,7 +51,7 @@ def gather_parameters(fmu, args, params_given):
         typed[name], raw[name] = f"--{name} {value}", value
     ignored, note = drop_unused(fmu, params, typed)
     if note:
-        print(f"rocking simulate: note: {note}", file=sys.stderr)
+        print(f"rocking {getattr(args, 'command', None) or 'simulate'}: note: {note}", file=sys.stderr)
     return params, ignored, raw
 
 
