@@ -33,7 +33,7 @@ use crate::model::Formulation;
 
 use super::eom::{side_of, Eom};
 use super::events::count_crossing;
-use super::output_rates::{jet_div, jet_mul, jet_scale, Jet, OutputRates};
+use super::output_rates::{compose, jet_div, jet_mul, jet_scale, Jet, OutputRates};
 use super::{Events, GroundInput, OutOfRange, Simulator, State, VerticalInput};
 
 /// Event-indicator slots for the kinks of `af` (docs/model.md §2: `thetaJo`,
@@ -241,7 +241,7 @@ impl Simulator {
         let it = &self.model.interface;
         let c = it.contact(p[0]);
         let (af2, _) = it.second_derivatives(&c);
-        let af_w = [c.af, c.daf * p[1], af2 * p[1] * p[1] + c.daf * p[2]];
+        let af_w = compose(&[c.af, c.daf, af2], p);
         let q = jet_div(inertia(rates.af), inertia(af_w));
         let r0 = q[0].sqrt();
         let r1 = q[1] / (2.0 * r0);

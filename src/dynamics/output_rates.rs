@@ -174,7 +174,7 @@ impl Motion {
 }
 
 /// `F(phi(t))` from `F, F', F''` at `phi(t0)` and the jet of `phi`.
-fn compose(f: &[f64], p: Jet) -> Jet {
+pub(super) fn compose(f: &[f64], p: Jet) -> Jet {
     [f[0], f[1] * p[1], f[2] * p[1] * p[1] + f[1] * p[2]]
 }
 
