@@ -30,6 +30,7 @@ COMMANDS = (
     "simulate",
     "sweep",
     "map",
+    "spectrum",
     "info",
     "record",
     "ida",  # registers both `ida` and `msa`
