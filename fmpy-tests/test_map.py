@@ -357,7 +357,7 @@ def test_rigid_tail_skipped_by_energy_agrees_with_full_runs(fmu, rigid_map):
     from rocking.maps import body_scales, run_one
     spec, runs, _ = rigid_map
     full = MapSpec(params=RIGID, shape="one-sine", frequencies=MAP_W, amplitudes=MAP_A, tol=TOL, tail=5.0,
-                   scales=dict(body_scales(fmu, RIGID), housner=False))
+                   cut_tail=False, scales=body_scales(fmu, RIGID))
     grid = runs[runs["phase"] == "grid"]
     assert grid["tail_skipped"].sum() >= 5
     for r in grid.itertuples():
@@ -367,6 +367,53 @@ def test_rigid_tail_skipped_by_energy_agrees_with_full_runs(fmu, rigid_map):
         if r.overturned:
             assert f["impacts"] == r.impacts and f["t_overturn"] == pytest.approx(r.t_overturn, abs=1e-9)
         assert f["peak_theta_over_alpha"] == pytest.approx(r.peak_theta_over_alpha, abs=1e-5)
+
+
+@pytest.mark.parametrize("first_tail", [1.0, 0.02])
+@pytest.mark.parametrize("bed", [dict(interface="elastic", kn=1e9),
+                                 dict(interface="elastoPlastic", kn=1e9, fm=2e5)], ids=["elastic", "crushing"])
+def test_flexible_tail_ends_when_the_body_cannot_overturn(fmu, bed, first_tail, monkeypatch):
+    """On flexible and crushing beds (shiftingPivot) the tail ends at the first free turning
+    point or rest: the same outcomes, overturning times, impacts when overturned and peaks as
+    runs through the whole 20 s tail, on a 6 x 8 one-sine grid where some bodies overturn in
+    the tail (so a tail cut at the pulse's end fails it), with most safe runs cut short. With
+    a first tail of 0.02 periods 2 pi / p the criterion is tested at many points of each tail."""
+    import dataclasses
+
+    from rocking import maps
+    from rocking.maps import body_scales, run_one
+    monkeypatch.setattr(maps, "FIRST_TAIL", first_tail)
+    body = dict(RIGID, **bed)
+    spec = MapSpec(params=body, shape="one-sine", frequencies=[1], amplitudes=[1], tail=20.0,
+                   scales=body_scales(fmu, body))
+    full = dataclasses.replace(spec, cut_tail=False)
+    cut = in_tail = 0
+    for w in np.linspace(1.2, 8.0, 6):
+        for a in np.linspace(0.6, 6.0, 8):
+            c, f = run_one(fmu, spec, w, a), run_one(fmu, full, w, a)
+            assert not c["error"] and not f["error"]
+            assert f["tail_end"] == ("overturned" if f["overturned"] else "time")
+            assert c["overturned"] == f["overturned"], (w, a)
+            if f["overturned"]:
+                in_tail += f["t_overturn"] > f["pulse_end"]
+                assert c["tail_end"] == "overturned"
+                assert c["t_overturn"] == pytest.approx(f["t_overturn"], abs=1e-9) and c["impacts"] == f["impacts"]
+            else:
+                assert c["tail_end"] == "cannot overturn"
+                cut += c["tail_skipped"] and c["tail_run"] < 20.0
+            assert c["peak_theta_over_alpha"] == pytest.approx(f["peak_theta_over_alpha"], rel=1e-9, abs=1e-12)
+    assert in_tail >= 3 and cut >= 10, (in_tail, cut)
+
+
+def test_costa_flexible_tail_runs_to_its_stated_length(fmu):
+    """costa's free motion on a flexible bed may gain energy: its tail is not cut."""
+    from rocking.maps import body_scales, run_one
+    body = dict(RIGID, interface="elastic", kn=1e9, formulation="costa")
+    spec = MapSpec(params=body, shape="one-sine", frequencies=[1], amplitudes=[1], tail=3.0,
+                   scales=body_scales(fmu, body))
+    assert not spec.scales["conservative"]
+    row = run_one(fmu, spec, 4.0, 1.5)
+    assert row["tail_end"] in ("overturned", "time") and not row["tail_skipped"]
 
 
 def test_boundaries_against_a_dense_grid_on_random_bodies(fmu):

@@ -33,6 +33,10 @@ SAFE, NO_IMPACT, AFTER_IMPACTS = 0, 1, 2
 OUTCOMES = {SAFE: "no overturning", NO_IMPACT: "overturning without impact",
             AFTER_IMPACTS: "overturning after impacts"}
 
+#: The first length of a tail run to find where the body can no longer overturn, in periods
+#: 2 pi / p of the body; each next run's tail is twice as long, up to the stated tail.
+FIRST_TAIL = 1.0
+
 #: A bisection stops after this many runs per bracket whatever the tolerance (2^-40 of the step).
 MAX_BISECTIONS = 40
 
@@ -47,8 +51,10 @@ class MapSpec:
     amplitudes    the grid's a_p: a_p / (g tan alpha) when dimensionless, else m/s2
     dimensionless the grid in w_p / p and a_p / (g tan alpha) (p = sqrt(m g R0 / IO))
     tol           relative width to which each boundary is bisected (of the amplitude)
-    tail          s of free motion (ag = 0) after the pulse
+    tail          s of free motion (ag = 0) after the pulse, at most (cut_tail)
     per_period    samples of the pulse per period T_p
+    cut_tail      end the tail once the body can no longer overturn (docs/maps.md, "The free
+                  tail"); False: run every tail to its stated length
     """
 
     params: dict
@@ -60,6 +66,7 @@ class MapSpec:
     tail: float = 10.0
     per_period: int = 400
     user: tuple = None
+    cut_tail: bool = True
     scales: dict = field(default_factory=dict)  # p, alpha, g, thetaOv: filled by body_scales
 
     def check(self):
@@ -85,9 +92,14 @@ def body_scales(fmu, params):
     given = _item(fmu, params, "restitution") == "given"
     eta = float(params.get("eta", fmu.variables["eta"].start)) if given else calc["etaHousner"]
     # Housner's block (rigid, rocking both ways): its free energy after the pulse decides the tail
-    housner = _item(fmu, params, "interface") == "rigid" and _item(fmu, params, "restraint") in (None, "none")
+    rigid = _item(fmu, params, "interface") == "rigid"
+    housner = rigid and _item(fmu, params, "restraint") in (None, "none")
+    # free motion keeps its energy between zero crossings and loses some at each: the rigid law
+    # (both formulations are Housner's) and shiftingPivot on any bed, not costa on a flexible one
+    conservative = rigid or _item(fmu, params, "formulation") in (None, "shiftingPivot")
     return {"p": p, "alpha": calc["alpha"], "g": g, "thetaOv": calc["thetaOv"],
-            "g_tan_alpha": g * math.tan(calc["alpha"]), "eta": eta, "housner": housner}
+            "g_tan_alpha": g * math.tan(calc["alpha"]), "eta": eta, "housner": housner,
+            "conservative": conservative}
 
 
 def _item(fmu, params, name):
@@ -133,18 +145,45 @@ def outcome(row):
     return NO_IMPACT if row["impacts"] == 0 else AFTER_IMPACTS
 
 
+def settled(result, t_free):
+    """Index of the first row of `result` (time, theta, omega) at or after t_free (s, from
+    which ag = 0) where the free body is known never to overturn, else None: at rest
+    (theta = omega = 0, an equilibrium without input), or just past a turning point (omega
+    changes sign between two free rows). At a turning point |theta_t| < thetaOv, and its
+    energy V(theta_t) (V = W int_0^phi h_W, the bed's holonomic potential, largest on
+    [0, thetaOv] at thetaOv) never grows again in free motion (kept between zero crossings,
+    cut by each): the body cannot come back to thetaOv, and no later excursion exceeds
+    |theta_t|."""
+    time, theta, omega = result["time"], result["theta"], result["omega"]
+    free = np.flatnonzero(time >= t_free - 1e-12)
+    if free.size == 0:
+        return None
+    th, om = theta[free], omega[free]
+    rest = (th == 0.0) & (om == 0.0)
+    turn = np.zeros(free.size, dtype=bool)
+    turn[1:] = om[:-1] * om[1:] < 0.0
+    hit = np.flatnonzero(rest | turn)
+    return int(free[hit[0]]) if hit.size else None
+
+
 def run_one(fmu, spec, w, a):
-    """One run at grid values (w, a): a row."""
+    """One run at grid values (w, a): a row. The tail ends at spec.tail s after the pulse, or
+    once the body can no longer overturn (spec.cut_tail): for Housner's block by its energy at
+    the pulse's end (no tail run), for other bodies whose free energy cannot grow (rigid, or
+    shiftingPivot) at its first free turning point or rest (`settled`), found by running the
+    tail in lengths doubling from FIRST_TAIL 2 pi / p."""
     w_p, a_p = physical(spec, w, a)
     pulse = Pulse(spec.shape, a_p, w_p, spec.user)
     t, ag = pulse.samples(spec.per_period)
     t0 = time.perf_counter()
+    full_stop = pulse.duration + spec.tail
     row = dict(w=float(w), a=float(a), w_p=w_p, a_p=a_p, overturned=None, t_overturn=math.nan,
                impacts=-1, peak_theta_over_alpha=math.nan, pulse_end=pulse.duration, tail_skipped=False,
-               error="")
+               tail_end="", tail_run=spec.tail, error="")
+    cut = spec.cut_tail and spec.tail > 0
     try:
         run = None
-        if spec.scales.get("housner") and spec.tail > 0:
+        if cut and spec.scales.get("housner"):
             # the pulse alone; the tail only if the free energy at its end can still overturn
             # to the last sample (after the rectangular pulse's ramp down), where ag is 0
             run = fmu.simulate(spec.params, ag=(t, ag), stop_time=float(t[-1]),
@@ -156,13 +195,31 @@ def run_one(fmu, spec, w, a):
                     run = None
                 else:
                     row.update(overturned=False, impacts=run.impacts, tail_skipped=True,
+                               tail_end="cannot overturn", tail_run=0.0,
                                peak_theta_over_alpha=max(run.peak_theta_over_alpha, peak / spec.scales["alpha"]))
+        elif cut and spec.scales.get("conservative"):
+            chunk = FIRST_TAIL * 2 * math.pi / spec.scales["p"]
+            while run is None or (not run.overturned and stop < full_stop):
+                stop = min(full_stop, float(t[-1]) + chunk)
+                run = fmu.simulate(spec.params, ag=(t, ag), stop_time=stop,
+                                   outputs=("theta", "omega", "thetaOverAlpha", "impacts"), loop="auto")
+                chunk *= 2
+                if not run.overturned and settled(run.result, float(t[-1])) is not None:
+                    row.update(overturned=False, impacts=run.impacts, tail_skipped=stop < full_stop,
+                               tail_end="cannot overturn", tail_run=stop - pulse.duration,
+                               peak_theta_over_alpha=run.peak_theta_over_alpha)
+                    break
+            if row["overturned"] is None:
+                row["tail_run"] = stop - pulse.duration
         if run is None:
-            run = fmu.simulate(spec.params, ag=(t, ag), stop_time=pulse.duration + spec.tail,
+            run = fmu.simulate(spec.params, ag=(t, ag), stop_time=full_stop,
                                outputs=("thetaOverAlpha", "impacts"), loop="auto")
         if row["overturned"] is None:
             row.update(overturned=bool(run.overturned), t_overturn=run.t_overturn, impacts=run.impacts,
-                       peak_theta_over_alpha=run.peak_theta_over_alpha)
+                       peak_theta_over_alpha=run.peak_theta_over_alpha,
+                       tail_end="overturned" if run.overturned else "time")
+            if run.overturned:
+                row["tail_run"] = max(0.0, run.t_overturn - pulse.duration)
     except Exception as exc:  # noqa: BLE001 - the row says what failed
         row["error"] = " ".join(str(exc).split())[:500]
     row["wall_s"] = time.perf_counter() - t0

@@ -125,6 +125,11 @@ def cmd_map(args, params_given):
           f"{args.pulse} pulse, boundaries to {args.tol:g} relative")
     print(f"runs        {len(runs)} in {wall:.1f} s ({len(runs) / wall:.1f} runs/s)"
           + (f", {errors} FAILED (their rows' error column)" if errors else ""))
+    unsettled = int((runs["tail_end"] == "time").sum())
+    print(f"tails       {int((runs['tail_end'] == 'cannot overturn').sum())} ended where the body could no longer "
+          f"overturn, {int((runs['tail_end'] == 'overturned').sum())} by overturning"
+          + (f", {unsettled} at --tail {args.tail:g} s not settled (a longer --tail decides them)"
+             if unsettled else ""))
     print(f"intervals   {len(bounds)} overturning interval(s)"
           + (f", {unresolved} with something unresolved (their unresolved column)" if unresolved else ""))
     print(f"wrote       {out / 'runs.parquet'}, {out / 'boundaries.parquet'}"
@@ -259,7 +264,9 @@ def register(sub, common):
                         "--beside interface=elastic; the same grid and units")
     p.add_argument("--tol", type=float, default=1e-3, help="relative width of each boundary's bracket "
                    "(default 1e-3)")
-    p.add_argument("--tail", type=float, default=10.0, help="s of free motion after the pulse (default 10)")
+    p.add_argument("--tail", type=float, default=10.0,
+                   help="s of free motion after the pulse at most: a tail ends earlier once the body "
+                        "can no longer overturn (docs/maps.md) (default 10)")
     p.add_argument("--per-period", type=int, default=400, help="samples of the pulse per period (default 400)")
     p.add_argument("--workers", type=int, help="processes (default: one per core)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
