@@ -1,9 +1,16 @@
 """Intensity measures of a ground-motion record: PGA, PGV, SA(T), the averaged spectral
-acceleration AvgSA(T1-T2), and the rocking-specific dimensionless PGA / (g tan alpha) and
-PGV / (g tan alpha / p).
+acceleration AvgSA(T1-T2), the rocking-specific dimensionless PGA / (g tan alpha) and
+PGV / (g tan alpha / p), and of the record's two horizontal components together, RotDnn
+of PGA and of SA(T) (`rotd`).
 
-    im = parse("SA(1.0)")           # or "PGA", "PGV", "AvgSA(0.5-2)", "PGA/gtana", "PGV/(gtana/p)"
+    im = parse("SA(1.0)")           # or "PGA", "PGV", "AvgSA(0.5-2)", "PGA/gtana", "PGV/(gtana/p)",
+                                    # "RotD50" (of PGA), "RotD100(SA(1.0))"
     value = im.of(record, alpha=0.2, g=9.81, p=1.57)
+
+RotDnn of a Record is that of the pair of its record set (`groundmotion.pair_of`): every
+horizontal component of one set gets the same value, so a suite of components (each one
+ground motion of a planar study) is scaled set by set. The Record must be as read from its
+file (unscaled): the pair is read from the file again and checked against it.
 
 AvgSA(T1-T2) is the geometric mean of SA at 10 periods log-spaced from T1 to T2
 (Eads et al. 2015). PGV / (g tan alpha / p), p = sqrt(W R0 / IO) the body's frequency
@@ -29,6 +36,7 @@ and returns PGA for every T < 6 dt; pyRotd works in the frequency domain
 this one against the closed-form oscillator.
 """
 
+import functools
 import math
 import re
 from dataclasses import dataclass
@@ -85,12 +93,14 @@ def spectral_acceleration(acc, dt, period, zeta=ZETA):
 
 @dataclass(frozen=True)
 class IntensityMeasure:
-    """One intensity measure. kind: 'PGA', 'PGV', 'SA', 'AvgSA', 'PGA/gtana' or
-    'PGV/(gtana/p)'; period for SA, (period, period2) the range of AvgSA (s)."""
+    """One intensity measure. kind: 'PGA', 'PGV', 'SA', 'AvgSA', 'PGA/gtana',
+    'PGV/(gtana/p)' or 'RotD'; period for SA, (period, period2) the range of AvgSA (s);
+    for RotD, percentile (0-100) and period (s; 0 for PGA)."""
 
     kind: str
     period: float = math.nan
     period2: float = math.nan
+    percentile: float = math.nan
 
     @property
     def name(self):
@@ -98,11 +108,17 @@ class IntensityMeasure:
             return f"SA({self.period:g})"
         if self.kind == "AvgSA":
             return f"AvgSA({self.period:g}-{self.period2:g})"
+        if self.kind == "RotD":
+            return f"RotD{self.percentile:g}({self._rotd_of()})"
         return self.kind
+
+    def _rotd_of(self):
+        return "PGA" if self.period == 0 else f"SA({self.period:g})"
 
     @property
     def unit(self):
-        return {"PGA": "g", "PGV": "m/s", "SA": "g", "AvgSA": "g", "PGA/gtana": "-", "PGV/(gtana/p)": "-"}[self.kind]
+        return {"PGA": "g", "PGV": "m/s", "SA": "g", "AvgSA": "g", "PGA/gtana": "-", "PGV/(gtana/p)": "-",
+                "RotD": "g"}[self.kind]
 
     @property
     def label(self):
@@ -115,6 +131,9 @@ class IntensityMeasure:
             return f"SA({self.period:g} s) ({self.unit})"
         if self.kind == "AvgSA":
             return f"AvgSA({self.period:g}-{self.period2:g} s) ({self.unit})"
+        if self.kind == "RotD":
+            of = "PGA" if self.period == 0 else f"SA({self.period:g} s)"
+            return f"RotD{self.percentile:g} of {of} ({self.unit})"
         return f"{self.kind} ({self.unit})"
 
     def periods(self):
@@ -122,8 +141,12 @@ class IntensityMeasure:
         return np.geomspace(self.period, self.period2, AVGSA_PERIODS)
 
     def of(self, record, alpha=None, g=None, p=None):
-        """Value for the unscaled `record` (a groundmotion Record, acc in m/s²). alpha (rad)
-        and g (m/s², the body's) are needed for PGA/gtana, with p (rad/s) for PGV/(gtana/p)."""
+        """Value for the unscaled `record` (a groundmotion Record, acc in m/s²; for RotD also
+        a HorizontalPair). alpha (rad) and g (m/s², the body's) are needed for PGA/gtana,
+        with p (rad/s) for PGV/(gtana/p)."""
+        if self.kind == "RotD":
+            from .rotd import rotd_sa
+            return rotd_sa(_pair(record), self.period, self.percentile) / G
         if self.kind == "PGA":
             return record.pga / G
         if self.kind == "PGV":
@@ -147,11 +170,65 @@ _AVGSA = re.compile(r"AVGSA\s*\(\s*(?:T\s*=\s*)?([0-9.eE+]+)\s*(?:-|,|:|TO)\s*([
 _SA = re.compile(r"SA\s*\(?\s*(?:T\s*=\s*)?([0-9.eE+-]+)\s*s?\s*\)?$", re.IGNORECASE)
 
 
+_ROTD = re.compile(r"ROTD([0-9.]+)(?:\((.+)\))?$", re.IGNORECASE)
+
+
+def _pair(motion):
+    """The HorizontalPair of `motion`: itself, or the pair of a Record's set, whose component
+    of the Record's label must hold the Record's samples (ValueError naming the file)."""
+    from ..groundmotion.pair import HorizontalPair
+    if isinstance(motion, HorizontalPair):
+        return motion
+    pair = _pair_of_file(str(motion.source), _mtime(motion.source))
+    for rec in (pair.x, pair.y):
+        if rec.component == motion.component:
+            n = motion.npts
+            if (abs(rec.dt - motion.dt) <= 1e-9 * motion.dt and rec.npts >= n
+                    and np.array_equal(rec.acc[:n], motion.acc) and not np.any(rec.acc[n:])):
+                return pair
+            raise ValueError(f"{motion.source} [{motion.component}]: RotD needs the record as read from its "
+                             "file (it differs: scaled or resampled?)")
+    raise ValueError(f"{motion.source} [{motion.component}]: not a horizontal component of its pair "
+                     f"([{pair.x.component}], [{pair.y.component}])")
+
+
+def _mtime(path):
+    import os
+    try:
+        return os.stat(path).st_mtime_ns
+    except OSError:
+        return None
+
+
+@functools.lru_cache(maxsize=64)
+def _pair_of_file(path, mtime):
+    from ..groundmotion.pair import pair_of
+    del mtime  # part of the cache key: a file changed on disk is read again
+    return pair_of(path)
+
+
 def parse(text):
     """IntensityMeasure of 'PGA', 'PGV', 'SA(1.0)' (also 'SA1', 'sa(T=0.5s)'), 'AvgSA(0.5-2)',
-    'PGA/gtana' or 'PGV/(gtana/p)'; ValueError naming the choices otherwise."""
+    'PGA/gtana', 'PGV/(gtana/p)', 'RotD50' (of PGA, also 'RotD50(PGA)') or
+    'RotD100(SA(1.0))' (any percentile 0-100); ValueError naming the choices otherwise."""
     t = text.strip()
     key = t.upper().replace(" ", "")
+    m = _ROTD.match(key)
+    if m:
+        try:
+            pct = float(m.group(1))
+        except ValueError:
+            pct = math.nan
+        inner = IntensityMeasure("PGA") if m.group(2) is None else None
+        if inner is None:
+            try:
+                inner = parse(m.group(2))
+            except ValueError:
+                inner = None
+        if 0 <= pct <= 100 and inner is not None and inner.kind in ("PGA", "SA"):
+            return IntensityMeasure("RotD", 0.0 if inner.kind == "PGA" else inner.period, percentile=pct)
+        raise ValueError(f"intensity measure {text!r}: expected RotDnn, RotDnn(PGA) or RotDnn(SA(T)) "
+                         "with nn in [0, 100] and T > 0 in s")
     if key in ("PGA", "PGV"):
         return IntensityMeasure(key)
     if key in ("PGA/GTANA", "PGA/GTAN(ALPHA)", "PGA/(GTANALPHA)", "PGA/(GTANA)"):
@@ -175,4 +252,5 @@ def parse(text):
         if period > 0:
             return IntensityMeasure("SA", period)
     raise ValueError(f"intensity measure {text!r}: expected PGA, PGV, SA(T) with T > 0 in s, "
-                     "AvgSA(T1-T2) with 0 < T1 < T2, PGA/gtana or PGV/(gtana/p)")
+                     "AvgSA(T1-T2) with 0 < T1 < T2, PGA/gtana, PGV/(gtana/p), RotDnn (of PGA) "
+                     "or RotDnn(SA(T))")

@@ -12,7 +12,9 @@ g = 9.80665 m/s². Each Record says whether it is the vertical component
 (`rec.orientation`, `rec.vertical`, from the file's header); `components(path)` gives
 the whole record set (sibling files too) and `vertical_of(rec)` its vertical;
 `record_files(folder)` the files of a folder that may be records (`files`: caches,
-scripts and READMEs are passed over). Malformed files raise `GroundMotionFormatError` (a
+scripts and READMEs are passed over). `pair_of(path)` gives a set's two horizontal
+components (and its vertical) as one `HorizontalPair` on one time base, which
+`rotated(azimuth)` turns and `along(azimuth)` reduces to one Record (`pair`). Malformed files raise `GroundMotionFormatError` (a
 ValueError) naming the file, the line and what was expected there.
 """
 
@@ -23,6 +25,7 @@ from .files import is_record_file, record_files
 from .geonet import read_geonet_v2a
 from .katnp import DATA_DIR, STANDIN_PATH, katnp, katnp_standin
 from .nptsdt import read_npts_dt
+from .pair import HorizontalPair, bearing, pair_of
 from .peer import read_peer_at2
 from .orientation import HORIZONTAL, VERTICAL
 from .recordset import components, set_key, vertical_of, with_vertical
@@ -36,5 +39,5 @@ __all__ = [
     "canonical_unit", "detect_format", "katnp", "katnp_standin", "read", "read_all",
     "read_csmip_v2", "read_csv", "read_geonet_v2a", "read_npts_dt", "read_peer_at2",
     "read_smc", "to_m_s2", "components", "set_key", "vertical_of", "with_vertical",
-    "is_record_file", "record_files",
+    "is_record_file", "record_files", "HorizontalPair", "bearing", "pair_of",
 ]
