@@ -1,0 +1,117 @@
+"""Non-associative limit analysis of block assemblies (rocking.corner_blocks.nonassoc,
+docs/corner-nonassociative.md) against closed forms derived by hand statics, beside the
+associative LP (lp.py): the non-associative multiplier never exceeds the associative one."""
+
+import math
+
+import numpy as np
+import pytest
+
+from rocking.corner_blocks import lp, nonassoc
+from rocking.corner_blocks.assembly import box, on_table
+
+B, D, H = 0.1, 0.2, 0.3  # a block's x, y, z sizes (m)
+
+
+def both(assembly, alpha=0.0, **options):
+    """(non-associative result, lp.py's associative multiplier on the same 8-facet pyramid)."""
+    r = nonassoc.solve(assembly, alpha, facets=8, **options)
+    assert r.converged, r.status
+    return r, lp.solve(assembly, alpha, facets=8).lam
+
+
+def test_block_slides_before_it_rocks():
+    """mu = 0.2 < b/h = 1/3: the block slides on the table at lambda = mu (horizontal
+    force lambda W against friction mu W); sliding on a table lifts nothing but the block,
+    so both flow rules agree."""
+    r, lam_lp = both(on_table([box((0, 0, 0), (B, D, H))], mu=0.2))
+    assert r.lam == pytest.approx(0.2, rel=1e-6)
+    assert lam_lp == pytest.approx(0.2, rel=1e-6)
+    assert r.lam <= lam_lp + 1e-9
+
+
+def test_block_rocks_before_it_slides():
+    """mu = 0.6 > b/h: the block overturns about its toe at lambda = b/h (moments about the
+    toe: lambda W h/2 = W b/2), in x and in y."""
+    for alpha, lever in ((0.0, B), (math.pi / 2, D)):
+        r, lam_lp = both(on_table([box((0, 0, 0), (B, D, H))], mu=0.6 if lever == B else 0.9), alpha)
+        assert r.lam == pytest.approx(lever / H, rel=1e-6)
+        assert r.lam <= lam_lp + 1e-9
+        assert r.opening_max_pressed <= 1e-9 * np.abs(r.velocity).max()
+
+
+@pytest.mark.parametrize("mu, closed", [
+    # overturning as one about the base's toe: (W1 + W2) b1/2 = lambda (W1 h1/2 + W2 (h1 + h2/2))
+    (2.0, None),
+    # both interfaces carry lambda times the weight above them against mu times it: slides at mu
+    (0.5, 0.5),
+])
+def test_two_block_stack(mu, closed):
+    """A wide base block (b1 x h1) and a stocky top block (b2 x h2) centred on it. With
+    high friction the stack overturns as one, below the top block's own b2/h2 = 1.5; with
+    mu = 0.5 below that, it slides at mu."""
+    b1, h1, b2, h2 = 0.2, 0.1, 0.15, 0.1
+    a = on_table([box((0, 0, 0), (b1, D, h1)), box(((b1 - b2) / 2, 0, h1), ((b1 + b2) / 2, D, h1 + h2))], mu=mu)
+    if closed is None:
+        w1, w2 = b1 * h1, b2 * h2
+        closed = (w1 + w2) * b1 / 2 / (w1 * h1 / 2 + w2 * (h1 + h2 / 2))
+        assert closed < mu and closed < b2 / h2
+    r, lam_lp = both(a)
+    assert r.lam == pytest.approx(closed, rel=1e-6)
+    assert r.lam <= lam_lp + 1e-9
+
+
+def block_against_a_wall(mu):
+    """A block b x d x h on the table, its +x face against a fixed wall; the load (alpha = 0,
+    along -x) pulls it away from the wall."""
+    a = on_table([box((0, 0, 0), (B, D, H))], mu=mu)
+    a.blocks.append(box((B, -0.5, -0.1), (B + 0.2, D + 0.5, H + 0.5)))
+    a.fixed.append(True)
+    a.roller.append(None)
+    return a
+
+
+def test_block_against_a_wall_where_the_flow_rules_differ():
+    """Non-associative: nothing presses the block against the wall, so the wall carries
+    nothing and the block rocks away from it about its toe at b/h, its heel sliding up the
+    wall face without opening (mu > b/h, so the toe does not slide).
+
+    Associative: the heel cannot slide up the wall without moving away from it by mu per
+    unit slip, so the LP may press the heel against the wall with n (at z = 0, no moment
+    about the toe) and hang friction mu n on it downwards (restoring). Moments about the
+    toe: lambda W h/2 = W b/2 + mu n b; horizontally the table's friction carries
+    lambda W + n <= mu (W + mu n). Both at their limits, with n' = n / W:
+    n' = (mu - b/h) / (1 - mu^2 + 2 mu b/h), lambda = b/h (1 + 2 mu n'): 0.4359 at
+    mu = 0.6, b/h = 1/3, 31 % above the frictional answer."""
+    mu = 0.6
+    bh = B / H
+    n = (mu - bh) / (1 - mu ** 2 + 2 * mu * bh)
+    lam_assoc = bh * (1 + 2 * mu * n)
+    r, lam_lp = both(block_against_a_wall(mu))
+    assert lam_lp == pytest.approx(lam_assoc, rel=1e-6)
+    assert r.lam_associative == pytest.approx(lam_assoc, rel=1e-6)  # its own iteration 0 is the same LP
+    assert r.lam == pytest.approx(bh, rel=1e-6)
+    assert r.lam < lam_lp - 0.1
+    assert r.iterations > 1 and r.history[0][0] == pytest.approx(lam_assoc, rel=1e-9)
+
+
+def test_no_convergence_is_reported_not_returned():
+    """The wall case needs about 25 relaxed iterations: stopped at 3 it raises, with the
+    history; asked to, it returns the unconverged state flagged."""
+    a = block_against_a_wall(0.6)
+    with pytest.raises(nonassoc.NotConverged, match="not converged in 3 iterations") as info:
+        nonassoc.solve(a, 0.0, max_iter=3)
+    assert len(info.value.result.history) == 4 and not info.value.result.converged
+    r = nonassoc.solve(a, 0.0, max_iter=3, raise_on_failure=False)
+    assert not r.converged and "not converged" in r.status
+    with pytest.raises(ValueError, match="relaxation"):
+        nonassoc.solve(a, 0.0, relaxation=0.0)
+
+
+def test_relaxation_changes_the_path_not_the_answer_here():
+    """Full update (relaxation 1) reaches the wall case's b/h in fewer iterations."""
+    a = block_against_a_wall(0.6)
+    full = nonassoc.solve(a, 0.0, relaxation=1.0)
+    half = nonassoc.solve(a, 0.0, relaxation=0.5)
+    assert full.lam == pytest.approx(B / H, rel=1e-6) and half.lam == pytest.approx(B / H, rel=1e-6)
+    assert full.iterations < half.iterations
