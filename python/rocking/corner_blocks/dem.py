@@ -4,10 +4,12 @@ no-tension contact with Coulomb friction mu, inelastic impacts), NLGS solver.
 
 The wrapper has no gravity setting: the engine's gravity is -9.81 m/s2 along z, fixed
 (a free block falls 0.5 g t^2 = 49.05 mm in 0.1 s). The horizontal component of the tilted
-table is applied as a force lambda m g at every free block's centroid, changed step by
-step during the run (the engine's driven force dof, reset between steps). For rigid
-blocks with Coulomb friction only the ratio of the lateral to the vertical load matters,
-so this is the tilting table with lambda = tan(beta), up to the time scale of the motion.
+table is applied as a force lambda m g at every free block's centroid (the engine's
+driven force dof), whose whole staircase, every level and its hold (`schedule`), is given
+as a time table before the run starts; nothing is changed while it runs (the note above
+`state` says why). For rigid blocks with Coulomb friction only the ratio of the lateral
+to the vertical load matters, so this is the tilting table with lambda = tan(beta), up to
+the time scale of the motion.
 
 One driven force component per block: with two (Fx and Fy) on the same body this
 version of the wrapper corrupts its memory (a crash at exit, "munmap_chunk(): invalid
@@ -21,8 +23,11 @@ Protocol (the paper's, section 3, with fixed holds): after settling under gravit
 lambda grows by `step`, each level held for `hold` seconds. Collapse is the first level
 at whose end the fastest block corner is faster than `v_tol` (m/s), or a block has moved
 more than `collapse` (m) from its settled position; lambda_c is that level. The paper
-holds each level until rest; the wrapper cannot change a load during a run (the note above run),
-so the holds are fixed and long enough for a rigid assembly below collapse to stop.
+holds each level until rest; here the staircase is fixed before the run, so every hold
+has the same length. A single block below collapse stops within a few steps (about 1e-17
+m/s at the end of its holds); the paper's corner does not come to that rest: in the
+committed study its levels that stood ended their holds at 1.1e-6 to 9.9e-4 m/s (free ends
+8.8e-5 to 9.9e-4): the largest just under v_tol (docs/corner-blocks.md, section 3).
 
 LMGC90 keeps one simulation per process: `run_isolated` runs each test in a fresh
 Python process (`python -m rocking.corner_blocks.dem`, JSON in and out)."""
@@ -80,7 +85,7 @@ def vertices_faces(block, rot):
 def build(assembly: Assembly, protocol: Protocol, alpha):
     """A preprocessed compas_lmgc90 Solver of the assembly turned by turn(alpha): fixed
     blocks held in all 6 dofs, rollers along their (turned) axis, Fx driven on every free
-    block by the staircase of `schedule`, given before the run (see the note above run)."""
+    block by the staircase of `schedule`, given before the run (see the note above state)."""
     from compas_lmgc90.solver import Solver
 
     rot = turn(alpha)
