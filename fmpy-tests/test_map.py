@@ -66,6 +66,54 @@ def test_ricker_spectrum_peaks_at_w_p():
         assert w[np.argmax(spec)] == pytest.approx(W, rel=2e-3)
 
 
+def published_ricker(w_p, t_c, antisymmetric, beta=None):
+    """The Ricker pulses as Vassiliou & Makris (2012) write them (T_p = 2 pi / w_p, s = t - t_c):
+    symmetric (1 - 2 pi^2 s^2 / T_p^2) exp(-pi^2 s^2 / T_p^2); antisymmetric
+    (1 / beta) (4 pi^2 s^2 / (3 T_p^2) - 3) (2 pi s / (sqrt(3) T_p)) exp(-2 pi^2 s^2 / (3 T_p^2)),
+    beta (published: 1.38) making its peak 1."""
+    T_p = 2 * math.pi / w_p
+
+    def f(t):
+        s = np.asarray(t, dtype=float) - t_c
+        if not antisymmetric:
+            return (1 - 2 * math.pi ** 2 * s ** 2 / T_p ** 2) * np.exp(-math.pi ** 2 * s ** 2 / T_p ** 2)
+        return ((4 * math.pi ** 2 * s ** 2 / (3 * T_p ** 2) - 3) * (2 * math.pi * s / (math.sqrt(3) * T_p))
+                * np.exp(-2 * math.pi ** 2 * s ** 2 / (3 * T_p ** 2)) / beta)
+    return f
+
+
+#: The antisymmetric wavelet's peak from d/dx [x (x^2 - 3) e^{-x^2/2}] = 0, x^2 = 3 - sqrt 6:
+#: |x (x^2 - 3)| = sqrt 6 x there.
+BETA = math.sqrt(6) * math.sqrt(3 - math.sqrt(6)) * math.exp(-(3 - math.sqrt(6)) / 2)
+
+
+def test_ricker_wavelets_are_the_published_ones():
+    """Both wavelets against Vassiliou & Makris (2012)'s formulas written out here, sign
+    included; the antisymmetric one's peak (value, time) and side lobes in closed form."""
+    assert round(BETA, 2) == 1.38  # the published normalisation, to its two decimals
+    for shape, anti in (("ricker", False), ("ricker-antisymmetric", True)):
+        p = Pulse(shape, A, W)
+        t_c = p.duration / 2
+        t = np.linspace(0, p.duration, 20001)
+        ref = A * published_ricker(W, t_c, anti, BETA)(t)
+        assert np.max(np.abs(p.acceleration(t) - ref)) < 1e-12 * A
+        if anti:  # with the published beta = 1.38 as printed: the rounding's 1e-4
+            rounded = A * published_ricker(W, t_c, anti, 1.38)(t)
+            assert np.max(np.abs(p.acceleration(t) - rounded)) < 1.5e-4 * A
+    p = Pulse("ricker-antisymmetric", A, W)
+    t_c = p.duration / 2
+    s_peak = math.sqrt(9 - 3 * math.sqrt(6)) / W  # x* sqrt(3) / w_p
+    assert p.acceleration(t_c + s_peak) == pytest.approx(-A, rel=1e-12)  # the large lobes: -, then +
+    assert p.acceleration(t_c - s_peak) == pytest.approx(A, rel=1e-12)
+    s_side = math.sqrt(3 * (3 + math.sqrt(6))) / W  # x^2 = 3 + sqrt 6: the side lobes
+    side = math.sqrt(6) * math.sqrt(3 + math.sqrt(6)) * math.exp(-(3 + math.sqrt(6)) / 2) / BETA
+    assert p.acceleration(t_c - s_side) == pytest.approx(-A * side, rel=1e-12)
+    assert p.acceleration(t_c + s_side) == pytest.approx(A * side, rel=1e-12)
+    t = np.linspace(0, p.duration, 400001)
+    assert t[np.argmax(p.acceleration(t))] == pytest.approx(t_c - s_peak, abs=p.duration / 4e5)
+    assert t[np.argmin(p.acceleration(t))] == pytest.approx(t_c + s_peak, abs=p.duration / 4e5)
+
+
 def test_rectangular_pulse_samples_keep_the_impulse():
     p = Pulse("rectangular", A, W)
     assert p.duration == pytest.approx(math.pi / W)
@@ -113,17 +161,18 @@ MAP_A = list(np.linspace(1.0, 6.0, 11))  # a_p / (g tan alpha)
 TOL = 1e-3
 
 
-def housner_overturns(alpha, p, eta, a_p, w_p, tail=5.0):
+def housner_overturns(alpha, p, eta, a_p, w_p, tail=5.0, wave=None, end=None):
     """Housner's rigid block (slender or not: the exact nonlinear equation)
     theta'' = -p^2 [sin(s alpha - theta) + ag/g cos(s alpha - theta)], s = sgn(theta), under
-    ag = a_p sin(w_p t) for 0 <= t <= T_p, by solve_ivp: uplift when |ag| > g tan alpha (to
-    the side -sgn(ag)), omega <- eta omega at each return to theta = 0, overturned when
-    |theta| = alpha. Past the pulse, a free block whose energy omega^2/2 + p^2 cos(alpha -
-    |theta|) is below p^2 can no longer overturn."""
-    T = 2 * math.pi / w_p
+    ag = a_p sin(w_p t) for 0 <= t <= T_p (or a_p wave(t) for 0 <= t <= end), by solve_ivp:
+    uplift when |ag| > g tan alpha (to the side -sgn(ag)), omega <- eta omega at each return to
+    theta = 0, overturned when |theta| = alpha. Past the pulse, a free block whose energy
+    omega^2/2 + p^2 cos(alpha - |theta|) is below p^2 can no longer overturn."""
+    T = 2 * math.pi / w_p if end is None else end
+    wave = wave or (lambda t: np.sin(w_p * t))
 
     def ag(t):
-        return a_p * math.sin(w_p * t) if t <= T else 0.0
+        return a_p * float(wave(t)) if t <= T else 0.0
 
     t, th, om, s = 0.0, 0.0, 0.0, 0
     while t < T + tail:
@@ -131,7 +180,7 @@ def housner_overturns(alpha, p, eta, a_p, w_p, tail=5.0):
             if t >= T:
                 return False
             ts = np.linspace(t, T, 20001)
-            over = np.abs(a_p * np.sin(w_p * ts)) > G * math.tan(alpha)
+            over = np.abs(a_p * wave(ts)) > G * math.tan(alpha)
             if not over.any():
                 return False
             t = float(ts[int(np.argmax(over))])
@@ -160,18 +209,18 @@ def housner_overturns(alpha, p, eta, a_p, w_p, tail=5.0):
     return False
 
 
-def reference_least_amplitude(alpha, p, eta, w, step=0.05, rel=1e-5):
-    """The least a_p / (g tan alpha) that overturns, by a scan from 1 in steps of `step` and a
-    bisection of the first overturning step to `rel`."""
+def reference_least_amplitude(alpha, p, eta, w, step=0.05, rel=1e-5, start=1.0, top=6.5, **pulse):
+    """The least a_p / (g tan alpha) that overturns, by a scan from `start` in steps of `step`
+    and a bisection of the first overturning step to `rel`; `pulse`: housner_overturns' wave, end."""
     gta = G * math.tan(alpha)
-    lo = 1.0
-    while not housner_overturns(alpha, p, eta, (lo + step) * gta, w * p):
+    lo = start
+    while not housner_overturns(alpha, p, eta, (lo + step) * gta, w * p, **pulse):
         lo += step
-        assert lo < 6.5, f"no overturning below 6.5 at w/p = {w}"
+        assert lo < top, f"no overturning below {top} at w/p = {w}"
     hi = lo + step
     while hi - lo > rel * hi:
         mid = 0.5 * (lo + hi)
-        if housner_overturns(alpha, p, eta, mid * gta, w * p):
+        if housner_overturns(alpha, p, eta, mid * gta, w * p, **pulse):
             hi = mid
         else:
             lo = mid
@@ -207,6 +256,35 @@ def test_rigid_least_overturning_amplitude_against_housner(rigid_map):
         lines.append(f"w/p = {w}: map {first[w]:.5f}, solve_ivp {ref:.5f}, diff {(first[w] - ref) / ref:+.2e}")
         assert first[w] == pytest.approx(ref, rel=TOL), "\n".join(lines)
     print("\n".join(lines))
+
+
+def test_antisymmetric_ricker_overturning_against_solve_ivp(fmu):
+    """A rigid block under the antisymmetric Ricker pulse: the map's least overturning
+    amplitude at w_p/p = 2 and 3 against solve_ivp of Housner's equation under the published
+    formula (scan in steps of 0.1 from 1, bisected to 1e-5), and at w_p/p = 3 the safe window
+    above the first interval: solve_ivp overturns just inside each end and not just outside."""
+    spec = MapSpec(params=RIGID, shape="ricker-antisymmetric", frequencies=[2.0, 3.0],
+                   amplitudes=list(np.linspace(1.0, 8.0, 15)), tol=TOL, tail=5.0)
+    bounds = boundaries(run_map(spec, fmu, workers=2), spec)
+    sc = spec.scales
+    gta = sc["g_tan_alpha"]
+    for w in (2.0, 3.0):
+        w_p = w * sc["p"]
+        T_p = 2 * math.pi / w_p
+        pulse = dict(wave=published_ricker(w_p, 2 * T_p, True, BETA), end=4 * T_p)
+        ref = reference_least_amplitude(sc["alpha"], sc["p"], sc["eta"], w, step=0.1, top=8.0, **pulse)
+        iv = bounds[bounds["w"] == w].sort_values("start")
+        print(f"antisymmetric Ricker, w_p/p = {w}: least overturning {iv['start'].iloc[0]:.5f} (map), "
+              f"{ref:.5f} (solve_ivp)")
+        assert iv["start"].iloc[0] == pytest.approx(ref, rel=2 * TOL)
+        if w == 3.0:  # a safe window: measured 2.80 to 3.52
+            assert len(iv) >= 2
+            first, second = iv.iloc[0], iv.iloc[1]
+
+            def over(a):
+                return housner_overturns(sc["alpha"], sc["p"], sc["eta"], a * gta, w_p, **pulse)
+            assert over(first["end"] * (1 - 2 * TOL)) and not over(first["end"] * (1 + 2 * TOL))
+            assert not over(second["start"] * (1 - 2 * TOL)) and over(second["start"] * (1 + 2 * TOL))
 
 
 def test_bisection_brackets_are_within_tol_and_agree_with_the_runs(rigid_map):

@@ -13,8 +13,11 @@ Shapes (tau = t / T_p):
 - one-cosine: ag = a_p cos(w_p t), 0 <= t <= T_p (Zhang & Makris 2001, type B);
 - ricker: the symmetric Ricker wavelet a_p (1 - w_p^2 s^2 / 2) exp(-w_p^2 s^2 / 4),
   s = t - t_c (Vassiliou & Makris 2012), its Fourier amplitude largest at w_p;
-- ricker-antisymmetric: the normalised third derivative of a Gaussian, a_p x (3 - x^2)
-  exp(-x^2 / 2) / c, x = w_p s / sqrt(3), c its peak (its Fourier amplitude largest at w_p);
+- ricker-antisymmetric: a_p x (x^2 - 3) exp(-x^2 / 2) / c, x = w_p s / sqrt(3), c its peak
+  (1.3801; the published beta = 1.38), minus the third derivative of a Gaussian, its Fourier
+  amplitude largest at w_p: Vassiliou & Makris (2012)'s (a_p / beta) (4 pi^2 s^2 / (3 T_p^2) - 3)
+  (2 pi s / (sqrt(3) T_p)) exp(-2 pi^2 s^2 / (3 T_p^2)), its sign included (a small negative
+  lobe, then the large positive, the large negative, a small positive);
 - user: a shape from a CSV file (tau, value), scaled to peak |value| = 1 (`read_shape`).
 The Ricker wavelets are centred at t_c = RICKER_HALF_WIDTH T_p and cut to [0, 2 t_c], where
 their envelope is below 1e-8 of the peak.
@@ -31,7 +34,7 @@ SHAPES = ("rectangular", "one-sine", "one-cosine", "ricker", "ricker-antisymmetr
 #: Half-width of the Ricker wavelets' window, in periods T_p: exp(-w^2 s^2/6) < 1e-8 beyond.
 RICKER_HALF_WIDTH = 2.0
 
-#: x of the antisymmetric wavelet's peak, x (3 - x^2) exp(-x^2/2) largest: x^4 - 6 x^2 + 3 = 0.
+#: x of the antisymmetric wavelet's peak, |x (x^2 - 3)| exp(-x^2/2) largest: x^4 - 6 x^2 + 3 = 0.
 _X_PEAK = math.sqrt(3.0 - math.sqrt(6.0))
 _ANTI_PEAK = _X_PEAK * (3.0 - _X_PEAK ** 2) * math.exp(-_X_PEAK ** 2 / 2.0)
 
@@ -118,7 +121,7 @@ class Pulse:
             shape = (1.0 - (w * s) ** 2 / 2.0) * np.exp(-(w * s) ** 2 / 4.0)
         elif self.shape == "ricker-antisymmetric":
             x = w * (t - end / 2.0) / math.sqrt(3.0)
-            shape = x * (3.0 - x ** 2) * np.exp(-x ** 2 / 2.0) / _ANTI_PEAK
+            shape = x * (x ** 2 - 3.0) * np.exp(-x ** 2 / 2.0) / _ANTI_PEAK
         else:
             shape = np.interp(t / self.period, *self.user)
         return np.where(inside, a * shape, 0.0)
