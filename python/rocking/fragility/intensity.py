@@ -146,7 +146,11 @@ class IntensityMeasure:
         with p (rad/s) for PGV/(gtana/p)."""
         if self.kind == "RotD":
             from .rotd import rotd_sa
-            return rotd_sa(_pair(record), self.period, self.percentile) / G
+            try:
+                pair = _pair(record)
+            except ValueError as exc:
+                raise ValueError(f"{self.name}: {exc}") from None
+            return rotd_sa(pair, self.period, self.percentile) / G
         if self.kind == "PGA":
             return record.pga / G
         if self.kind == "PGV":
