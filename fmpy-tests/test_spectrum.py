@@ -150,17 +150,25 @@ def test_spectrum_cli_writes_tables_plot_metadata(tmp_path, fmu_path):
     assert (out / "spectrum.png").stat().st_size > 0
 
 
-def test_spectrum_cli_bodies_file(tmp_path, fmu_path):
+def test_spectrum_cli_bodies_file(tmp_path, fmu_path, capsys):
     import pandas as pd
     bodies = tmp_path / "bodies.json"
     bodies.write_text('{"small": {"B": 0.2, "H": 1.0}, "large": {"B": 0.8, "H": 4.0}}')
     out = tmp_path / "b"
-    r = _rocking("spectrum", str(LOMA), "--fmu", fmu_path, "--interface", "rigid", "--bodies", str(bodies),
-                 "--no-hunt", "--scales", "3", "--workers", "1", "--quiet", "--no-plot", "--out", str(out))
-    assert r.returncode == 0, r.stderr
+    status, err = _in_process(capsys, "spectrum", str(LOMA), "--fmu", fmu_path, "--interface", "rigid",
+                              "--bodies", str(bodies), "--no-hunt", "--scales", "3", "--workers", "1", "--quiet",
+                              "--no-plot", "--out", str(out))
+    assert status == 0, err
     sp = pd.read_parquet(out / "spectrum.parquet")
     assert list(sp["body"]) == ["small", "large"]
     assert sp["p"].iloc[0] == pytest.approx(2 * sp["p"].iloc[1], rel=1e-12)  # 4 times the size
+
+
+def _in_process(capsys, *args):
+    """`rocking ARGS` in this process (no interpreter start): (exit status, stderr)."""
+    from rocking.cli import main
+    status = main(list(args))
+    return status, capsys.readouterr().err
 
 
 @pytest.mark.parametrize("args, message", [
@@ -170,15 +178,27 @@ def test_spectrum_cli_bodies_file(tmp_path, fmu_path):
     (["--p", "1", "--sizes", "1"], "one of --p P, --sizes R or --bodies FILE"),
     (["--bodies", "nothere.json"], "--bodies nothere.json: cannot read"),
 ])
-def test_spectrum_bad_input_is_one_line(tmp_path, args, message):
-    r = _rocking("spectrum", str(LOMA), *args, "--out", str(tmp_path / "x"))
-    assert r.returncode == 2, r.stderr
-    assert message in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+def test_spectrum_bad_input_is_one_line(tmp_path, fmu_path, capsys, args, message):
+    status, err = _in_process(capsys, "spectrum", str(LOMA), "--fmu", fmu_path, *args, "--out", str(tmp_path / "x"))
+    assert status == 2, err
+    assert message in err and len(err.strip().splitlines()) == 1, err
 
 
-def test_spectrum_unreadable_record_is_one_line(tmp_path):
+def test_spectrum_unreadable_record_is_one_line(tmp_path, fmu_path, capsys):
     bad = tmp_path / "bad.csv"
     bad.write_text("x\n")
     for record, message in ((bad, "bad.csv: line 1"), (tmp_path / "none.csv", "none.csv: no such record file")):
-        r = _rocking("spectrum", str(record), "--p", "1", "--out", str(tmp_path / "x"))
-        assert r.returncode == 2 and message in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+        status, err = _in_process(capsys, "spectrum", str(record), "--fmu", fmu_path, "--p", "1",
+                                  "--out", str(tmp_path / "x"))
+        assert status == 2 and message in err and len(err.strip().splitlines()) == 1, err
+
+
+def test_a_body_the_fmu_refuses_is_a_row_with_its_error(fmu, loma):
+    """A crushing bed too weak for the largest body's weight (rho g H > fm at R = 30 m): that
+    body's row carries the FMU's message, the smaller body is run as usual."""
+    bodies = rectangle_family({"interface": "elastoPlastic", "kn": 1e9, "fm": 5e5}, alpha=ALPHA, sizes=[0.5, 30.0])
+    runs, sp = run_spectrum(bodies, loma, fmu, SpectrumOptions(scales=(3.0,), hunt=False, tail=2.0), workers=1)
+    assert sp["error"].iloc[0] == "" and sp["peak_theta_over_alpha"].iloc[0] > 0
+    assert "crushes at rest" in sp["error"].iloc[1] and math.isnan(sp["p"].iloc[1])
+    assert "crushes at rest" in sp["unresolved"].iloc[1]
+    assert len(runs) == 2

@@ -139,9 +139,19 @@ def run_body(label, params, record, options, fmu=None):
     geometric mean), whether censored (no overturning up to max_scale) and what the search
     left unresolved. R: the distance R0 from the toe to the centre of mass (m), the size."""
     fmu = fmu or parametric._WORKER_FMU
-    sc = maps.body_scales(fmu, params)
     done = {}
     rows = []
+    try:
+        sc = maps.body_scales(fmu, params)
+        size = float(fmu.calculated(params)["R0"])
+    except Exception as exc:  # noqa: BLE001 - e.g. a bed that crushes at rest: this body's rows say so
+        error = " ".join(str(exc).split())[:500]
+        rows = [dict(scale=float(s), phase="asked", overturned=None, t_overturn=math.nan,
+                     peak_theta_over_alpha=math.nan, impacts=-1, error=error, wall_s=0.0, body=label)
+                for s in options.scales]
+        return rows, dict(body=label, p=math.nan, alpha=math.nan, thetaOv=math.nan, R=math.nan,
+                          uplift_scale=math.nan, least_scale=math.nan, least_scale_lo=math.nan,
+                          least_scale_hi=math.nan, censored=False, unresolved=f"the body did not start: {error}")
 
     def at(scale, phase):
         if scale not in done:
@@ -154,7 +164,7 @@ def run_body(label, params, record, options, fmu=None):
     for s in options.scales:
         at(float(s), "asked")
     summary = dict(body=label, p=sc["p"], alpha=sc["alpha"], thetaOv=sc["thetaOv"],
-                   R=float(fmu.calculated(params)["R0"]),
+                   R=size,
                    uplift_scale=sc["g_tan_alpha"] / float(np.max(np.abs(record.acc))),
                    least_scale=math.nan, least_scale_lo=math.nan, least_scale_hi=math.nan,
                    censored=False, unresolved="")
@@ -181,6 +191,13 @@ def run_body(label, params, record, options, fmu=None):
                            least_scale_lo=lo if lo is not None else math.nan,
                            least_scale_hi=hi if hi is not None else math.nan,
                            censored=bool(censored), unresolved=unresolved(trace, hunt))
+            # an asked scale the search did not run may overturn below its first collapse (a
+            # window narrower than the hunt's resolution): said, not hidden
+            missed = [r["scale"] for r in rows if r["phase"] == "asked" and r["overturned"]
+                      and (hi is None or r["scale"] < hi)]
+            if missed:
+                summary["unresolved"] = "; ".join(x for x in (summary["unresolved"], (
+                    f"overturned at the asked scale {min(missed):.6g}, below the search's first collapse")) if x)
         except _RunFailed as exc:
             summary["unresolved"] = f"the search stopped on a failed run: {exc}"
     for row in rows:

@@ -155,7 +155,8 @@ def cmd_spectrum(args, params_given):
         least = ("-" if not options.hunt else f">{first.least_scale_lo:.4g}" if first.censored
                  else f"{first.least_scale:.4g}") + ("*" if first.unresolved else "")
         print(f"{bed:<{wide}}{body:<14}{first.p:>9.4g}{first.R:>9.4g}{first.alpha:>8.4f}{peaks}{least:>13}")
-    print(f"runs        {len(runs)} in {wall:.1f} s" + (f", {errors} FAILED (their rows' error column)" if errors else "")
+    print(f"runs        {len(runs)} in {wall:.1f} s"
+          + (f", {errors} FAILED (their rows' error column)" if errors else "")
           + (", * unresolved (the spectrum's unresolved column)" if (spectrum["unresolved"] != "").any() else ""))
     print(f"wrote       {out / 'spectrum.parquet'}, {out / 'runs.parquet'}"
           + ("" if args.no_plot else f", {out / 'spectrum.png'}"))
@@ -176,18 +177,21 @@ def plot_spectrum(path, spectrum, meta, against="p"):
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     styles = ["-", "--", ":", "-."]
     beds = list(dict.fromkeys(spectrum["bed"]))
+    marked = False
     for i, bed in enumerate(beds):
         b = spectrum[spectrum["bed"] == bed]
         name = "" if len(beds) == 1 else _bed_name(bed, meta)
         for j, (s, g) in enumerate(b.groupby("scale")):
             g = g.sort_values(x_of)
-            over = g["overturned"].fillna(False).astype(bool)
+            over = g["overturned"].eq(True).to_numpy()
             y = np.where(over, np.nan, g["peak_theta_over_alpha"])
             label = ", ".join(x for x in (name, f"scale {s:g}") if x)
             ax.plot(g[x_of], y, styles[j % 4], marker=".", color=colors[i % len(colors)], label=label)
             if over.any():
-                ax.plot(g[x_of][over], np.ones(int(over.sum())), "x", color=colors[i % len(colors)], ms=7,
-                        label=f"{label}: overturned")
+                ax.plot(g[x_of][over], np.ones(int(over.sum())), "x", color=colors[i % len(colors)], ms=7)
+                marked = True
+    if marked:
+        ax.plot([], [], "x", color="k", label="overturned (drawn at 1)")
     ax.axhline(1.0, color="k", lw=0.6)
     ax.set_ylabel("peak |theta| / alpha")
     ax.set_ylim(0, 1.08)
@@ -206,15 +210,28 @@ def plot_spectrum(path, spectrum, meta, against="p"):
             if (~ok).any():
                 ax2.plot(b[x_of][~ok], lo[~ok], "^", color=colors[i % len(colors)],
                          label="no overturning up to this scale")
+        ax2.axhline(1.0, color="k", lw=0.6)  # the record as recorded
         ax2.set_yscale("log")
+        _log_ticks(ax2.yaxis)
         ax2.set_ylabel("least scale factor that overturns")
         if ax2.get_legend_handles_labels()[0]:
             ax2.legend(fontsize=7, frameon=False)
     axes[-1][0].set_xscale("log")
+    _log_ticks(axes[-1][0].xaxis)
     axes[-1][0].set_xlabel(AGAINST[against])
     fig.tight_layout()
     fig.savefig(path, dpi=90)
     plt.close(fig)
+
+
+def _log_ticks(axis):
+    """Plain numbers on a log axis (0.5, 1, 2, 5, 10), not powers of ten."""
+    from matplotlib.ticker import FuncFormatter
+
+    def label(v, _):
+        return f"{v:g}" if v > 0 and round(v / 10 ** math.floor(math.log10(v) + 1e-9)) in (1, 2, 5) else ""
+    axis.set_major_formatter(FuncFormatter(label))
+    axis.set_minor_formatter(FuncFormatter(label))
 
 
 def _bed_name(bed, meta):
