@@ -1,0 +1,384 @@
+//! The stepping loop of a spatial run (docs/model.md §10.4): steps of
+//! DOP853 whose contact side is fixed at their start, cut where the tilt
+//! turns a right angle from it (the contact has moved a quarter of the rim,
+//! or the tilt has crossed upright) or reaches the overturning limit.
+//!
+//! A crossing is the base's return to the bed when the tilt there is
+//! within [`UPRIGHT`] of zero: exactly in a plane, and within round-off of
+//! it for a planar motion along an oblique azimuth. Off a plane the tilt
+//! passes upright at a distance and the contact runs round the rim instead
+//! (rolling, without an impact: the rigid model's motion, docs/model.md §10.3).
+
+use nalgebra::Vector3;
+
+use super::eom::{Eom, N};
+use super::impact::impact;
+use super::step::{dop853, Step};
+use super::{PlanInput, Spatial, SpatialState};
+use crate::dynamics::controller::{grow, min_step, shrink};
+use crate::dynamics::VerticalInput;
+
+/// A crossing whose tilt is at most this (`sin(theta)`) is the base's
+/// return to the bed. Round-off leaves about `1e-16` of the motion's tilt
+/// off the plane of a planar motion along an oblique azimuth.
+pub const UPRIGHT: f64 = 1e-9;
+
+/// The controller's exponent (`-1/8`, the order of DOP853's estimate).
+const ERR_EXP: f64 = -1.0 / 8.0;
+
+/// What happened during one `advance`.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct SpatialEvents {
+    pub impacts: u32,
+    pub uplift: bool,
+    pub came_to_rest: bool,
+    /// Time of overturning, s, if it happened in this call.
+    pub overturned_at: Option<f64>,
+    /// Accepted and rejected steps.
+    pub steps: u32,
+    pub rejected: u32,
+}
+
+/// What ends a step early.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Cut {
+    /// The tilt turned a right angle from the step's contact side.
+    Quarter,
+    Overturning,
+}
+
+impl Spatial {
+    /// Integrate from `st.t` to `t_end` (or to overturning) under the
+    /// horizontal and vertical inputs.
+    pub fn advance(
+        &self,
+        st: &mut SpatialState,
+        t_end: f64,
+        input: PlanInput,
+        vertical: VerticalInput,
+    ) -> SpatialEvents {
+        let eom = Eom::new(self, st.t, input, vertical);
+        let mut ev = SpatialEvents::default();
+        let mut after_rejection = false;
+        while st.t < t_end && !st.overturned {
+            if st.at_rest {
+                match self.uplift(&eom, st.t, t_end) {
+                    None => st.t = t_end,
+                    Some((t_up, pivot)) => {
+                        *st = SpatialState {
+                            t: t_up,
+                            pivot,
+                            at_rest: false,
+                            h: 0.0,
+                            ..*st
+                        };
+                        ev.uplift = true;
+                    }
+                }
+                continue;
+            }
+            let d0 = st.contact_direction();
+            let y0 = st.to_y();
+            let f0 = eom.rates(st.t, &y0, d0);
+            if st.h <= 0.0 {
+                st.h = self.initial_step(&y0, &f0);
+            }
+            let remaining = t_end - st.t;
+            let hh = if st.h >= remaining { remaining } else { st.h };
+            let s = dop853(&eom, st.t, (&y0, &f0), hh, d0, |a, b| self.scales(a, b));
+            if (s.err.is_nan() || s.err > 1.0) && hh > min_step(st.t, hh) {
+                st.h = hh * shrink(s.err, ERR_EXP);
+                ev.rejected += 1;
+                after_rejection = true;
+                continue;
+            }
+            ev.steps += 1;
+            let next_h = hh * grow(s.err, ERR_EXP, after_rejection);
+            after_rejection = false;
+            match self.cut(&s.y, d0) {
+                None => {
+                    st.set_y(&s.y);
+                    st.pivot = d0;
+                    st.t = if hh == remaining { t_end } else { st.t + hh };
+                    st.h = next_h;
+                }
+                Some(_) => {
+                    let (tau, cut, y) = self.locate(&eom, st.t, (&y0, &f0), hh, d0);
+                    st.set_y(&y);
+                    st.pivot = d0;
+                    st.t += tau;
+                    st.h = next_h.min(hh);
+                    self.apply(st, cut, &eom, &mut ev);
+                }
+            }
+        }
+        ev
+    }
+
+    /// Which event, if any, the end `y` of a step from the side `d0` is past.
+    fn cut(&self, y: &[f64; N], d0: [f64; 2]) -> Option<Cut> {
+        let s2 = y[0] * y[0] + y[1] * y[1];
+        let limit = self.model.body.sin_alpha;
+        if s2 >= limit * limit {
+            Some(Cut::Overturning)
+        } else if y[0] * d0[0] + y[1] * d0[1] < 0.0 {
+            Some(Cut::Quarter)
+        } else {
+            None
+        }
+    }
+
+    /// The first event of the step `hh` from `(t, y0)`: its offset from `t`,
+    /// which, and the state there, by the Illinois method on the step
+    /// itself (each trial a step of DOP853 from `y0`).
+    fn locate(
+        &self,
+        eom: &Eom,
+        t: f64,
+        (y0, f0): (&[f64; N], &[f64; N]),
+        hh: f64,
+        d0: [f64; 2],
+    ) -> (f64, Cut, [f64; N]) {
+        let limit2 = self.model.body.sin_alpha.powi(2);
+        let trial = |h: f64| dop853(eom, t, (y0, f0), h, d0, |a, b| self.scales(a, b));
+        // one function whose first zero is the first event: the smaller
+        // margin to each, overturning and the quarter turn
+        let g = |s: &Step| {
+            let quarter = s.y[0] * d0[0] + s.y[1] * d0[1];
+            let over = limit2 - (s.y[0] * s.y[0] + s.y[1] * s.y[1]);
+            quarter.min(over)
+        };
+        let (mut a, mut fa) = (0.0, f64::MIN_POSITIVE);
+        let end = trial(hh);
+        let (mut b, mut fb, mut yb) = (hh, g(&end), end.y);
+        let mut side = 0;
+        for _ in 0..200 {
+            if b - a <= min_step(t, b) * 0.25 {
+                break;
+            }
+            let mut c = b - fb * (b - a) / (fb - fa);
+            if !(c > a && c < b) {
+                c = 0.5 * (a + b);
+            }
+            let s = trial(c);
+            let fc = g(&s);
+            if fc <= 0.0 {
+                (b, fb, yb) = (c, fc, s.y);
+                if side == -1 {
+                    fa *= 0.5;
+                }
+                side = -1;
+            } else {
+                (a, fa) = (c, fc);
+                if side == 1 {
+                    fb *= 0.5;
+                }
+                side = 1;
+            }
+            if fc == 0.0 {
+                break;
+            }
+        }
+        let cut = self.cut(&yb, d0).unwrap_or(Cut::Quarter);
+        (b, cut, yb)
+    }
+
+    /// Apply the event `cut` at the state `st` (at its time).
+    fn apply(&self, st: &mut SpatialState, cut: Cut, eom: &Eom, ev: &mut SpatialEvents) {
+        match cut {
+            Cut::Overturning => {
+                st.overturned = true;
+                ev.overturned_at = Some(st.t);
+            }
+            Cut::Quarter => {
+                if st.e[0].hypot(st.e[1]) > UPRIGHT {
+                    // off a plane: the contact runs on round the rim
+                    return;
+                }
+                let old = st.pivot;
+                let out = impact(self, Vector3::from(st.omega), old);
+                st.e = [0.0; 2];
+                st.omega = out.omega.into();
+                st.pivot = out.pivot;
+                st.impacts += 1;
+                ev.impacts += 1;
+                if self.comes_to_rest(st, eom) {
+                    st.omega = [0.0; 3];
+                    st.at_rest = true;
+                    ev.came_to_rest = true;
+                }
+            }
+        }
+    }
+
+    /// Whether the body, upright after an impact, is at rest to the
+    /// tolerance: the planar rule ([`crate::dynamics::Simulator::rest_bound_at`])
+    /// with the horizontal input's magnitude and the whole angular velocity
+    /// (the flat base stops the spin too).
+    fn comes_to_rest(&self, st: &SpatialState, eom: &Eom) -> bool {
+        let ag = eom.ag(st.t);
+        let n = self.model.body.weight + self.mass() * eom.av(st.t);
+        let w = Vector3::from(st.omega).norm();
+        let rtol = self.planar.effective_rtol();
+        let (th, om) = self.planar.scales();
+        match self.planar.rest_bound_at(w, ag[0].hypot(ag[1]), n) {
+            Some((dw, dth)) => dw <= rtol * om && dth <= rtol * th,
+            None => false,
+        }
+    }
+
+    /// The first time in `[t, t_end]` at which the horizontal input lifts
+    /// the body at rest, `|ag| > (g + av) tan(alpha)` (both inputs linear:
+    /// a quadratic), and the direction it tips toward, `-ag/|ag|`.
+    fn uplift(&self, eom: &Eom, t: f64, t_end: f64) -> Option<(f64, [f64; 2])> {
+        let b = &self.model.body;
+        let k2 = (b.b / b.hg).powi(2);
+        let q = |tau: f64| {
+            let a = eom.ag(t + tau);
+            a[0] * a[0] + a[1] * a[1] - k2 * (b.g + eom.av(t + tau)).powi(2)
+        };
+        let span = t_end - t;
+        let tau = if q(0.0) > 0.0 {
+            0.0
+        } else {
+            first_positive(q, span)?
+        };
+        // at the threshold the tilting moment is zero to round-off: start
+        // where the equation itself tilts the body onto its new contact
+        let tilts = |tau: f64| q(tau) > 0.0 && self.tilting(eom, t + tau) > 0.0;
+        let tau = if tilts(tau) {
+            tau
+        } else {
+            let mut gap = min_step(t + tau, 0.0);
+            while !tilts((tau + gap).min(span)) {
+                if tau + gap >= span {
+                    return None;
+                }
+                gap *= 2.0;
+            }
+            let (mut lo, mut hi) = (tau, (tau + gap).min(span));
+            loop {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break hi;
+                }
+                if tilts(mid) {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+        };
+        let a = eom.ag(t + tau);
+        let n = a[0].hypot(a[1]);
+        Some((t + tau, [-a[0] / n, -a[1] / n]))
+    }
+
+    /// The tilt's acceleration toward `-ag/|ag|` of the body upright at rest
+    /// at `t`, rad/s².
+    fn tilting(&self, eom: &Eom, t: f64) -> f64 {
+        let a = eom.ag(t);
+        let n = a[0].hypot(a[1]);
+        if n == 0.0 {
+            return 0.0;
+        }
+        let d = [-a[0] / n, -a[1] / n];
+        let f = eom.rates(t, &[0.0; N], d);
+        // d(de/dt)/dt = (omega' x z)_h . d = omega' . (z x d)
+        -f[2] * d[1] + f[3] * d[0]
+    }
+
+    /// Error weights of the components of `y` (see `dynamics::erk::Tol`):
+    /// the tilt relative to the amplitude `|e| + |omega_h|² / (2 g_eff)`,
+    /// the angular velocity to `sqrt(|omega|² + 2 g_eff |e|)`, the centre of
+    /// mass's position to `R0` times the tilt's weight.
+    fn scales(&self, y0: &[f64; N], y1: &[f64; N]) -> [f64; N] {
+        let b = &self.model.body;
+        let rtol = self.planar.effective_rtol();
+        let (th, om) = self.planar.scales();
+        let two_g = 2.0 * b.weight * b.b / b.io;
+        let amp = |y: &[f64; N]| y[0].hypot(y[1]) + (y[2] * y[2] + y[3] * y[3]) / two_g;
+        let vel = |y: &[f64; N]| {
+            (y[2] * y[2] + y[3] * y[3] + y[4] * y[4] + two_g * y[0].hypot(y[1])).sqrt()
+        };
+        let se = rtol * th * rtol + rtol * amp(y0).max(amp(y1));
+        let sw = rtol * om * rtol + rtol * vel(y0).max(vel(y1));
+        [se, se, sw, sw, sw, b.r0 * se, b.r0 * se]
+    }
+
+    /// A first step: Hairer's `0.01 |y| / |f|` in the error weights, at most
+    /// a hundredth of the rocking period's scale `1/p`.
+    fn initial_step(&self, y: &[f64; N], f: &[f64; N]) -> f64 {
+        let sc = self.scales(y, y);
+        let norm = |v: &[f64; N]| {
+            (v.iter().zip(&sc).map(|(x, s)| (x / s).powi(2)).sum::<f64>() / N as f64).sqrt()
+        };
+        let (d0, d1) = (norm(y), norm(f));
+        let b = &self.model.body;
+        let p = (b.weight * b.r0 / b.io).sqrt();
+        let h = if d0 < 1e-5 || d1 < 1e-5 {
+            1e-6
+        } else {
+            0.01 * d0 / d1
+        };
+        h.min(0.01 / p)
+    }
+}
+
+/// The first `tau` in `(0, span]` where the quadratic `q` (negative at 0)
+/// turns positive, to the last bit.
+fn first_positive(q: impl Fn(f64) -> f64, span: f64) -> Option<f64> {
+    // q(tau) = q0 + q1 tau + q2 tau²: its coefficients from three values
+    let (q0, qh, q1v) = (q(0.0), q(0.5 * span), q(span));
+    let c2 = 2.0 * (q1v - 2.0 * qh + q0) / (span * span);
+    let c1 = (4.0 * qh - q1v - 3.0 * q0) / span;
+    let roots = quadratic_roots(c2, c1, q0);
+    let tau = roots
+        .into_iter()
+        .flatten()
+        .filter(|&r| r > 0.0 && r <= span)
+        .fold(f64::INFINITY, f64::min);
+    if !tau.is_finite() {
+        return None;
+    }
+    // the root's float, then the first float past it where q > 0
+    let (mut lo, mut hi) = (
+        (tau * (1.0 - 1e-9)).max(0.0),
+        (tau * (1.0 + 1e-9)).min(span),
+    );
+    if q(hi) <= 0.0 {
+        hi = span;
+        if q(hi) <= 0.0 {
+            return None;
+        }
+    }
+    if q(lo) > 0.0 {
+        lo = 0.0;
+    }
+    loop {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            return Some(hi);
+        }
+        if q(mid) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+}
+
+/// Real roots of `a x² + b x + c`.
+fn quadratic_roots(a: f64, b: f64, c: f64) -> [Option<f64>; 2] {
+    if a == 0.0 {
+        return [(b != 0.0).then(|| -c / b), None];
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return [None, None];
+    }
+    let qq = -0.5 * (b + b.signum() * disc.sqrt());
+    let r1 = qq / a;
+    let r2 = if qq != 0.0 { c / qq } else { r1 };
+    [Some(r1), Some(r2)]
+}

@@ -1,0 +1,275 @@
+//! The round body in space on a rigid bed (docs/model.md §10) against
+//! independent references: the planar model in a plane, rotated inputs,
+//! the closed form of steady wobbling, and the energy.
+
+use rocking::dynamics::{GroundInput, Simulator, VerticalInput};
+use rocking::model::{LawKind, MassKind, Restitution, ShapeKind};
+use rocking::spatial::{PlanInput, Spatial, SpatialState};
+use rocking::Params;
+
+const RTOL: f64 = 1e-12;
+
+/// A masonry drum of radius 0.5 m and height 3 m (tan alpha = 1/3) on the rigid bed.
+fn drum(restitution: Restitution, hollow: bool) -> Params {
+    Params {
+        shape: if hollow {
+            ShapeKind::HollowCircle
+        } else {
+            ShapeKind::SolidCircle
+        },
+        ro: 0.5,
+        ri: 0.35,
+        mass_model: MassKind::Prism,
+        h: 3.0,
+        rho: 2000.0,
+        interface: LawKind::Rigid,
+        restitution,
+        eta: 0.8,
+        ..Params::default()
+    }
+}
+
+/// A ground motion that rocks the drum hard without overturning it:
+/// m/s², at t s.
+fn pulse_train(t: f64) -> f64 {
+    let g_tan_alpha = 9.81 / 3.0;
+    1.6 * g_tan_alpha * (2.0 * std::f64::consts::PI * 1.3 * t).sin() * (-0.25 * t).exp()
+}
+
+fn vertical(t: f64) -> f64 {
+    2.0 * (2.0 * std::f64::consts::PI * 3.1 * t).sin()
+}
+
+const DT: f64 = 0.01;
+
+/// The planar run and the spatial run along `+x`, sampled every `DT`:
+/// `(theta_planar, theta_spatial, |e_y| + |omega_x| + |omega_z|)`.
+fn planar_and_spatial(p: &Params, with_av: bool, theta0: f64, t_end: f64) -> Vec<(f64, f64, f64)> {
+    let planar = Simulator::new(p.build().unwrap(), RTOL);
+    let spatial = Spatial::new(p, None, RTOL).unwrap();
+    let mut a = planar.initial_state(theta0, 0.0);
+    let mut b = SpatialState::tilted(&spatial, theta0, 0.0, [0.0; 3]);
+    let av = |t: f64| if with_av { vertical(t) } else { 0.0 };
+    let mut out = vec![];
+    let n = (t_end / DT).round() as usize;
+    for k in 0..n {
+        let (t0, t1) = (k as f64 * DT, (k + 1) as f64 * DT);
+        let dag = (pulse_train(t1) - pulse_train(t0)) / DT;
+        let dav = (av(t1) - av(t0)) / DT;
+        let v = VerticalInput { av: av(t0), dav };
+        planar.advance_vertical(
+            &mut a,
+            t1,
+            GroundInput {
+                ag: pulse_train(t0),
+                dag,
+            },
+            v,
+        );
+        let h = PlanInput {
+            a: [pulse_train(t0), 0.0],
+            da: [dag, 0.0],
+        };
+        spatial.advance(&mut b, t1, h, v);
+        let off_plane = b.e[1].abs() + b.omega[0].abs() + b.omega[2].abs();
+        out.push((a.theta, b.e[0].asin(), off_plane));
+        assert_eq!(a.impacts, b.impacts, "impacts at t = {t1}");
+        assert_eq!(a.overturned, b.overturned);
+    }
+    out
+}
+
+#[test]
+fn in_a_plane_the_spatial_body_is_the_planar_rigid_model() {
+    for restitution in [Restitution::Housner, Restitution::Given] {
+        for with_av in [false, true] {
+            for theta0 in [0.0, 0.15] {
+                let p = drum(restitution, false);
+                let run = planar_and_spatial(&p, with_av, theta0, 6.0);
+                let worst = run
+                    .iter()
+                    .map(|(a, b, _)| (a - b).abs())
+                    .fold(0.0, f64::max);
+                let peak = run.iter().map(|(a, _, _)| a.abs()).fold(0.0, f64::max);
+                let off = run.iter().map(|r| r.2).fold(0.0, f64::max);
+                eprintln!("{restitution:?} av {with_av} theta0 {theta0}: worst {worst:.2e} rad, peak {peak:.3}");
+                assert!(peak > 0.05, "the run must rock: peak {peak}");
+                assert!(
+                    worst <= 1e-10,
+                    "{restitution:?} av {with_av}: {worst:e} rad"
+                );
+                assert_eq!(off, 0.0, "the motion stays in its plane exactly");
+            }
+        }
+    }
+}
+
+/// Rotate a horizontal vector by `beta` (rad).
+fn rot(v: [f64; 2], beta: f64) -> [f64; 2] {
+    let (s, c) = beta.sin_cos();
+    [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+}
+
+/// Run `spatial` from `st` under `ag(t)` (both components) rotated by `beta`.
+fn run_rotated(
+    spatial: &Spatial,
+    mut st: SpatialState,
+    ag: impl Fn(f64) -> [f64; 2],
+    beta: f64,
+    t_end: f64,
+) -> Vec<SpatialState> {
+    let n = (t_end / DT).round() as usize;
+    let mut out = vec![];
+    for k in 0..n {
+        let (t0, t1) = (k as f64 * DT, (k + 1) as f64 * DT);
+        let (a0, a1) = (rot(ag(t0), beta), rot(ag(t1), beta));
+        let h = PlanInput {
+            a: a0,
+            da: [(a1[0] - a0[0]) / DT, (a1[1] - a0[1]) / DT],
+        };
+        spatial.advance(&mut st, t1, h, VerticalInput::default());
+        out.push(st);
+    }
+    out
+}
+
+#[test]
+fn a_rotated_input_rotates_the_response() {
+    let p = drum(Restitution::Housner, true);
+    let spatial = Spatial::new(&p, None, RTOL).unwrap();
+    let two = |t: f64| [pulse_train(t), 0.7 * pulse_train(1.37 * t + 0.2)];
+    let planar = |t: f64| [pulse_train(t), 0.0];
+    for (name, ag) in [
+        ("planar", &planar as &dyn Fn(f64) -> [f64; 2]),
+        ("two components", &two),
+    ] {
+        let base = run_rotated(&spatial, SpatialState::at_rest(), ag, 0.0, 4.0);
+        for beta in [0.3, 2.1, -1.0] {
+            let turned = run_rotated(&spatial, SpatialState::at_rest(), ag, beta, 4.0);
+            let mut worst = 0.0f64;
+            for (a, b) in base.iter().zip(&turned) {
+                let e = rot(a.e, beta);
+                let w = rot([a.omega[0], a.omega[1]], beta);
+                worst = worst
+                    .max((e[0] - b.e[0]).abs() + (e[1] - b.e[1]).abs())
+                    .max((w[0] - b.omega[0]).abs() + (w[1] - b.omega[1]).abs())
+                    .max((a.omega[2] - b.omega[2]).abs());
+                assert_eq!(a.impacts, b.impacts, "{name}, beta {beta}, t = {}", a.t);
+            }
+            let peak = base.iter().map(|s| s.theta()).fold(0.0, f64::max);
+            eprintln!(
+                "{name} beta {beta}: worst {worst:.2e}, peak tilt {peak:.3} rad, impacts {}",
+                base.last().unwrap().impacts
+            );
+            assert!(peak > 0.05);
+            assert!(worst <= 1e-9, "{name}, beta {beta}: {worst:e}");
+        }
+    }
+}
+
+/// Steady wobbling with the centre of mass at rest (docs/model.md §10.5):
+/// `omega = (Omega sin(theta)/R) r` and
+/// `Omega² = m g R (hg sin - R cos) / (sin (C hg sin - A R cos))`.
+#[test]
+fn steady_wobbling_precesses_at_the_closed_form_rate() {
+    for (hollow, h) in [(false, 3.0), (true, 3.0), (false, 1.2)] {
+        let p = Params {
+            h,
+            ..drum(Restitution::Housner, hollow)
+        };
+        let spatial = Spatial::new(&p, None, RTOL).unwrap();
+        let b = &spatial.model.body;
+        let (m, g, r, hg, a, c) = (b.mass, b.g, spatial.radius, b.hg, b.ic, spatial.c_axial);
+        for theta in [0.02f64, 0.1, 0.5 * b.alpha] {
+            let (s, co) = theta.sin_cos();
+            let rate2 = m * g * r * (hg * s - r * co) / (s * (c * hg * s - a * r * co));
+            assert!(rate2 > 0.0);
+            let rate = rate2.sqrt();
+            // r = hg e3 - R e1 at azimuth 0
+            let lever = [hg * s - r * co, 0.0, hg * co + r * s];
+            let lam = rate * s / r;
+            let omega = [lam * lever[0], lam * lever[1], lam * lever[2]];
+            let mut st = SpatialState::tilted(&spatial, theta, 0.0, omega);
+            let xg0 = st.xg;
+            let period = 2.0 * std::f64::consts::PI / rate;
+            let (mut psi, mut last, mut worst_tilt) = (0.0, 0.0, 0.0f64);
+            let n = 400;
+            for k in 1..=n {
+                let t = 3.0 * period * k as f64 / n as f64;
+                spatial.advance(&mut st, t, PlanInput::default(), VerticalInput::default());
+                let az = st.e[1].atan2(st.e[0]);
+                let mut step = az - last;
+                step -= (step / (2.0 * std::f64::consts::PI)).round() * 2.0 * std::f64::consts::PI;
+                psi += step;
+                last = az;
+                worst_tilt = worst_tilt.max((st.theta() - theta).abs());
+            }
+            let measured = psi / st.t;
+            let rel = (measured - rate).abs() / rate;
+            let drift = (st.xg[0] - xg0[0]).hypot(st.xg[1] - xg0[1]);
+            eprintln!("h {h} hollow {hollow} theta {theta:.3}: rate {rate:.6} rad/s, rel {rel:.1e}, tilt {worst_tilt:.1e}, G moved {drift:.1e} m");
+            assert!(rel <= 1e-8, "precession {measured} against {rate}");
+            assert!(worst_tilt <= 1e-9 * theta, "tilt drift {worst_tilt:e}");
+            assert!(drift <= 1e-9, "the centre of mass moved {drift:e} m");
+            assert_eq!(st.impacts, 0);
+        }
+    }
+}
+
+#[test]
+fn energy_is_conserved_between_impacts_and_the_impact_takes_housners_share() {
+    // wobbling from a generic start, no input: no impact, E constant
+    let p = drum(Restitution::Housner, false);
+    let spatial = Spatial::new(&p, None, RTOL).unwrap();
+    let mut st = SpatialState::tilted(&spatial, 0.2, 0.4, [0.3, -0.5, 0.9]);
+    let e0 = spatial.energy(&st);
+    let mut worst = 0.0f64;
+    for k in 1..=300 {
+        spatial.advance(
+            &mut st,
+            0.01 * k as f64,
+            PlanInput::default(),
+            VerticalInput::default(),
+        );
+        worst = worst.max((spatial.energy(&st) - e0).abs() / e0);
+    }
+    eprintln!("free wobble: |dE|/E {worst:.1e}, impacts {}", st.impacts);
+    assert_eq!(
+        st.impacts, 0,
+        "the start was chosen to wobble clear of upright"
+    );
+    assert!(worst <= 1e-9, "{worst:e}");
+
+    // planar free rocking: each impact keeps eta² of the kinetic energy at upright
+    let mut st = SpatialState::tilted(&spatial, 0.25, 0.9, [0.0; 3]);
+    let upright = spatial.model.body.weight * spatial.model.body.hg;
+    let eta = spatial.model.body.eta_housner();
+    let mut before = spatial.energy(&st) - upright;
+    let mut seen = 0;
+    for k in 1..=1600 {
+        let impacts = st.impacts;
+        spatial.advance(
+            &mut st,
+            0.005 * k as f64,
+            PlanInput::default(),
+            VerticalInput::default(),
+        );
+        let now = spatial.energy(&st) - upright;
+        if st.at_rest {
+            break;
+        }
+        let n = (st.impacts - impacts) as i32;
+        let expected = eta.powi(2 * n) * before;
+        assert!(
+            (now - expected).abs() <= 1e-9 * before,
+            "{n} impacts: {now} vs {expected}"
+        );
+        seen += n;
+        before = now;
+    }
+    eprintln!(
+        "planar free rocking at azimuth 0.9: {seen} impacts, each kept eta² = {:.6} of the energy",
+        eta * eta
+    );
+    assert!(seen >= 3, "impacts seen: {seen}, {}", st.impacts);
+}
