@@ -33,10 +33,10 @@
 // or RODAS), `kinks` (where steps are cut), `events` (impacts, overturning,
 // rest), `dense` (the interpolant events are located on), `erk` and `rodas`
 // (the methods), `eom` (the right-hand side), `outputs` and `output_rates`.
-mod controller;
+pub(crate) mod controller;
 mod dense;
 mod eom;
-mod erk;
+pub(crate) mod erk;
 mod events;
 mod free;
 mod integrate;

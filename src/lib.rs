@@ -40,6 +40,7 @@ pub mod dynamics;
 pub mod interface;
 pub mod model;
 pub mod shape;
+pub mod spatial;
 mod trig;
 
 pub use body::{Body, MassModel};

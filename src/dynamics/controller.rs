@@ -11,7 +11,7 @@ const R_MAX: f64 = 0.5;
 /// Hairer's starting step (Solving ODEs I, §II.4) from `s`, for a method
 /// of order `order`, s. One evaluation (`hint`: the contact solve's warm
 /// start, carried on).
-pub(super) fn initial_step(s: &Start, tol: &Tol, hint: &mut f64, order: u32) -> f64 {
+pub(crate) fn initial_step(s: &Start, tol: &Tol, hint: &mut f64, order: u32) -> f64 {
     let (y, a0) = (s.y0, s.a0);
     let sc = tol.scales(y, y);
     let norm = |u: f64, v: f64| ((u / sc[0]).powi(2) + (v / sc[1]).powi(2)).sqrt() / 2f64.sqrt();
@@ -38,14 +38,14 @@ pub(super) fn initial_step(s: &Start, tol: &Tol, hint: &mut f64, order: u32) -> 
 /// `t + m` actually makes once rounded to a representable time, so that a
 /// step rejected down to it is then accepted (compared with the unrounded
 /// `m`, the rounded step could exceed it and be rejected for ever).
-pub(super) fn min_step(t: f64, hh: f64) -> f64 {
+pub(crate) fn min_step(t: f64, hh: f64) -> f64 {
     let m = 16.0 * f64::EPSILON * t.abs().max(hh);
     ((t + m) - t).max(m)
 }
 
 /// The factor on a rejected step with scaled error `err` (`err_exp` the
 /// controller's exponent, see `Pair::ERR_EXP`).
-pub(super) fn shrink(err: f64, err_exp: f64) -> f64 {
+pub(crate) fn shrink(err: f64, err_exp: f64) -> f64 {
     if err.is_finite() {
         (0.9 * err.powf(err_exp)).clamp(0.2, 1.0)
     } else {
@@ -55,7 +55,7 @@ pub(super) fn shrink(err: f64, err_exp: f64) -> f64 {
 
 /// The factor on an accepted step with scaled error `err`: at most 1 right
 /// after a rejection.
-pub(super) fn grow(err: f64, err_exp: f64, after_rejection: bool) -> f64 {
+pub(crate) fn grow(err: f64, err_exp: f64, after_rejection: bool) -> f64 {
     let fac = if err == 0.0 {
         10.0
     } else {

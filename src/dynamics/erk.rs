@@ -259,9 +259,9 @@ impl Pair for Dp5 {
 /// embedded 5th- and 3rd-order formulas as in Hairer's `dop853`.
 pub(crate) struct Dop853;
 
-const N12: usize = 12;
+pub(crate) const N12: usize = 12;
 
-const DOP_C: [f64; N12] = [
+pub(crate) const DOP_C: [f64; N12] = [
     0.0,
     0.526001519587677318785587544488e-01,
     0.789002279381515978178381316732e-01,
@@ -351,7 +351,7 @@ const fn dop_a() -> [[f64; N12]; N12 + 1] {
     a
 }
 
-const DOP_A: [[f64; N12]; N12 + 1] = dop_a();
+pub(crate) const DOP_A: [[f64; N12]; N12 + 1] = dop_a();
 
 const fn dop_e3() -> [f64; N12] {
     let mut e = DOP_A[N12];
@@ -361,8 +361,8 @@ const fn dop_e3() -> [f64; N12] {
     e
 }
 
-const DOP_E3: [f64; N12] = dop_e3();
-const DOP_E5: [f64; N12] = [
+pub(crate) const DOP_E3: [f64; N12] = dop_e3();
+pub(crate) const DOP_E5: [f64; N12] = [
     0.1312004499419488073250102996e-1,
     0.0,
     0.0,
