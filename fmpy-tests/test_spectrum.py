@@ -49,6 +49,7 @@ def test_family_by_p_and_by_size_by_hand():
         assert math.atan(body["B"] / body["H"]) == pytest.approx(ALPHA, rel=1e-12)
         assert body["interface"] == "rigid" and body["shape"] == "solidRectangle"
     assert by_r[0][1]["B"] == pytest.approx(by_p[0][1]["B"], rel=1e-12)
+    assert [label for label, _ in rectangle_family(RIGID, alpha=ALPHA, p=[2.0, 4.0, 2.0])] == ["p=2", "p=4"]
     with pytest.raises(ValueError, match="empty"):
         rectangle_family(RIGID, alpha=ALPHA, p=[])
     with pytest.raises(ValueError, match="sizes: every value must be > 0"):

@@ -85,7 +85,7 @@ def rectangle_family(params, alpha=None, p=None, sizes=None, g=None):
     if not (0 < alpha < math.pi / 2):
         raise ValueError(f"alpha = {alpha:g} rad: must be in (0, pi/2)")
     out = []
-    for v in values:
+    for v in dict.fromkeys(float(x) for x in values):  # a value given twice is one body (one label)
         R = 3 * g / (4 * v * v) if p is not None else float(v)
         body = dict(params, shape="solidRectangle", massModel="prism",
                     B=2 * R * math.sin(alpha), H=2 * R * math.cos(alpha))
