@@ -115,3 +115,41 @@ def test_relaxation_changes_the_path_not_the_answer_here():
     half = nonassoc.solve(a, 0.0, relaxation=0.5)
     assert full.lam == pytest.approx(B / H, rel=1e-6) and half.lam == pytest.approx(B / H, rel=1e-6)
     assert full.iterations < half.iterations
+
+
+def _support(s, facets):
+    """max t . s over the unit pyramid section {t: cos(phi_k) t1 + sin(phi_k) t2 <= 1}: its
+    vertices lie at radius 1/cos(pi/facets), half-way between the planes' normals."""
+    angles = 2 * math.pi * (np.arange(facets) + 0.5) / facets
+    vertices = np.stack([np.cos(angles), np.sin(angles)], axis=1) / math.cos(math.pi / facets)
+    return float((vertices @ s).max())
+
+
+@pytest.mark.parametrize("ends", ["free", "fixed"])
+def test_small_corner_converges_below_the_lp_and_does_work_by_friction_alone(ends):
+    """The 3-course, 3-block corner at pi/2 (docs/corner-nonassociative.md): converged, at or
+    below the associative LP, and virtual work on its mechanism: the load's and the
+    weights' power equal the friction's dissipation mu n |slip| (the pyramid's support
+    function) at the corners, with no opening where a corner is pressed; the associative
+    mechanism dissipates nothing."""
+    from rocking.corner_blocks.assembly import Assembly, interfaces
+    from rocking.corner_blocks.specimen import Specimen
+
+    a = Assembly.from_specimen(Specimen(courses=3, blocks=3, ends=ends))
+    r = nonassoc.solve(a, math.pi / 2, facets=8)
+    assert r.converged, r.status
+    assert r.lam <= lp.solve(a, math.pi / 2, facets=8).lam + 1e-9
+    v = r.velocity
+    weights = np.array([a.weight(i) for i in range(len(a.blocks))])
+    power_dead = float(-(weights * v[:, 2]).sum())
+    dissipation, k = 0.0, 0
+    for f in interfaces(a):
+        e = [ax for ax in range(3) if ax != f.axis]
+        for p in f.corners:
+            dv = lp.point_velocity(v[f.j], a.blocks[f.j].centroid, p) - lp.point_velocity(v[f.i], a.blocks[f.i].centroid, p)
+            dissipation += a.mu * r.normal[k] * _support(dv[e], 8)
+            k += 1
+    assert k == len(r.normal)
+    assert dissipation > 0.01 * r.lam  # it slides somewhere
+    assert r.lam + power_dead == pytest.approx(dissipation, rel=1e-6)
+    assert r.opening_max_pressed <= 1e-9 * np.abs(v).max()

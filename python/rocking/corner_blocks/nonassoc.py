@@ -36,6 +36,11 @@ from .lp import LAMBDA_CAP, point_velocity
 
 #: Weight of sum |n - n_hat| against sum n in the choice among the LP's optima (least_normal).
 PROXIMITY = 0.1
+#: A corner "pressed" for Result.opening_max_pressed carries more than this share of the
+#: largest block weight. Not tol: the last LP's forces are optimal only to tol in lambda,
+#: so complementarity holds as n x opening <= tol-sized, and corners with n near tol
+#: may still open.
+PRESSED = 1e-3
 
 
 @dataclass
@@ -46,8 +51,8 @@ class Result:
     in interfaces(assembly)'s order, 4 per interface; velocity: (blocks, 6) the last LP's
     mechanism (m/s, rad/s), load power per unit lambda 1 W; moving: blocks moving faster
     than move_tol of the fastest; opening_max_pressed: the largest normal opening speed
-    (m/s, same scale) at a corner whose normal force exceeds tol W_max (0 up to round-off:
-    pressed contacts slide without opening); status: a sentence."""
+    (m/s, same scale) at a corner whose normal force exceeds PRESSED W_max (0 up to
+    round-off: pressed contacts slide without opening); status: a sentence."""
 
     lam: float
     lam_associative: float
@@ -115,7 +120,7 @@ def solve(assembly: Assembly, alpha, facets=8, relaxation=0.5, tol=1e-7, max_ite
                 return _fail(r, raise_on_failure)
             velocity = p.velocity(res)
             return Result(lam, lam_assoc, True, k, history, n, velocity, _moving(assembly, velocity, move_tol),
-                          p.opening_max_pressed(velocity, n, tol * w_max),
+                          p.opening_max_pressed(velocity, n, PRESSED * w_max),
                           f"converged in {k} iterations (tol {tol:g}, relaxation {relaxation:g})")
         n_hat = n_hat + relaxation * (n - n_hat)
         lam_prev = lam
