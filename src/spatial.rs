@@ -52,6 +52,10 @@ pub struct Spatial {
     pub radius: f64,
     /// Inertia about the body's axis through the centre of mass `C`, kg m².
     pub c_axial: f64,
+    /// The most steps (accepted and rejected) one `advance` may take;
+    /// `None`: no limit. Past it the call returns early
+    /// ([`SpatialEvents::limited`]).
+    pub max_steps: Option<u32>,
     /// The planar simulator of the same model: its tolerances and rest bound.
     planar: Simulator,
 }
@@ -110,6 +114,7 @@ impl Spatial {
             restitution: params.restitution,
             radius,
             c_axial,
+            max_steps: None,
             planar: Simulator::new(model, rtol),
         })
     }

@@ -221,9 +221,9 @@ fn energy_is_conserved_between_impacts_and_the_impact_takes_housners_share() {
     // wobbling from a generic start, no input: no impact, E constant
     let p = drum(Restitution::Housner, false);
     let spatial = Spatial::new(&p, None, RTOL).unwrap();
-    let mut st = SpatialState::tilted(&spatial, 0.2, 0.4, [0.3, -0.5, 0.9]);
+    let mut st = SpatialState::tilted(&spatial, 0.2, 0.4, [0.1, -0.2, 2.0]);
     let e0 = spatial.energy(&st);
-    let mut worst = 0.0f64;
+    let (mut worst, mut low, mut high) = (0.0f64, 1.0f64, 0.0f64);
     for k in 1..=300 {
         spatial.advance(
             &mut st,
@@ -232,8 +232,14 @@ fn energy_is_conserved_between_impacts_and_the_impact_takes_housners_share() {
             VerticalInput::default(),
         );
         worst = worst.max((spatial.energy(&st) - e0).abs() / e0);
+        (low, high) = (low.min(st.theta()), high.max(st.theta()));
     }
-    eprintln!("free wobble: |dE|/E {worst:.1e}, impacts {}", st.impacts);
+    let rolled = st.xg[0].hypot(st.xg[1]);
+    eprintln!("free wobble: |dE|/E {worst:.1e}, tilt {low:.3}..{high:.3} rad, G rolled {rolled:.2} m, impacts {}", st.impacts);
+    assert!(
+        !st.overturned && low > 0.05 && high > 0.2 && rolled > 0.5,
+        "a wobble that rolls"
+    );
     assert_eq!(
         st.impacts, 0,
         "the start was chosen to wobble clear of upright"
@@ -272,4 +278,28 @@ fn energy_is_conserved_between_impacts_and_the_impact_takes_housners_share() {
         eta * eta
     );
     assert!(seen >= 3, "impacts seen: {seen}, {}", st.impacts);
+}
+
+#[test]
+fn a_step_limit_ends_the_call_early_and_the_run_resumes_where_it_stopped() {
+    let p = drum(Restitution::Housner, false);
+    let free = Spatial::new(&p, None, RTOL).unwrap();
+    let mut limited = free.clone();
+    limited.max_steps = Some(5);
+    let start = SpatialState::tilted(&free, 0.2, 0.4, [0.1, -0.2, 2.0]);
+    let (mut a, mut b) = (start, start);
+    free.advance(&mut a, 1.0, PlanInput::default(), VerticalInput::default());
+    let mut calls = 0;
+    while b.t < 1.0 {
+        let ev = limited.advance(&mut b, 1.0, PlanInput::default(), VerticalInput::default());
+        assert!(ev.steps + ev.rejected <= 5);
+        assert_eq!(ev.limited, b.t < 1.0);
+        calls += 1;
+    }
+    assert!(calls > 1, "the limit must bite: {calls} call");
+    // the run resumes where it stopped: the same motion to the tolerance (the
+    // step after a rejection may grow at a call's start, so not to the bit)
+    assert_eq!(a.impacts, b.impacts);
+    let gap = (a.e[0] - b.e[0]).abs() + (a.e[1] - b.e[1]).abs();
+    assert!(gap <= 1e-10, "{gap:e}");
 }

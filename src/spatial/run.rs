@@ -37,6 +37,9 @@ pub struct SpatialEvents {
     /// Accepted and rejected steps.
     pub steps: u32,
     pub rejected: u32,
+    /// The call stopped at [`Spatial::max_steps`] before `t_end`, with the
+    /// state consistent at its time.
+    pub limited: bool,
 }
 
 /// What ends a step early.
@@ -61,6 +64,10 @@ impl Spatial {
         let mut ev = SpatialEvents::default();
         let mut after_rejection = false;
         while st.t < t_end && !st.overturned {
+            if self.max_steps.is_some_and(|m| ev.steps + ev.rejected >= m) {
+                ev.limited = true;
+                break;
+            }
             if st.at_rest {
                 match self.uplift(&eom, st.t, t_end) {
                     None => st.t = t_end,
