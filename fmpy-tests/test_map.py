@@ -319,13 +319,34 @@ def _rocking(*args):
     return subprocess.run([sys.executable, "-m", "rocking", *args], capture_output=True, text=True, timeout=120)
 
 
+@pytest.fixture
+def cli(capsys, monkeypatch):
+    """`rocking ARGS` in this process (rocking.cli.main.main, without a new interpreter's
+    imports: 4 s a call on the loaded machine): an object with returncode, stdout, stderr."""
+    import types
+    import warnings
+
+    from rocking.cli.main import main
+    monkeypatch.setattr(warnings, "showwarning", warnings.showwarning)  # main sets its own
+
+    def run(*args):
+        capsys.readouterr()
+        try:
+            code = main(list(args))
+        except SystemExit as exc:  # argparse's errors
+            code = exc.code
+        out, err = capsys.readouterr()
+        return types.SimpleNamespace(returncode=code, stdout=out, stderr=err)
+    return run
+
+
 def test_map_help():
     r = _rocking("map", "--help")
     assert r.returncode == 0
     assert "--frequencies" in r.stdout and "thetaOv" in r.stdout
 
 
-def test_map_cli_tiny_run_writes_parquet_with_metadata(tmp_path, fmu_path):
+def test_map_cli_tiny_run_writes_parquet_with_metadata(tmp_path, fmu_path, cli):
     from importlib.metadata import version
 
     import pandas as pd
@@ -343,6 +364,68 @@ def test_map_cli_tiny_run_writes_parquet_with_metadata(tmp_path, fmu_path):
     assert meta["frequencies"] == [2.0, 4.0] and meta["tol"] == 1e-3
     assert read_metadata(out / "boundaries.parquet") == meta
     assert (out / "map.png").stat().st_size > 0
+    # the same map with one more frequency, to the same folder: the two finished columns are read
+    r = cli("map", "--fmu", fmu_path, "--shape", "solidRectangle", "--B", "0.4", "--H", "2",
+            "--interface", "rigid", "--frequencies", "2,3,4", "--amplitudes", "1:4:3", "--tail", "3",
+            "--workers", "1", "--quiet", "--no-plot", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    assert "resumed     2 of 3 frequency columns" in r.stdout, r.stdout
+    again = pd.read_parquet(out / "runs.parquet")
+    pd.testing.assert_frame_equal(again[again["w"] != 3.0].drop(columns="wall_s").reset_index(drop=True),
+                                  runs.drop(columns="wall_s"))
+
+
+def test_map_resumes_after_an_interruption(fmu, tmp_path):
+    """A map stopped after two of its four columns (Ctrl-C in the progress callback) and run
+    again with the same store runs only the two others, and its table is that of a map run
+    whole; a map with another tol, tail, grid or body has other keys; a finished map run
+    again runs nothing."""
+    import dataclasses
+
+    import pandas as pd
+
+    from rocking.map_store import MapStore
+    spec = MapSpec(params=RIGID, shape="one-sine", frequencies=[2.0, 3.0, 4.0, 5.0],
+                   amplitudes=list(np.linspace(1.0, 6.0, 6)), tol=TOL, tail=5.0)
+    whole = run_map(dataclasses.replace(spec), fmu, workers=1)
+    store = MapStore(tmp_path / "parts")
+
+    def interrupt(done, total, rows):
+        if done == 2:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        run_map(dataclasses.replace(spec), fmu, workers=1, progress=interrupt, store=store)
+    assert len(store.files()) == 2
+    ran = []
+    resumed = run_map(dataclasses.replace(spec), fmu, workers=1, store=store,
+                      progress=lambda done, total, rows: ran.append(rows[0]["w"]))
+    assert resumed.attrs["resumed"] == 2 and sorted(ran) == [4.0, 5.0]
+    pd.testing.assert_frame_equal(resumed.drop(columns="wall_s"), whole.drop(columns="wall_s"))
+    from rocking.maps import column_key
+    for change in (dict(tol=2e-3), dict(tail=6.0), dict(amplitudes=[1.0, 2.0]), dict(params=dict(RIGID, H=2.1))):
+        assert column_key(dataclasses.replace(spec, **change), 2.0, "s") != column_key(spec, 2.0, "s")
+    assert column_key(spec, 2.0, "s") != column_key(spec, 2.0, "t")  # another FMU or code
+    done = run_map(dataclasses.replace(spec), fmu, workers=2, store=store)
+    assert done.attrs["resumed"] == 4 and done.attrs["resumed_rows"] == len(whole)
+
+
+def test_map_on_dask_gives_the_process_pools_table(fmu, tmp_path):
+    """The columns as tasks of the fragility runner's Dask code (rocking.fragility.cluster:
+    its FMU plugin and submission window), on an in-process scheduler and worker (a process
+    LocalCluster took 9 s to start here): the same table, each column in the store."""
+    import pandas as pd
+    from distributed import Client
+
+    from rocking.map_store import MapStore
+    spec = MapSpec(params=RIGID, shape="one-sine", frequencies=[2.0, 3.0, 4.0],
+                   amplitudes=list(np.linspace(1.0, 6.0, 6)), tol=TOL, tail=5.0)
+    pool = run_map(spec, fmu, workers=2)
+    store = MapStore(tmp_path / "parts")
+    with Client(processes=False, n_workers=1, threads_per_worker=1, dashboard_address=None) as client:
+        dask = run_map(spec, fmu, store=store, client=client)
+    pd.testing.assert_frame_equal(dask.drop(columns="wall_s"), pool.drop(columns="wall_s"))
+    assert len(store.files()) == 3
 
 
 @pytest.mark.parametrize("args, message", [
@@ -350,8 +433,8 @@ def test_map_cli_tiny_run_writes_parquet_with_metadata(tmp_path, fmu_path):
     (["--frequencies", "0,2", "--amplitudes", "1,2"], "--frequencies 0,2: every value must be > 0"),
     (["--frequencies", "1,2", "--amplitudes", "1,2", "--pulse", "user"], "--pulse-file"),
 ])
-def test_map_bad_input_is_one_line(tmp_path, args, message):
-    r = _rocking("map", *args, "--out", str(tmp_path / "x"))
+def test_map_bad_input_is_one_line(tmp_path, args, message, cli):
+    r = cli("map", *args, "--out", str(tmp_path / "x"))
     assert r.returncode == 2
     assert message in r.stderr and len(r.stderr.strip().splitlines()) == 1
 
@@ -447,15 +530,16 @@ def test_rigid_tail_skipped_by_energy_agrees_with_full_runs(fmu, rigid_map):
         assert f["peak_theta_over_alpha"] == pytest.approx(r.peak_theta_over_alpha, abs=1e-5)
 
 
-@pytest.mark.parametrize("first_tail", [1.0, 0.02])
-@pytest.mark.parametrize("bed", [dict(interface="elastic", kn=1e9),
-                                 dict(interface="elastoPlastic", kn=1e9, fm=2e5)], ids=["elastic", "crushing"])
+@pytest.mark.parametrize("bed, first_tail", [(dict(interface="elastic", kn=1e9), 1.0),
+                                             (dict(interface="elastoPlastic", kn=1e9, fm=2e5), 0.02)],
+                         ids=["elastic", "crushing"])
 def test_flexible_tail_ends_when_the_body_cannot_overturn(fmu, bed, first_tail, monkeypatch):
     """On flexible and crushing beds (shiftingPivot) the tail ends at the first free turning
     point or rest: the same outcomes, overturning times, impacts when overturned and peaks as
     runs through the whole 20 s tail, on a 6 x 8 one-sine grid where some bodies overturn in
-    the tail (so a tail cut at the pulse's end fails it), with most safe runs cut short. With
-    a first tail of 0.02 periods 2 pi / p the criterion is tested at many points of each tail."""
+    the tail, with most safe runs cut short. With a first tail of 0.02 periods 2 pi / p (the
+    crushing bed's case) the criterion is tested at many points of each tail (a tail cut at the
+    pulse's end fails it)."""
     import dataclasses
 
     from rocking import maps
@@ -552,7 +636,7 @@ def test_similarity_on_flexible_beds_elastic_keeps_it_crushing_breaks_it(fmu):
     assert change < -0.2
 
 
-def test_map_cli_user_pulse_and_a_file_without_a_pulse(tmp_path, fmu_path):
+def test_map_cli_user_pulse_and_a_file_without_a_pulse(tmp_path, fmu_path, cli):
     import pandas as pd
     good, empty = tmp_path / "half-sine.csv", tmp_path / "flat.csv"
     tau = np.linspace(0, 0.5, 51)
@@ -560,25 +644,25 @@ def test_map_cli_user_pulse_and_a_file_without_a_pulse(tmp_path, fmu_path):
     empty.write_text("tau,value\n0,0\n0.5,0\n")
     body = ["--fmu", fmu_path, "--shape", "solidRectangle", "--B", "0.4", "--H", "2", "--interface", "rigid",
             "--frequencies", "3", "--amplitudes", "1,3", "--workers", "1", "--quiet", "--no-plot"]
-    r = _rocking("map", *body, "--pulse", "user", "--pulse-file", str(good), "--out", str(tmp_path / "u"))
+    r = cli("map", *body, "--pulse", "user", "--pulse-file", str(good), "--out", str(tmp_path / "u"))
     assert r.returncode == 0, r.stderr
     runs = pd.read_parquet(tmp_path / "u" / "runs.parquet")
     # the pulse lasts tau_end T_p = 0.5 T_p
     assert runs["pulse_end"].iloc[0] == pytest.approx(0.5 * 2 * math.pi / runs["w_p"].iloc[0])
     assert read_metadata(tmp_path / "u" / "runs.parquet")["user"][0][-1] == 0.5
-    r = _rocking("map", *body, "--pulse", "user", "--pulse-file", str(empty), "--out", str(tmp_path / "e"))
+    r = cli("map", *body, "--pulse", "user", "--pulse-file", str(empty), "--out", str(tmp_path / "e"))
     assert r.returncode == 2 and "flat.csv: no pulse" in r.stderr and len(r.stderr.strip().splitlines()) == 1
 
 
-def test_map_cli_beside_maps_variants_of_the_body(tmp_path, fmu_path):
+def test_map_cli_beside_maps_variants_of_the_body(tmp_path, fmu_path, cli):
     """--beside: the body with parameters changed, its rows labelled, its parameters (and those
     the body's interface left out, here kn) in the metadata, one panel each."""
     import pandas as pd
     out = tmp_path / "b"
-    r = _rocking("map", "--fmu", fmu_path, "--shape", "solidRectangle", "--B", "0.4", "--H", "2",
-                 "--interface", "rigid", "--kn", "1e9", "--dimensionless", "--beside", "interface=elastic",
-                 "--frequencies", "2,4", "--amplitudes", "1:4:3", "--tail", "3", "--workers", "1", "--quiet",
-                 "--out", str(out))
+    r = cli("map", "--fmu", fmu_path, "--shape", "solidRectangle", "--B", "0.4", "--H", "2",
+            "--interface", "rigid", "--kn", "1e9", "--dimensionless", "--beside", "interface=elastic",
+            "--frequencies", "2,4", "--amplitudes", "1:4:3", "--tail", "3", "--workers", "1", "--quiet",
+            "--out", str(out))
     assert r.returncode == 0, r.stderr
     runs = pd.read_parquet(out / "runs.parquet")
     assert set(runs["body"]) == {"body", "interface=elastic"}
@@ -586,6 +670,6 @@ def test_map_cli_beside_maps_variants_of_the_body(tmp_path, fmu_path):
     assert meta["bodies"]["interface=elastic"]["params"]["kn"] == 1e9
     assert "kn" not in meta["bodies"]["body"]["params"]
     assert meta["bodies"]["interface=elastic"]["scales"]["thetaOv"] < meta["bodies"]["body"]["scales"]["thetaOv"]
-    bad = _rocking("map", "--fmu", fmu_path, "--beside", "interface", "--frequencies", "2", "--amplitudes", "1",
-                   "--out", str(tmp_path / "x"))
+    bad = cli("map", "--fmu", fmu_path, "--beside", "interface", "--frequencies", "2", "--amplitudes", "1",
+              "--out", str(tmp_path / "x"))
     assert bad.returncode == 2 and "--beside 'interface': expected NAME=VALUE" in bad.stderr

@@ -259,31 +259,86 @@ def _column_task(args):
     return run_column(spec, w)
 
 
-def run_map(spec, fmu, workers=None, progress=None):
+def _dask_column(digest, spec, w):
+    """run_column in a Dask worker of rocking.fragility.cluster (its FMU by digest)."""
+    from .fragility import runner
+    with runner._LOCK:  # one run at a time per process (RockingFMU is not thread-safe)
+        return run_column(spec, w, runner._FMUS[digest])
+
+
+def spec_digest(spec, salt=""):
+    """A hash of what decides a column's rows besides its frequency: the body, the pulse, the
+    amplitudes, tol, tail, samples, units, and `salt` (`code_salt`)."""
+    import hashlib
+    import json
+    d = metadata(spec)
+    keep = {k: d[k] for k in ("params", "shape", "amplitudes", "dimensionless", "tol", "tail", "per_period",
+                              "user", "cut_tail")}
+    text = json.dumps(keep, sort_keys=True, default=str) + "|" + str(salt)
+    return hashlib.sha1(text.encode()).hexdigest()[:16]
+
+
+def code_salt(fmu):
+    """The FMU's GUID and a hash of the modules that make a map's rows (this one, the pulses,
+    the FMU's driver): a stored column is not reused once any of them changed."""
+    import hashlib
+    from pathlib import Path
+
+    from . import fmu as fmu_module, pulses
+    digest = hashlib.sha1()
+    for module in (fmu_module, pulses):
+        digest.update(Path(module.__file__).read_bytes())
+    digest.update(Path(__file__).read_bytes())
+    return f"{fmu.model_description.guid}|{digest.hexdigest()[:16]}"
+
+
+def column_key(spec, w, salt=""):
+    """The store's key of the column of frequency w (grid units)."""
+    return f"map-{spec_digest(spec, salt)}|w={float(w)!r}"
+
+
+def run_map(spec, fmu, workers=None, progress=None, store=None, resume=True, client=None, salt=None):
     """Every column of `spec` (spec.scales filled from the FMU): a DataFrame, one row per run,
     sorted by w then a. fmu: a RockingFMU (its extraction shared with the workers).
-    progress(columns done, columns, rows of the column) after each column."""
+    progress(columns done, columns, rows of the column) after each column.
+    store: a rocking.map_store.MapStore: each column written there as it finishes (unless a
+    run of it failed), and, with `resume`, the columns already there read instead of run.
+    client: a dask.distributed Client (rocking.fragility.cluster.open_client) to run the
+    columns on instead of the process pool. salt: what else keys the stored columns (default:
+    `code_salt`). The table's attrs["resumed"], ["resumed_rows"]: the columns and rows read."""
     spec.check()
     if not spec.scales:
         spec.scales = body_scales(fmu, spec.params)
     columns = sorted(float(w) for w in spec.frequencies)
-    workers = max(1, min(int(workers or os.cpu_count() or 1), len(columns)))
-    rows = []
-    if workers == 1:
-        for k, w in enumerate(columns, 1):
-            got = run_column(spec, w, fmu)
-            rows += got
-            if progress:
-                progress(k, len(columns), got)
-    else:
+    if salt is None:
+        salt = code_salt(fmu)
+    keys = {w: column_key(spec, w, salt) for w in columns}
+    finished = store.finished(keys.values()) if store is not None and resume else set()
+    todo = [w for w in columns if keys[w] not in finished]
+    rows = store.read_tasks([keys[w] for w in columns if keys[w] in finished]) if finished else []
+    count = [len(columns) - len(todo)]
+    resumed_rows = len(rows)
+
+    def got(w, new):
+        if store is not None and not any(r["error"] for r in new):
+            store.write(keys[w], new)
+        rows.extend(new)
+        count[0] += 1
+        if progress:
+            progress(count[0], len(columns), new)
+
+    workers = max(1, min(int(workers or os.cpu_count() or 1), max(1, len(todo))))
+    if client is not None and todo:
+        _run_on_dask(client, fmu, spec, todo, keys, store, got)
+    elif workers == 1:
+        for w in todo:
+            got(w, run_column(spec, w, fmu))
+    elif todo:
         with ProcessPoolExecutor(max_workers=workers, initializer=parametric._init_worker,
                                  initargs=(str(fmu.unzipdir),)) as pool:
-            futures = [pool.submit(_column_task, (spec, w)) for w in columns]
-            for k, fut in enumerate(as_completed(futures), 1):
-                got = fut.result()
-                rows += got
-                if progress:
-                    progress(k, len(columns), got)
+            futures = {pool.submit(_column_task, (spec, w)): w for w in todo}
+            for fut in as_completed(futures):
+                got(futures[fut], fut.result())
     table = pd.DataFrame(rows)
     table["outcome"] = [OUTCOMES[outcome(r)] if not r["error"] else "error" for r in rows]
     over = table["overturned"].fillna(False).astype(bool)
@@ -291,7 +346,39 @@ def run_map(spec, fmu, workers=None, progress=None):
     table["w_p_over_p"] = table["w_p"] / spec.scales["p"]
     table["a_p_over_g_tan_alpha"] = table["a_p"] / spec.scales["g_tan_alpha"]
     table.insert(0, "shape", spec.shape)
-    return table.sort_values(["w", "a"], kind="stable").reset_index(drop=True)
+    table = table.sort_values(["w", "a"], kind="stable").reset_index(drop=True)
+    table.attrs["resumed"] = len(columns) - len(todo)
+    table.attrs["resumed_rows"] = resumed_rows
+    return table
+
+
+class _Collect:
+    """A store for rocking.fragility.cluster.execute that hands each column to run_map."""
+
+    def __init__(self, by_key, got):
+        self.by_key, self.got = by_key, got
+
+    def finished(self, keys):
+        return set()
+
+    def write(self, key, rows):
+        self.got(self.by_key[key], rows)
+
+
+def _run_on_dask(client, fmu, spec, todo, keys, store, got):
+    """The columns `todo` as tasks of rocking.fragility.cluster.execute (its FMU plugin, its
+    submission window); a task lost or failed is an error here (rerun the map: the columns
+    done are in the store)."""
+    from .fragility import cluster
+    if fmu.path is None:
+        raise ValueError("client: the FMU must be opened from its .fmu file to send it to Dask workers")
+    digest = cluster.register_fmu(client, fmu.path)
+    tasks = [(keys[w], _dask_column, (digest, spec, w), len(spec.amplitudes)) for w in todo]
+    _, _, failures = cluster.execute(client, tasks, _Collect({keys[w]: w for w in todo}, got))
+    if failures:
+        key, err = next(iter(failures.items()))
+        raise RuntimeError(f"{len(failures)} map column(s) failed on Dask, e.g. {key}: {err} "
+                           "(the finished columns are in the store: run the map again)")
 
 
 def boundaries(runs, spec):

@@ -51,6 +51,7 @@ def cmd_map(args, params_given):
     from tqdm import tqdm
 
     from .. import maps, paths, pulses
+    from ..map_store import MapStore
     from .simulate import gather_parameters
 
     user = None
@@ -83,16 +84,19 @@ def cmd_map(args, params_given):
         given = dict(params, **{name: v["value"] for name, v in ignored.items()})
         bodies = [("body", spec)] + [(text, _variant(fmu, spec, given, text, maps)) for text in args.beside or []]
         tables = []
-        for label, sp in bodies:
-            runs_done = [0]
-            with tqdm(total=len(freqs), unit="frequency", desc=f"map {label}", file=sys.stderr,
-                      dynamic_ncols=True, disable=args.quiet) as bar:
-                def progress(done, total, rows):
-                    runs_done[0] += len(rows)
-                    bar.set_postfix(runs=runs_done[0], refresh=False)
-                    bar.update(1)
-                runs = maps.run_map(sp, fmu, workers=args.workers, progress=progress)
-            tables.append((label, sp, runs, maps.boundaries(runs, sp)))
+        store = MapStore(out / "parts")
+        with _client(args) as client:
+            for label, sp in bodies:
+                runs_done = [0]
+                with tqdm(total=len(freqs), unit="frequency", desc=f"map {label}", file=sys.stderr,
+                          dynamic_ncols=True, disable=args.quiet) as bar:
+                    def progress(done, total, rows):
+                        runs_done[0] += len(rows)
+                        bar.set_postfix(runs=runs_done[0], refresh=False)
+                        bar.update(done - bar.n)
+                    runs = maps.run_map(sp, fmu, workers=args.workers, progress=progress, store=store,
+                                        resume=not args.no_resume, client=client)
+                tables.append((label, sp, runs, maps.boundaries(runs, sp)))
         guid = fmu.model_description.guid
     wall = time.perf_counter() - t0
     try:
@@ -123,7 +127,13 @@ def cmd_map(args, params_given):
               f"({name} interface)")
     print(f"grid        {len(freqs)} frequencies ({units['w']}) x {len(amps)} amplitudes ({units['a']}), "
           f"{args.pulse} pulse, boundaries to {args.tol:g} relative")
-    print(f"runs        {len(runs)} in {wall:.1f} s ({len(runs) / wall:.1f} runs/s)"
+    resumed = sum(t[2].attrs.get("resumed", 0) for t in tables)
+    if resumed:
+        print(f"resumed     {resumed} of {len(freqs) * len(tables)} frequency columns read from {out / 'parts'} "
+              "(finished by an earlier run of this map; --no-resume runs them again)")
+    ran = len(runs) - sum(t[2].attrs.get("resumed_rows", 0) for t in tables)
+    print(f"runs        {len(runs)}" + (f", {ran} of them run now" if resumed else "")
+          + f" in {wall:.1f} s ({ran / wall:.1f} runs/s)"
           + (f", {errors} FAILED (their rows' error column)" if errors else ""))
     unsettled = int((runs["tail_end"] == "time").sum())
     print(f"tails       {int((runs['tail_end'] == 'cannot overturn').sum())} ended where the body could no longer "
@@ -135,6 +145,15 @@ def cmd_map(args, params_given):
     print(f"wrote       {out / 'runs.parquet'}, {out / 'boundaries.parquet'}"
           + ("" if args.no_plot else f", {out / 'map.png'}"))
     return 0
+
+
+def _client(args):
+    """A Dask client (rocking.fragility.cluster) for --dask or --scheduler, else nothing."""
+    import contextlib
+    if not (args.dask or args.scheduler):
+        return contextlib.nullcontext()
+    from ..fragility import cluster
+    return cluster.open_client(args.scheduler, args.workers, quiet=args.quiet)
 
 
 def pd_concat(frames):
@@ -240,7 +259,9 @@ def register(sub, common):
             "reached the body's overturning limit thetaOv during the pulse or its free tail (docs/maps.md). "
             "Writes DIR/runs.parquet (one row per run), DIR/boundaries.parquet (one row per interval of "
             "amplitudes in which the body overturns) and DIR/map.png; the inputs, the package version and "
-            "the FMU's GUID are in both files' metadata (key 'rocking').", 100),
+            "the FMU's GUID are in both files' metadata (key 'rocking'). Each finished frequency column is "
+            "kept in DIR/parts: the same map run again (interrupted, or with more frequencies) reads them "
+            "instead of running them.", 100),
         epilog=textwrap.fill(f"Grids: START:STOP:N (linear), START:STOP:N:log, or A,B,C. Dimensionless (the "
                              "default for interface = rigid): w_p / p and a_p / (g tan alpha), p = sqrt(m g R0 / "
                              f"IO); dimensional: rad/s and m/s2. presets: {NAMING}.", 100),
@@ -269,6 +290,13 @@ def register(sub, common):
                         "can no longer overturn (docs/maps.md) (default 10)")
     p.add_argument("--per-period", type=int, default=400, help="samples of the pulse per period (default 400)")
     p.add_argument("--workers", type=int, help="processes (default: one per core)")
+    p.add_argument("--dask", action="store_true",
+                   help="run the frequency columns on a Dask LocalCluster of --workers processes (the "
+                        "fragility runner's; worth it for large grids, it costs seconds to start)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="run the columns on this Dask scheduler")
+    p.add_argument("--no-resume", action="store_true",
+                   help="run every column again, not reading those a previous run of this map left in "
+                        "DIR/parts")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--no-plot", action="store_true", help="no DIR/map.png")
     p.add_argument("--out", required=True, metavar="DIR", help="folder of the tables and the plot")
