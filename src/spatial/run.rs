@@ -155,9 +155,31 @@ impl Spatial {
             let over = limit2 - (s.y[0] * s.y[0] + s.y[1] * s.y[1]);
             quarter.min(over)
         };
-        let (mut a, mut fa) = (0.0, f64::MIN_POSITIVE);
+        let at = |y: &[f64; N]| {
+            let quarter = y[0] * d0[0] + y[1] * d0[1];
+            quarter.min(limit2 - (y[0] * y[0] + y[1] * y[1]))
+        };
+        // upright after an impact the margin is 0 and the tilt grows
+        let (mut a, mut fa) = (0.0, at(y0).max(f64::MIN_POSITIVE));
         let end = trial(hh);
         let (mut b, mut fb, mut yb) = (hh, g(&end), end.y);
+        // a first guess from the cubic through both ends' values and rates,
+        // and a bracket 1e-6 of the step around it (else the whole step)
+        let f1 = eom.rates(t + hh, &end.y, d0);
+        let guess = first_root(|tau| cubic(at, (y0, f0), (&end.y, &f1), hh, tau), hh);
+        let delta = 1e-6 * hh;
+        for c in [guess, guess + delta, guess - delta] {
+            if !(c > a && c < b) {
+                continue;
+            }
+            let s = trial(c);
+            let fc = g(&s);
+            if fc <= 0.0 {
+                (b, fb, yb) = (c, fc, s.y);
+            } else {
+                (a, fa) = (c, fc);
+            }
+        }
         let mut side = 0;
         for _ in 0..200 {
             if b - a <= min_step(t, b) * 0.25 {
@@ -330,6 +352,55 @@ impl Spatial {
         };
         h.min(0.01 / p)
     }
+}
+
+/// The margin `at` of the state that a cubic Hermite in time through the
+/// step's ends `(y, dy/dt)` gives at `tau` into the step `hh`.
+fn cubic(
+    at: impl Fn(&[f64; N]) -> f64,
+    (y0, f0): (&[f64; N], &[f64; N]),
+    (y1, f1): (&[f64; N], &[f64; N]),
+    hh: f64,
+    tau: f64,
+) -> f64 {
+    let s = tau / hh;
+    let (s2, s3) = (s * s, s * s * s);
+    let (h00, h10, h01, h11) = (
+        2.0 * s3 - 3.0 * s2 + 1.0,
+        s3 - 2.0 * s2 + s,
+        -2.0 * s3 + 3.0 * s2,
+        s3 - s2,
+    );
+    let mut y = [0.0; N];
+    for c in 0..N {
+        y[c] = h00 * y0[c] + h10 * hh * f0[c] + h01 * y1[c] + h11 * hh * f1[c];
+    }
+    at(&y)
+}
+
+/// The first sign change from positive of `f` on `(0, span]` (32 samples,
+/// then bisection), or `span`.
+fn first_root(f: impl Fn(f64) -> f64, span: f64) -> f64 {
+    let n = 32;
+    let mut lo = 0.0;
+    for i in 1..=n {
+        let hi = span * i as f64 / n as f64;
+        if f(hi) <= 0.0 {
+            let mut lo = lo;
+            let mut hi = hi;
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if f(mid) <= 0.0 {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            return hi;
+        }
+        lo = hi;
+    }
+    span
 }
 
 /// The first `tau` in `(0, span]` where the quadratic `q` (negative at 0)
