@@ -153,3 +153,23 @@ def test_small_corner_converges_below_the_lp_and_does_work_by_friction_alone(end
     assert dissipation > 0.01 * r.lam  # it slides somewhere
     assert r.lam + power_dead == pytest.approx(dissipation, rel=1e-6)
     assert r.opening_max_pressed <= 1e-9 * np.abs(v).max()
+
+
+def test_committed_cases_lie_at_or_below_their_lp():
+    """data/corner-blocks/nonassoc (`python -m rocking.corner_blocks.nonassoc`): every
+    committed case converged, at or below its own associative iteration 0, which is the
+    committed study's LP of the same case (data/corner-blocks/lp_*) where there is one."""
+    import json
+    from pathlib import Path
+
+    folder = Path(__file__).resolve().parents[1] / "data" / "corner-blocks"
+    cases = 0
+    for path in sorted((folder / "nonassoc").glob("nonassoc_*.json")):
+        r = json.loads(path.read_text())
+        assert r["converged"], (path.name, r["status"])
+        assert r["lam"] <= r["lam_associative"] + 1e-9, path.name
+        lp_path = folder / path.name.replace("nonassoc_", "lp_")
+        if lp_path.is_file():
+            assert r["lam_associative"] == pytest.approx(json.loads(lp_path.read_text())["lam"], rel=1e-6)
+        cases += 1
+    assert cases >= 4

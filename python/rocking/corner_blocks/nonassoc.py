@@ -8,8 +8,10 @@ Iteration 0 is lp.py's associative LP (friction t . e_k <= mu n, its flow dilate
 per unit slip). Every later iteration solves the same LP with the normal force inside
 the friction rows frozen at the previous iteration's value n_hat: t . e_k <= mu n_hat.
 The shear capacity no longer depends on the LP's own n, so the flow of that surface
-slides without opening (the dual's normal velocity comes from n >= 0 alone). The normal
-forces found are then relaxed into n_hat, n_hat += relaxation (n - n_hat), until the LP
+slides without opening (the dual's normal velocity comes from n >= 0 alone). Its optimum
+is rarely unique in n, so a second LP takes, among the optimal force fields, the one with
+the least total normal force, nearest n_hat (_Problem.least_normal: our choice, so that
+the normal forces can repeat). The normal forces found are then relaxed into n_hat, n_hat += relaxation (n - n_hat), until the LP
 returns the normal forces it was given: max |n - n_hat| <= tol W_max (W_max the largest
 block weight) and lambda moves by at most tol (relative). At that point the forces obey
 Coulomb's |t| <= mu n (to tol), and the mechanism opens only where n = 0 and slides
@@ -293,8 +295,10 @@ def case(specimen, alpha, **options):
 
 
 def main(argv=None):
-    """python -m rocking.corner_blocks.nonassoc --ends free --out DIR: the paper's corner at
-    its five orientations, one JSON per case (nonassoc_<ends>_mu<mu>_<i>.json), cached."""
+    """python -m rocking.corner_blocks.nonassoc --ends free --out DIR: the paper's corner (or
+    --courses, --blocks) at its five orientations (or --cases), one JSON per case
+    (nonassoc_<ends>_mu<mu>_<i>[_<courses>x<blocks>].json, as study.py names its LP
+    cases), cached: a case whose file exists is not rerun."""
     import argparse
     import json
     import sys
@@ -310,17 +314,20 @@ def main(argv=None):
     p.add_argument("--tol", type=float, default=1e-7)
     p.add_argument("--max-iter", type=int, default=200)
     p.add_argument("--cases", default="0,1,2,3,4", help="indices into the five orientations")
+    p.add_argument("--courses", type=int, default=9)
+    p.add_argument("--blocks", type=int, default=7)
     p.add_argument("--out", required=True)
     args = p.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     for i in (int(k) for k in args.cases.split(",")):
-        path = out / f"nonassoc_{args.ends}_mu{args.mu:g}_{i}.json"
+        suffix = "" if (args.courses, args.blocks) == (9, 7) else f"_{args.courses}x{args.blocks}"
+        path = out / f"nonassoc_{args.ends}_mu{args.mu:g}_{i}{suffix}.json"
         if path.is_file():
             continue
         alpha, label = ORIENTATIONS[i]
         t0 = time.process_time()
-        r = case(Specimen(ends=args.ends, mu=args.mu), alpha, relaxation=args.relaxation, tol=args.tol,
+        r = case(Specimen(ends=args.ends, mu=args.mu, courses=args.courses, blocks=args.blocks), alpha, relaxation=args.relaxation, tol=args.tol,
                  max_iter=args.max_iter, log=lambda s: print(f"{args.ends} {label}: {s}", file=sys.stderr, flush=True))
         r["cpu_s"] = time.process_time() - t0
         r["relaxation"], r["tol"] = args.relaxation, args.tol
