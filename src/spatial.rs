@@ -188,6 +188,8 @@ pub struct SpatialState {
     pub at_rest: bool,
     /// The tilt reached the overturning limit; the run is over.
     pub overturned: bool,
+    /// The input left the model's range (`g + av <= 0`); the run is over.
+    pub out_of_range: bool,
     /// The integrator's next step, s (0: choose afresh).
     pub h: f64,
 }
@@ -204,6 +206,7 @@ impl SpatialState {
             impacts: 0,
             at_rest: true,
             overturned: false,
+            out_of_range: false,
             h: 0.0,
         }
     }

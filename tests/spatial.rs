@@ -303,3 +303,27 @@ fn a_step_limit_ends_the_call_early_and_the_run_resumes_where_it_stopped() {
     let gap = (a.e[0] - b.e[0]).abs() + (a.e[1] - b.e[1]).abs();
     assert!(gap <= 1e-10, "{gap:e}");
 }
+
+#[test]
+fn the_run_ends_where_the_vertical_input_lifts_the_body_off() {
+    let p = drum(Restitution::Housner, false);
+    let spatial = Spatial::new(&p, None, RTOL).unwrap();
+    let mut st = SpatialState::tilted(&spatial, 0.1, 1.0, [0.0; 3]);
+    // av falls linearly from 0 to -2 g over 1 s: g + av = 0 at t = 0.5 s
+    let g = spatial.model.body.g;
+    let v = VerticalInput {
+        av: 0.0,
+        dav: -2.0 * g,
+    };
+    let ev = spatial.advance(&mut st, 1.0, PlanInput::default(), v);
+    let term = ev.terminal.expect("liftOff");
+    assert_eq!(term.condition.name(), "liftOff");
+    assert!((term.t - 0.5).abs() <= 1e-15, "{}", term.t);
+    assert_eq!(st.t, term.t);
+    assert!(g + term.av <= 0.0 && g + (-2.0 * g) * (term.t - f64::EPSILON) > 0.0);
+    assert!(st.out_of_range);
+    // the run is over: a later call does nothing
+    let before = st;
+    let ev = spatial.advance(&mut st, 2.0, PlanInput::default(), VerticalInput::default());
+    assert_eq!((st, ev.steps), (before, 0));
+}

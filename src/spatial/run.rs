@@ -16,7 +16,7 @@ use super::impact::impact;
 use super::step::{dop853, Step};
 use super::{PlanInput, Spatial, SpatialState};
 use crate::dynamics::controller::{grow, min_step, shrink};
-use crate::dynamics::VerticalInput;
+use crate::dynamics::{OutOfRange, Terminal, VerticalInput};
 
 /// A crossing whose tilt is at most this (`sin(theta)`) is the base's
 /// return to the bed. Round-off leaves about `1e-16` of the motion's tilt
@@ -40,6 +40,9 @@ pub struct SpatialEvents {
     /// The call stopped at [`Spatial::max_steps`] before `t_end`, with the
     /// state consistent at its time.
     pub limited: bool,
+    /// The input left the model's range (`g + av <= 0`: the body would leave
+    /// the bed): the call ended there and the run is over.
+    pub terminal: Option<Terminal>,
 }
 
 /// What ends a step early.
@@ -63,6 +66,11 @@ impl Spatial {
         let eom = Eom::new(self, st.t, input, vertical);
         let mut ev = SpatialEvents::default();
         let mut after_rejection = false;
+        if st.out_of_range {
+            return ev;
+        }
+        let lift_off = self.lift_off(&eom, st.t, t_end);
+        let t_end = lift_off.unwrap_or(t_end);
         while st.t < t_end && !st.overturned {
             if self.max_steps.is_some_and(|m| ev.steps + ev.rejected >= m) {
                 ev.limited = true;
@@ -119,7 +127,42 @@ impl Spatial {
                 }
             }
         }
+        if let Some(t) = lift_off {
+            if st.t == t && !st.overturned && !ev.limited {
+                st.out_of_range = true;
+                ev.terminal = Some(Terminal {
+                    t,
+                    condition: OutOfRange::LiftOff,
+                    av: eom.av(t),
+                });
+            }
+        }
         ev
+    }
+
+    /// The first time in `[t, t_end]` at which the apparent weight
+    /// `m (g + av)` reaches zero (docs/model.md §6.5), if it does.
+    fn lift_off(&self, eom: &Eom, t: f64, t_end: f64) -> Option<f64> {
+        let g = self.model.body.g;
+        if g + eom.av(t) <= 0.0 {
+            return Some(t);
+        }
+        let end = g + eom.av(t_end);
+        if end.is_nan() || end > 0.0 {
+            return None;
+        }
+        let (mut lo, mut hi) = (t, t_end);
+        loop {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                return Some(hi);
+            }
+            if g + eom.av(mid) <= 0.0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
     }
 
     /// Which event, if any, the end `y` of a step from the side `d0` is past.
