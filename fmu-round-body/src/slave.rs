@@ -1,0 +1,441 @@
+//! The round body in space as an FMI co-simulation slave (served in FMI
+//! 2.0 and 3.0 by the generic layers): parameters from the stored values,
+//! outputs from `rocking::spatial`, one `Spatial::advance` per step.
+
+use crate::description::{enums, vr, ROUND_BODY};
+use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
+use fmi2_export::model_description::ModelDescription;
+use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Values};
+use rocking::dynamics::VerticalInput;
+use rocking::model::{LawKind, MassKind, ShapeKind};
+use rocking::spatial::{PlanInput, Spatial, SpatialState};
+use rocking::{Params, Restitution};
+
+/// Largest |agx|, |agy|, |av| a step accepts, m/s2 (RockingBlock's bound:
+/// far beyond any ground motion, below where the arithmetic overflows).
+pub const MAX_GROUND_ACCELERATION: f64 = 1e100;
+
+/// What stands for `+inf` at the FMI boundary (RockingBlock's
+/// `UNBOUNDED`, Modelica's `inf`): `frictionDemand` where `Fz <= 0`.
+pub const UNBOUNDED: f64 = 1e60;
+
+/// Layout version of the serialized state (inside the generic envelope).
+const STATE_VERSION: u32 = 1;
+
+pub struct RoundBodySlave {
+    body: Spatial,
+    state: SpatialState,
+}
+
+/// The physics parameters of the stored values: the body and the bed
+/// (rigid, rocking every way) with the initial tilt; `Err` names the variable.
+fn params(v: Values<'_>) -> Result<Params, String> {
+    let shape = match v.integer(vr::SHAPE) {
+        enums::SOLID_CIRCLE => ShapeKind::SolidCircle,
+        enums::HOLLOW_CIRCLE => ShapeKind::HollowCircle,
+        s => {
+            return Err(format!(
+                "shape = {s}: a body in space needs a round base, solidCircle ({}) or hollowCircle ({})",
+                enums::SOLID_CIRCLE,
+                enums::HOLLOW_CIRCLE
+            ))
+        }
+    };
+    let mass_model = match v.integer(vr::MASS_MODEL) {
+        enums::PRISM => MassKind::Prism,
+        enums::LUMPED => MassKind::Lumped,
+        m => return Err(format!("massModel = {m}: not an item of MassModelKind")),
+    };
+    let restitution = match v.integer(vr::RESTITUTION) {
+        enums::HOUSNER => Restitution::Housner,
+        enums::GIVEN => Restitution::Given,
+        r => return Err(format!("restitution = {r}: not an item of RestitutionKind")),
+    };
+    Ok(Params {
+        shape,
+        ro: v.real(vr::RO),
+        ri: v.real(vr::RI),
+        mass_model,
+        h: v.real(vr::H),
+        rho: v.real(vr::RHO),
+        w: v.real(vr::W),
+        hg: v.real(vr::HG),
+        ic: v.real(vr::IC),
+        interface: LawKind::Rigid,
+        restitution,
+        eta: v.real(vr::ETA),
+        g: v.real(vr::G),
+        theta0: v.real(vr::THETA0),
+        ..Params::default()
+    })
+}
+
+/// The physics' name of a variable as this FMU names it.
+fn public_name(physics: &str) -> &str {
+    match physics {
+        "theta" => "theta0",
+        "icAxial" => "IcAxial",
+        other => other,
+    }
+}
+
+/// The input `name` over a step of `h` s, `(x, dx/dt)`: finite, and at most
+/// [`MAX_GROUND_ACCELERATION`] in magnitude at both ends of the step.
+fn input_line(inputs: &Inputs<'_>, r: u32, name: &str, h: f64) -> Result<(f64, f64), String> {
+    let (x, dx) = (inputs.real(r), inputs.derivative(r));
+    if !(x.is_finite() && dx.is_finite()) {
+        return Err(format!(
+            "{name} = {x}, d{name}/dt = {dx}: the input must be finite"
+        ));
+    }
+    let x_end = x + dx * h;
+    if x.abs().max(x_end.abs()) > MAX_GROUND_ACCELERATION {
+        return Err(format!(
+            "{name} = {x} at the start of the step, {x_end} at its end: |{name}| must be <= {MAX_GROUND_ACCELERATION:e} m/s2"
+        ));
+    }
+    Ok((x, dx))
+}
+
+/// The inputs now, checked finite: `([agx, agy], av)`.
+fn inputs_now(inputs: &Inputs<'_>) -> Result<([f64; 2], f64), String> {
+    let mut x = [0.0; 3];
+    for (k, (r, name)) in [(vr::AGX, "agx"), (vr::AGY, "agy"), (vr::AV, "av")]
+        .into_iter()
+        .enumerate()
+    {
+        x[k] = inputs.real(r);
+        if !x[k].is_finite() {
+            return Err(format!("{name} = {}: the input must be finite", x[k]));
+        }
+    }
+    Ok(([x[0], x[1]], x[2]))
+}
+
+/// `atan2(y, x)` in `(-pi, pi]`.
+fn azimuth(d: [f64; 2]) -> f64 {
+    let a = d[1].atan2(d[0]);
+    if a == -std::f64::consts::PI {
+        std::f64::consts::PI
+    } else {
+        a
+    }
+}
+
+impl RoundBodySlave {
+    /// The bed's force on the body under the inputs now, N.
+    fn force(&self, inputs: &Inputs<'_>) -> Result<[f64; 3], String> {
+        let (ag, av) = inputs_now(inputs)?;
+        Ok(self.body.contact_force(&self.state, ag, av))
+    }
+
+    fn overflow(&self, x: f64) -> String {
+        format!(
+            "the value is {x} (floating-point overflow at theta = {} rad, omega = {:?} rad/s)",
+            self.state.theta(),
+            self.state.omega
+        )
+    }
+}
+
+impl Slave for RoundBodySlave {
+    type State = SpatialState;
+
+    fn description() -> &'static ModelDescription {
+        &ROUND_BODY
+    }
+
+    fn guid() -> &'static str {
+        crate::GUID
+    }
+
+    fn new(values: Values<'_>, setup: &Setup) -> Result<Self, String> {
+        let p = params(values)?;
+        let rtol = setup
+            .tolerance
+            .unwrap_or(ROUND_BODY.default_experiment.tolerance);
+        let ic_axial = match p.mass_model {
+            MassKind::Lumped => Some(values.real(vr::IC_AXIAL)),
+            MassKind::Prism => None,
+        };
+        let mut body = Spatial::new(&p, ic_axial, rtol)
+            .map_err(|e| format!("{} = {}: {}", public_name(e.variable), e.value, e.condition))?;
+        let max_steps = values.integer(vr::MAX_STEPS);
+        if max_steps < 1 {
+            return Err(format!(
+                "maxSteps = {max_steps}: the work limit must be >= 1"
+            ));
+        }
+        body.max_steps = Some(max_steps as u32);
+        let psi0 = values.real(vr::PSI0);
+        let mut omega = [0.0; 3];
+        for (k, (r, name)) in [
+            (vr::PSI0, "psi0"),
+            (vr::OMEGA_X0, "omegaX0"),
+            (vr::OMEGA_Y0, "omegaY0"),
+            (vr::OMEGA_Z0, "omegaZ0"),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let x = values.real(r);
+            if !x.is_finite() {
+                return Err(format!("{name} = {x}: must be finite"));
+            }
+            if k > 0 {
+                omega[k - 1] = x;
+            }
+        }
+        let mut state = SpatialState::tilted(&body, p.theta0, psi0, omega);
+        state.t = setup.start_time;
+        Ok(RoundBodySlave { body, state })
+    }
+
+    fn get_real(&mut self, r: u32, inputs: Inputs<'_>) -> Result<f64, String> {
+        let b = &self.body.model.body;
+        let s = &self.state;
+        let x = match r {
+            vr::THETA => s.theta(),
+            vr::PSI => azimuth(s.contact_direction()),
+            vr::THETA_OVER_ALPHA => s.theta() / b.alpha,
+            vr::EX => s.e[0],
+            vr::EY => s.e[1],
+            vr::OMEGA_X => s.omega[0],
+            vr::OMEGA_Y => s.omega[1],
+            vr::OMEGA_Z => s.omega[2],
+            vr::XG => s.xg[0],
+            vr::YG => s.xg[1],
+            vr::FX => self.force(&inputs)?[0],
+            vr::FY => self.force(&inputs)?[1],
+            vr::FZ => self.force(&inputs)?[2],
+            vr::FRICTION_DEMAND => {
+                let [fx, fy, fz] = self.force(&inputs)?;
+                let d = fx.hypot(fy) / fz;
+                // Fz <= 0: no friction holds the base (RockingBlock's rule)
+                if fz <= 0.0 || d > UNBOUNDED {
+                    UNBOUNDED
+                } else {
+                    d
+                }
+            }
+            vr::MASS => b.mass,
+            vr::WEIGHT => b.weight,
+            vr::R0 => b.r0,
+            vr::ALPHA => b.alpha,
+            vr::IO => b.io,
+            vr::ETA_HOUSNER => b.eta_housner(),
+            vr::THETA_OV => self.body.model.theta_ov,
+            _ => return Err(format!("no computed Real with value reference {r}")),
+        };
+        if !x.is_finite() {
+            return Err(self.overflow(x));
+        }
+        Ok(x)
+    }
+
+    fn get_integer(&mut self, r: u32, _inputs: Inputs<'_>) -> Result<i32, String> {
+        match r {
+            vr::REGIME if self.state.at_rest => Ok(enums::REST),
+            vr::REGIME => Ok(enums::ROCKING),
+            vr::IMPACTS => Ok(i32::try_from(self.state.impacts).unwrap_or(i32::MAX)),
+            _ => Err(format!("no computed Integer with value reference {r}")),
+        }
+    }
+
+    fn get_boolean(&mut self, r: u32, _inputs: Inputs<'_>) -> Result<bool, String> {
+        match r {
+            vr::OVERTURNED => Ok(self.state.overturned),
+            _ => Err(format!("no computed Boolean with value reference {r}")),
+        }
+    }
+
+    fn output_derivative(
+        &mut self,
+        r: u32,
+        order: i32,
+        _inputs: Inputs<'_>,
+    ) -> Result<f64, String> {
+        // maxOutputDerivativeOrder is 0: the layer refuses every order first
+        Err(format!(
+            "no output derivatives (value reference {r}, order {order}): maxOutputDerivativeOrder = 0"
+        ))
+    }
+
+    fn do_step(
+        &mut self,
+        t: f64,
+        h: f64,
+        inputs: Inputs<'_>,
+        log: &mut EventLog,
+    ) -> Result<StepEnd, String> {
+        let (agx, dagx) = input_line(&inputs, vr::AGX, "agx", h)?;
+        let (agy, dagy) = input_line(&inputs, vr::AGY, "agy", h)?;
+        let (av, dav) = input_line(&inputs, vr::AV, "av", h)?;
+        if self.state.overturned {
+            return Ok(StepEnd::Terminated {
+                time: self.state.t,
+                reason: "the body has already overturned".into(),
+            });
+        }
+        if self.state.out_of_range {
+            return Ok(StepEnd::Terminated {
+                time: self.state.t,
+                reason: "the run ended when g + av reached 0 (liftOff)".into(),
+            });
+        }
+        let plan = PlanInput {
+            a: [agx, agy],
+            da: [dagx, dagy],
+        };
+        let mut s = self.state;
+        let ev = self
+            .body
+            .advance(&mut s, t + h, plan, VerticalInput { av, dav });
+        let finite = s.t.is_finite()
+            && s.e
+                .iter()
+                .chain(&s.omega)
+                .chain(&s.xg)
+                .all(|x| x.is_finite());
+        if !finite {
+            return Err(format!(
+                "the integration produced a non-finite state (e = {:?}, omega = {:?} rad/s) at t = {}",
+                s.e, s.omega, s.t
+            ));
+        }
+        self.state = s;
+        if log.enabled() {
+            if ev.uplift {
+                log.event(format!(
+                    "uplift in ({t}, {}]: the body starts rocking",
+                    t + h
+                ));
+            }
+            if ev.impacts > 0 {
+                log.event(format!(
+                    "{} impact(s) in ({t}, {}]; {} so far",
+                    ev.impacts,
+                    t + h,
+                    s.impacts
+                ));
+            }
+            if ev.came_to_rest {
+                log.event(format!("came to rest in ({t}, {}]", t + h));
+            }
+        }
+        if let Some(t_ov) = ev.overturned_at {
+            let theta_ov = self.body.model.theta_ov;
+            log.event(format!(
+                "overturned at t = {t_ov}: theta reached thetaOv = {theta_ov} rad"
+            ));
+            return Ok(StepEnd::Terminated {
+                time: t_ov,
+                reason: format!(
+                    "the body overturned (theta reached thetaOv = {theta_ov} rad) at t = {t_ov}"
+                ),
+            });
+        }
+        if let Some(term) = ev.terminal {
+            log.event(format!("{} at t = {}", term.condition.name(), term.t));
+            return Ok(StepEnd::Terminated {
+                time: term.t,
+                reason: format!(
+                    "{} at t = {}: av = {} m/s2; the apparent weight m (g + av) reached 0: the body leaves the bed (free flight is not modelled)",
+                    term.condition.name(),
+                    term.t,
+                    term.av
+                ),
+            });
+        }
+        if ev.limited {
+            return Ok(StepEnd::Stopped {
+                time: s.t,
+                reason: format!(
+                    "work limit reached after {} integrator steps ({} rejected) in the step of {h} s from t = {t} (maxSteps = {})",
+                    ev.steps + ev.rejected,
+                    ev.rejected,
+                    self.body.max_steps.unwrap_or(0)
+                ),
+            });
+        }
+        Ok(StepEnd::Completed)
+    }
+
+    fn state(&self) -> SpatialState {
+        self.state
+    }
+
+    fn set_state(&mut self, state: SpatialState) {
+        self.state = state;
+    }
+
+    fn write_state(s: &SpatialState, w: &mut ByteWriter) {
+        // Destructured: a new field in SpatialState breaks the build here, not the format.
+        let SpatialState {
+            t,
+            e,
+            omega,
+            xg,
+            pivot,
+            impacts,
+            at_rest,
+            overturned,
+            out_of_range,
+            h,
+        } = *s;
+        w.u32(STATE_VERSION);
+        w.f64(t);
+        for x in e.iter().chain(&omega).chain(&xg).chain(&pivot) {
+            w.f64(*x);
+        }
+        w.u64(impacts);
+        w.bool(at_rest);
+        w.bool(overturned);
+        w.bool(out_of_range);
+        w.f64(h);
+    }
+
+    fn read_state(r: &mut ByteReader<'_>) -> Result<SpatialState, ReadError> {
+        let version = r.u32("state version")?;
+        if version != STATE_VERSION {
+            return Err(format!(
+                "round-body state version {version}, this FMU reads version {STATE_VERSION}"
+            ));
+        }
+        let t = r.f64("t")?;
+        let mut f = [0.0; 9];
+        for (x, name) in f.iter_mut().zip([
+            "ex", "ey", "omegaX", "omegaY", "omegaZ", "xG", "yG", "pivot x", "pivot y",
+        ]) {
+            *x = r.f64(name)?;
+            if !x.is_finite() {
+                return Err(format!("{name} = {x} is not finite"));
+            }
+        }
+        let s = SpatialState {
+            t,
+            e: [f[0], f[1]],
+            omega: [f[2], f[3], f[4]],
+            xg: [f[5], f[6]],
+            pivot: [f[7], f[8]],
+            impacts: r.u64("impacts")?,
+            at_rest: r.bool("at_rest")?,
+            overturned: r.bool("overturned")?,
+            out_of_range: r.bool("out_of_range")?,
+            h: r.f64("h")?,
+        };
+        if !s.t.is_finite() {
+            return Err(format!("t = {} is not finite", s.t));
+        }
+        if s.e[0].hypot(s.e[1]) > 1.0 {
+            return Err(format!("e = {:?}: the tilt's sine exceeds 1", s.e));
+        }
+        if (s.pivot[0].hypot(s.pivot[1]) - 1.0).abs() > 1e-12 {
+            return Err(format!("pivot = {:?}: not a unit vector", s.pivot));
+        }
+        if !(s.h.is_finite() && s.h >= 0.0) {
+            return Err(format!("step h = {}: must be finite and >= 0", s.h));
+        }
+        Ok(s)
+    }
+}
