@@ -1,0 +1,252 @@
+//! The rigid Dharahara tower in space against planar runs (docs/dharahara.md,
+//! "The rigid tower in space"): under each record pair of the file list, at
+//! each scale, the tower in space under both horizontal components and the
+//! vertical, and planar along x, along y and along every azimuth from 0 to
+//! 175 degrees by 5 (each with the vertical), all rtol 1e-10, 10 s past the
+//! record. Prints one JSON document: per record and scale, every run's peak
+//! tilt over alpha, overturning time, impacts, liftOff time, and the
+//! histories (every 0.05 s) of the run in space and of the planar runs along
+//! x, y and the worst azimuth. `examples/dharahara_space.py` writes the
+//! inputs and draws the page's figures and table from the output.
+//!
+//! ```sh
+//! cargo run --release --example dharahara_space -- 1,3 DIR/*.txt > out.json
+//! ```
+//! Each input file: a first line `# name bearing_x`, the time step (s), then
+//! `agx agy av` per sample (m/s²).
+
+use rocking::dynamics::{GroundInput, Simulator, VerticalInput};
+use rocking::model::LawKind;
+use rocking::spatial::{PlanInput, Spatial, SpatialState};
+use serde_json::{json, Value};
+
+#[path = "support/dharahara.rs"]
+mod dharahara;
+
+const RTOL: f64 = 1e-10;
+/// Seconds of quiet after the record.
+const TAIL_S: f64 = 10.0;
+/// History sampling, s.
+const EVERY: f64 = 0.05;
+
+struct Pair {
+    name: String,
+    bearing_x: Value,
+    dt: f64,
+    samples: Vec<[f64; 3]>,
+}
+
+fn read(path: &str) -> Pair {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let mut lines = text.lines();
+    let head = lines.next().unwrap_or_else(|| panic!("{path}: empty"));
+    let mut words = head.trim_start_matches('#').split_whitespace();
+    let name = words.next().unwrap_or("?").replace('_', " ");
+    let bearing_x = words
+        .next()
+        .and_then(|b| b.parse::<f64>().ok())
+        .map_or(Value::Null, |b| json!(b));
+    let number = |s: &str| -> f64 { s.parse().unwrap_or_else(|e| panic!("{path}: {s:?}: {e}")) };
+    let dt = number(
+        lines
+            .next()
+            .unwrap_or_else(|| panic!("{path}: no time step"))
+            .trim(),
+    );
+    let samples = lines
+        .map(|line| {
+            let v: Vec<f64> = line.split_whitespace().map(number).collect();
+            assert_eq!(v.len(), 3, "{path}: {line:?}: three numbers expected");
+            [v[0], v[1], v[2]]
+        })
+        .collect();
+    Pair {
+        name,
+        bearing_x,
+        dt,
+        samples,
+    }
+}
+
+/// What a run did, and its history when asked: `[t, tilt (signed for a
+/// planar run), top x, top y]` every `EVERY`.
+struct Run {
+    peak: f64,
+    overturned: Option<f64>,
+    impacts: u64,
+    lift_off: Option<f64>,
+    history: Vec<[f64; 4]>,
+}
+
+fn at(p: &Pair, k: usize, scale: f64) -> [f64; 3] {
+    p.samples.get(k).map_or([0.0; 3], |s| s.map(|x| scale * x))
+}
+
+fn steps(p: &Pair) -> usize {
+    p.samples.len() + (TAIL_S / p.dt).round() as usize
+}
+
+/// Planar along the azimuth `az` (rad from x toward y), with the vertical.
+fn planar(sim: &Simulator, p: &Pair, scale: f64, az: f64, keep: bool) -> Run {
+    let (s, c) = az.sin_cos();
+    let (hg, radius) = (sim.model.body.hg, sim.model.body.b);
+    let mut st = sim.initial_state(0.0, 0.0);
+    let mut run = Run {
+        peak: 0.0,
+        overturned: None,
+        impacts: 0,
+        lift_off: None,
+        history: vec![],
+    };
+    let every = (EVERY / p.dt).round().max(1.0) as usize;
+    for k in 0..steps(p) {
+        let (a0, a1) = (at(p, k, scale), at(p, k + 1, scale));
+        let (g0, g1) = (c * a0[0] + s * a0[1], c * a1[0] + s * a1[1]);
+        let ev = sim.advance_vertical(
+            &mut st,
+            (k + 1) as f64 * p.dt,
+            GroundInput {
+                ag: g0,
+                dag: (g1 - g0) / p.dt,
+            },
+            VerticalInput {
+                av: a0[2],
+                dav: (a1[2] - a0[2]) / p.dt,
+            },
+        );
+        run.peak = run.peak.max(st.theta.abs());
+        if keep && (k + 1) % every == 0 {
+            // the top, at 2 hG, from the base's centre at rest: about the
+            // toe at R sgn(theta), R sgn(theta) (1 - cos) + 2 hG sin
+            let (sn, cs) = st.theta.sin_cos();
+            let lean = radius * st.theta.signum() * (1.0 - cs) + 2.0 * hg * sn;
+            run.history.push([st.t, st.theta, lean * c, lean * s]);
+        }
+        if st.overturned {
+            run.overturned = ev.overturned_at;
+            break;
+        }
+        if let Some(term) = ev.terminal {
+            run.lift_off = Some(term.t);
+            break;
+        }
+    }
+    run.impacts = st.impacts;
+    run
+}
+
+/// In space under both components, with or without the vertical.
+fn space(body: &Spatial, p: &Pair, scale: f64, vertical: bool) -> Run {
+    let hg = body.model.body.hg;
+    let mut st = SpatialState::at_rest();
+    let mut run = Run {
+        peak: 0.0,
+        overturned: None,
+        impacts: 0,
+        lift_off: None,
+        history: vec![],
+    };
+    let every = (EVERY / p.dt).round().max(1.0) as usize;
+    let v_on = if vertical { 1.0 } else { 0.0 };
+    for k in 0..steps(p) {
+        let (a0, a1) = (at(p, k, scale), at(p, k + 1, scale));
+        let h = PlanInput {
+            a: [a0[0], a0[1]],
+            da: [(a1[0] - a0[0]) / p.dt, (a1[1] - a0[1]) / p.dt],
+        };
+        let v = VerticalInput {
+            av: v_on * a0[2],
+            dav: v_on * (a1[2] - a0[2]) / p.dt,
+        };
+        let ev = body.advance(&mut st, (k + 1) as f64 * p.dt, h, v);
+        run.peak = run.peak.max(st.theta());
+        if (k + 1) % every == 0 {
+            // the top, 2 hG up the axis from the base: G plus hG e
+            run.history.push([
+                st.t,
+                st.theta(),
+                st.xg[0] + hg * st.e[0],
+                st.xg[1] + hg * st.e[1],
+            ]);
+        }
+        if st.overturned {
+            run.overturned = ev.overturned_at;
+            break;
+        }
+        if let Some(term) = ev.terminal {
+            run.lift_off = Some(term.t);
+            break;
+        }
+    }
+    run.impacts = st.impacts;
+    run
+}
+
+fn summary(r: &Run, alpha: f64) -> Value {
+    json!({"peak_over_alpha": r.peak / alpha, "overturned_at": r.overturned, "impacts": r.impacts, "lift_off_at": r.lift_off})
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let scales: Vec<f64> = args
+        .next()
+        .expect("usage: dharahara_space SCALES FILE...")
+        .split(',')
+        .map(|s| s.parse().expect("scales: numbers separated by commas"))
+        .collect();
+    let params = rocking::Params {
+        interface: LawKind::Rigid,
+        ..dharahara::tower(None, None)
+    };
+    let model = params.build().unwrap();
+    let b = model.body;
+    // a hollow cylinder about its axis
+    let c_axial = b.mass * (dharahara::RO.powi(2) + dharahara::RI.powi(2)) / 2.0;
+    let sim = Simulator::new(model, RTOL);
+    let body = Spatial::new(&params, Some(c_axial), RTOL).unwrap();
+    let mut out = vec![];
+    for path in args {
+        let p = read(&path);
+        for &scale in &scales {
+            let sweep: Vec<(f64, Run)> = (0..36)
+                .map(|i| {
+                    let deg = 5.0 * i as f64;
+                    (deg, planar(&sim, &p, scale, deg.to_radians(), false))
+                })
+                .collect();
+            // the worst azimuth: the earliest overturning, else the largest peak
+            let worst = sweep
+                .iter()
+                .min_by(|(_, a), (_, b)| {
+                    let key = |r: &Run| (r.overturned.unwrap_or(f64::INFINITY), -r.peak);
+                    key(a).partial_cmp(&key(b)).unwrap()
+                })
+                .map(|(deg, _)| *deg)
+                .unwrap();
+            let sp = space(&body, &p, scale, true);
+            let sp_h = space(&body, &p, scale, false);
+            let px = planar(&sim, &p, scale, 0.0, true);
+            let py = planar(&sim, &p, scale, 90f64.to_radians(), true);
+            let pw = planar(&sim, &p, scale, worst.to_radians(), true);
+            eprintln!(
+                "{} x{scale}: space {:.3} ({:?}), x {:.3}, y {:.3}, worst {worst} deg {:.3}",
+                p.name,
+                sp.peak / b.alpha,
+                sp.overturned,
+                px.peak / b.alpha,
+                py.peak / b.alpha,
+                pw.peak / b.alpha
+            );
+            out.push(json!({
+                "record": p.name, "bearing_x": p.bearing_x, "scale": scale,
+                "space": summary(&sp, b.alpha), "space_without_av": summary(&sp_h, b.alpha),
+                "planar_x": summary(&px, b.alpha), "planar_y": summary(&py, b.alpha),
+                "worst_azimuth_deg": worst, "planar_worst": summary(&pw, b.alpha),
+                "sweep": sweep.iter().map(|(deg, r)| json!({"azimuth_deg": deg, "run": summary(r, b.alpha)})).collect::<Vec<_>>(),
+                "history": {"space": sp.history, "planar_x": px.history, "planar_y": py.history, "planar_worst": pw.history},
+            }));
+        }
+    }
+    let doc = json!({"alpha": b.alpha, "hG": b.hg, "rtol": RTOL, "tail_s": TAIL_S, "runs": out});
+    println!("{}", serde_json::to_string(&doc).unwrap());
+}
