@@ -293,7 +293,13 @@ mod tests {
     #[test]
     fn the_shipped_graph_has_its_texts() {
         let text = file(
-            &["fmu-rocking", "fmu-shear-frame", "fmu-stepper", "corner"],
+            &[
+                "fmu-rocking",
+                "fmu-shear-frame",
+                "fmu-round-body",
+                "fmu-stepper",
+                "corner",
+            ],
             "a test",
         )
         .expect("every shipped crate ships a licence text");

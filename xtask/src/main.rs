@@ -1,10 +1,10 @@
 //! `cargo xtask fmu`: builds the release cdylibs and writes
-//! `target/fmu/RockingBlock.fmu` and `target/fmu/ShearFrame.fmu`
-//! (modelDescription.xml, the binaries, documentation/index.html),
-//! reproducibly: fixed timestamps and permissions, sorted entries. The XML
-//! and the page are the very files each crate's `build.rs` (`fmu-rocking`,
-//! `fmu-shear-frame`) generated for its binary, whose embedded GUID is
-//! checked against the XML's.
+//! `target/fmu/RockingBlock.fmu`, `target/fmu/ShearFrame.fmu` and
+//! `target/fmu/RoundBody.fmu` (modelDescription.xml, the binaries,
+//! documentation/index.html), reproducibly: fixed timestamps and
+//! permissions, sorted entries. The XML and the page are the very files each
+//! crate's `build.rs` (`fmu-rocking`, `fmu-shear-frame`, `fmu-round-body`)
+//! generated for its binary, whose embedded GUID is checked against the XML's.
 //!
 //! The binaries, each built in a target directory of its own under
 //! `target/platforms/`, so that no build's linker or C compiler settings
@@ -74,8 +74,17 @@ const SHEAR_FRAME: Model = Model {
     fmi3: true,
 };
 
+const ROUND_BODY: Model = Model {
+    package: "fmu-round-body",
+    lib: "fmu_round_body",
+    identifier: "RoundBody",
+    bins: &[],
+    companions: &[],
+    fmi3: true,
+};
+
 /// The FMUs `cargo xtask fmu` writes.
-const MODELS: [&Model; 2] = [&ROCKING_BLOCK, &SHEAR_FRAME];
+const MODELS: [&Model; 3] = [&ROCKING_BLOCK, &SHEAR_FRAME, &ROUND_BODY];
 
 /// The model of the cross-check artefacts.
 const MODEL_IDENTIFIER: &str = ROCKING_BLOCK.identifier;
@@ -96,6 +105,7 @@ fn main() {
         Some("fmu") => MODELS.iter().try_for_each(|m| package(m).map(|_| ())),
         Some("rocking-block") => package(&ROCKING_BLOCK).map(|_| ()),
         Some("shear-frame") => package(&SHEAR_FRAME).map(|_| ()),
+        Some("round-body") => package(&ROUND_BODY).map(|_| ()),
         Some("crosscheck") => crosscheck(),
         Some("wheel") => wheel::wheels(&args[1..]),
         Some("bundle") => wheel::bundle(&args[1..]),
@@ -119,11 +129,13 @@ fn usage() {
         "usage: cargo xtask <task>\n\n\
          tasks:\n  \
          fmu            build the release libraries for linux64 (glibc 2.17) and win64 and write\n                 \
-         target/fmu/RockingBlock.fmu, target/fmu/ShearFrame.fmu (and\n                 \
+         target/fmu/RockingBlock.fmu, target/fmu/ShearFrame.fmu,\n                 \
+         target/fmu/RoundBody.fmu (and\n                 \
          target/release/run_direct, target/release/libfmu_stepper.so); an archive\n                 \
          whose entries and writer did not change is left as it is (--force: write it)\n  \
          rocking-block  only target/fmu/RockingBlock.fmu (and run_direct, libfmu_stepper.so)\n  \
          shear-frame    only target/fmu/ShearFrame.fmu\n  \
+         round-body     only target/fmu/RoundBody.fmu\n  \
          crosscheck     the FMUs, then RockingBlock's FMI cross-check artefacts (FMU, input,\n                 \
          reference results from the engine run directly, options, README) under\n                 \
          target/cross-check/fmus/2.0/cs/{{linux64,win64}}/...\n  \
@@ -664,6 +676,7 @@ fn cc_ground_motion(t: f64) -> f64 {
 fn crosscheck() -> Res<()> {
     // every FMU, as `cargo xtask fmu` (the test command runs this task only)
     package(&SHEAR_FRAME)?;
+    package(&ROUND_BODY)?;
     let (fmu_path, built, platforms) = package(&ROCKING_BLOCK)?;
     let run_direct = built
         .run_direct

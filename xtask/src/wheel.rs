@@ -83,7 +83,13 @@ const EXAMPLES: [&str; 4] = [
 ];
 
 /// The workspace packages whose binaries a wheel carries: the FMUs' and the helpers'.
-const SHIPPED: [&str; 4] = ["fmu-rocking", "fmu-shear-frame", "fmu-stepper", "corner"];
+const SHIPPED: [&str; 5] = [
+    "fmu-rocking",
+    "fmu-shear-frame",
+    "fmu-round-body",
+    "fmu-stepper",
+    "corner",
+];
 
 /// The licence file's name in the bundle (tools/wheel.py also puts it in .dist-info/licenses).
 const LICENCES: &str = "THIRD-PARTY-LICENSES.txt";
