@@ -466,3 +466,84 @@ fn lift_off_under_av_ends_the_run() {
         h.messages()
     );
 }
+
+/// Every Real of the table at rest and after steps under two components
+/// and av with their derivatives: fmi2OK and finite.
+#[test]
+fn every_real_is_finite() {
+    let h = started();
+    let check = |what: &str| {
+        for (name, s, x) in h.every_real() {
+            assert!(s == fmi2OK && x.is_finite(), "{what}: {name} = {x} ({s})");
+        }
+    };
+    check("at rest");
+    fmi2_run(&h, 0, 100);
+    check("after 100 steps");
+}
+
+/// Random call sequences with absurd inputs (NaN, inf, 1e120, tiny and long
+/// steps, FMU states, resets): never fmi2Fatal, never a panic reaching the
+/// logger (the layer reports one as "internal error in the model"), and
+/// after any error the instance resets and starts again.
+#[test]
+fn random_calls_never_crash_or_panic() {
+    // xorshift64*: a fixed sequence, no dependency
+    let mut seed = 0x5eed_1234_abcd_0001u64;
+    let mut next = move |n: usize| {
+        seed ^= seed >> 12;
+        seed ^= seed << 25;
+        seed ^= seed >> 27;
+        (seed.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 33) as usize % n
+    };
+    let values = [0.0, 3.0, -10.0, 1e3, -1e120, f64::NAN, f64::INFINITY, 4.0];
+    let steps = [4.4e-16, 1e-3, 0.01, 0.1, 1.0];
+    let (mut errors, mut calls) = (0, 0);
+    for _ in 0..150 {
+        let h = Host::named("random");
+        h.check("set", h.set_integer("maxSteps", 2000));
+        h.check("set", h.set_real("theta0", [0.0, 0.1, -0.2][next(3)]));
+        h.init_with(None);
+        let mut t = 0.0;
+        for _ in 0..30 {
+            calls += 1;
+            let r = INPUTS[next(3)];
+            let s = match next(6) {
+                0 => h.set_real_vr(r, values[next(values.len())]),
+                1 => h.set_input_derivative_vr(r, 1, values[next(values.len())]),
+                2 | 3 => {
+                    let dt = steps[next(steps.len())];
+                    let s = h.do_step(t, dt);
+                    t = h.last_successful_time().1;
+                    s
+                }
+                4 => h.every_real().iter().map(|x| x.1).max().unwrap_or(fmi2OK),
+                _ => {
+                    let st = h.get_state();
+                    let bytes = h.serialize(st);
+                    let back = h.deserialize(&bytes);
+                    h.set_state(back)
+                }
+            };
+            assert_ne!(s, fmi2Fatal, "{:?}", h.messages());
+            assert!(
+                !h.messages()
+                    .iter()
+                    .any(|m| m.text.contains("internal error")),
+                "{:?}",
+                h.messages()
+            );
+            if s == fmi2Error {
+                errors += 1;
+                h.check("fmi2Reset", h.reset());
+                h.init_with(None);
+                t = 0.0;
+            }
+        }
+    }
+    eprintln!("{calls} calls, {errors} errors");
+    assert!(
+        errors > 10 && errors < calls / 2,
+        "{errors} errors in {calls} calls"
+    );
+}
