@@ -262,13 +262,21 @@ class RockingFMU:
               this is how worker processes share one extraction
     """
 
+    #: Variables this class drives and reads: an FMU without them is refused.
+    REQUIRED = ("ag", "theta", "thetaOverAlpha", "overturned", "impacts", "thetaOv")
+
+    @classmethod
+    def default_path(cls):
+        """The FMU `cargo xtask fmu` writes (None when the package is not in the repository)."""
+        return DEFAULT_FMU
+
     def __init__(self, path=None, unzipdir=None):
         if unzipdir is not None:
             self.unzipdir = Path(unzipdir)
             self.path = Path(path) if path else None
             self._owned = False
         else:
-            self.path = Path(path) if path else DEFAULT_FMU
+            self.path = Path(path) if path else self.default_path()
             if self.path is None:
                 raise FileNotFoundError("no FMU given and " + paths._NOT_IN_REPO)
             if not self.path.is_file():
@@ -282,8 +290,7 @@ class RockingFMU:
         for v in md.modelVariables:
             if v.type == "Enumeration" and v.declaredType is not None:
                 self.enumerations[v.name] = {it.name: int(it.value) for it in v.declaredType.items}
-        missing = [n for n in ("ag", "theta", "thetaOverAlpha", "overturned", "impacts", "thetaOv")
-                   if n not in self.variables]
+        missing = [n for n in self.REQUIRED if n not in self.variables]
         if missing:
             raise FMUError(f"{self.path or self.unzipdir}: variables missing from modelDescription.xml: {missing}")
         self._slave = None
@@ -306,7 +313,7 @@ class RockingFMU:
             shutil.rmtree(self.unzipdir, ignore_errors=True)
 
     def __getstate__(self):
-        raise TypeError("RockingFMU is not picklable: pass its unzipdir to the worker processes")
+        raise TypeError(f"{type(self).__name__} is not picklable: pass its unzipdir to the worker processes")
 
     def start_values(self, params):
         """`params` with enumeration item names replaced by their values; unknown names raise."""
@@ -331,7 +338,7 @@ class RockingFMU:
             md = self.model_description
             slave = FMU2Slave(guid=md.guid, unzipDirectory=str(self.unzipdir),
                               modelIdentifier=md.coSimulation.modelIdentifier,
-                              instanceName="RockingBlock")
+                              instanceName=md.modelName)
             self._callbacks = _CALLBACKS
             self._slave = slave
         return self._slave

@@ -4,6 +4,7 @@
                      [--PARAM VALUE ...] [--fmu PATH] --out DIR
     rocking sweep CASES.toml --records DIR [--scales 0.5:3:0.25] --out results.parquet
     rocking map [--preset NAME] [--PARAM VALUE ...] --frequencies F --amplitudes A --out DIR   (overturning maps)
+    rocking space RECORD [--azimuth DEG] [--compare] [--preset NAME] --out DIR   (a round body in space)
     rocking ida|msa SUITE_OR_TOML [--preset NAME] [--im PGV] --out DIR   (fragility on Dask)
     rocking info [--presets]
     rocking record FILE [--plot out.png]
@@ -31,6 +32,7 @@ COMMANDS = (
     "sweep",
     "map",
     "spectrum",
+    "space",
     "info",
     "record",
     "ida",  # registers both `ida` and `msa`

@@ -1,0 +1,122 @@
+"""`rocking space` and rocking.round_body: a round body in space through RoundBody.fmu, against
+independent references: a rotated input turns the response (the pair's rotation, the FMU's
+rotation invariance: theta the same, psi shifted by the angle), free rocking in a plane
+through the other FMU (RockingBlock.fmu), the
+Dharahara page's table (computed by the Rust example from the physics without the FMU), and
+bad input in one line."""
+
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rocking import groundmotion as gm
+from rocking import paths
+from rocking.fmu import RockingFMU
+from rocking.round_body import RoundBodyFMU
+
+REPO = Path(__file__).resolve().parents[1]
+DFHS = paths.data_dir() / "geonet-darfield-2010" / "3366146_DFHS_HN_20.090"
+LOMA = paths.data_dir() / "usgs-lomaprieta-1989" / "0111a.smc"
+DRUM = {"shape": "solidCircle", "Ro": 0.5, "massModel": "prism", "H": 3.0, "rho": 2000.0}
+
+
+def rocking(*args):
+    return subprocess.run([sys.executable, "-m", "rocking", *map(str, args)], capture_output=True, text=True)
+
+
+@pytest.fixture(scope="module")
+def fmu():
+    with RoundBodyFMU() as f:
+        yield f
+
+
+@pytest.fixture(scope="module")
+def loma():
+    return gm.pair_of(LOMA)
+
+
+def test_a_rotated_record_turns_the_response(fmu, loma):
+    base = fmu.simulate(DRUM, pair=loma, scale=5.0, stop_time=20.0, rtol=1e-11)
+    turned = fmu.simulate(DRUM, pair=loma, scale=5.0, azimuth=40.0, stop_time=20.0, rtol=1e-11)
+    assert base.peak_theta_over_alpha > 0.05, "the record must rock the drum"
+    assert np.max(np.abs(base.result["theta"] - turned.result["theta"])) <= 1e-9
+    # the frame turned by +40 degrees: the lean's azimuth in it is 40 degrees less
+    moving = base.result["theta"] > 1e-3
+    dpsi = np.angle(np.exp(1j * (base.result["psi"][moving] - turned.result["psi"][moving] - math.radians(40.0))))
+    assert np.max(np.abs(dpsi)) <= 1e-6
+    assert base.impacts == turned.impacts
+
+
+def planar_pair(rec):
+    """`rec` along x and nothing along y."""
+    return gm.HorizontalPair.from_records(rec, rec.scaled(0.0), bearings=None)
+
+
+@pytest.mark.parametrize("restitution", ["housner", "given"])
+def test_in_a_plane_the_round_body_is_the_planar_rigid_fmu(fmu, restitution):
+    """Free rocking from a tilt in the x-z plane through both FMUs (RockingBlock.fmu's rigid
+    circle and RoundBody.fmu): the tilt, signed along x, to 1e-10 rad, the same impacts."""
+    params = {**DRUM, "restitution": restitution, "eta": 0.8}
+    quiet = gm.Record.from_samples(np.zeros(801), 0.005)
+    space = fmu.simulate({**params, "theta0": 0.2}, pair=planar_pair(quiet), stop_time=4.0, rtol=1e-12)
+    with RockingFMU() as rfmu:
+        planar = rfmu.simulate({**params, "interface": "rigid", "theta": 0.2}, record=quiet, stop_time=4.0,
+                               rtol=1e-12)
+    assert planar.impacts >= 5
+    signed = np.arcsin(space.result["ex"])
+    assert np.max(np.abs(signed - planar.result["theta"])) <= 1e-10
+    assert np.max(np.abs(space.result["ey"])) == 0.0
+    assert space.impacts == planar.impacts
+
+
+@pytest.mark.xfail(strict=True, reason="found, not resolved: under a record both models chatter below 1e-6 rad "
+                   "near rest; the spatial one counts more impacts there (122 against 18 at 20.76 s on DFHS x2 "
+                   "along 25 deg, the tilts still within 1e-10 rad), comes to rest where the planar one keeps "
+                   "chattering, and the runs part (2.3e-2 rad later). docs/model.md §10.6")
+def test_under_a_record_in_a_plane_the_round_body_is_the_planar_rigid_fmu(fmu):
+    rec = gm.pair_of(DFHS).along(25.0)
+    space = fmu.simulate(DRUM, pair=planar_pair(rec), scale=2.0, rtol=1e-12, vertical=False)
+    with RockingFMU() as rfmu:
+        planar = rfmu.simulate({**DRUM, "interface": "rigid"}, record=rec, scale=2.0, rtol=1e-12)
+    assert np.max(np.abs(np.arcsin(space.result["ex"]) - planar.result["theta"])) <= 1e-10
+
+
+def test_the_command_writes_its_files_and_matches_the_dharahara_page(tmp_path):
+    out = tmp_path / "dfhs"
+    r = rocking("space", DFHS, "--scale", 3, "--preset", "dharahara-rigid", "--compare", "--sweep", 20,
+                "--tail", 10, "--rtol", 1e-10, "--out", out)
+    assert r.returncode == 0, r.stderr
+    s = json.loads((out / "summary.json").read_text())
+    history = np.genfromtxt(out / "timehistory.csv", delimiter=",", names=True)
+    assert {"agx", "agy", "av", "theta", "psi", "xG", "yG", "Fz", "frictionDemand"} <= set(history.dtype.names)
+    assert (out / "plot.png").stat().st_size > 10_000
+    assert s["peak_theta_over_alpha"] == pytest.approx(np.max(history["thetaOverAlpha"]))
+    # the page's row "Darfield DFHS | 3", computed without the FMU (examples/dharahara_space.rs)
+    row = next(line for line in (REPO / "docs" / "dharahara.md").read_text().splitlines()
+               if line.startswith("| Darfield DFHS | 3 |"))
+    cells = [c.strip() for c in row.strip("|").split("|")]
+    assert f"{s['peak_theta_over_alpha']:.3f} ({s['impacts']})" == cells[2]
+    assert cells[4] == f"overturns {s['planar']['x']['t_overturn_s']:.2f} s"
+    assert cells[5] == f"{s['planar']['y']['peak_theta_over_alpha']:.3f}"
+    assert s["planar"]["worst"]["azimuth_deg"] == 140.0 and s["planar"]["worst"]["overturned"]
+    assert "planar along worst (140 deg): overturns at 35.2" in r.stdout
+
+
+@pytest.mark.parametrize("args, words", [
+    (["space", paths.data_dir() / "katnp-standin" / "KATNP_NS_standin.csv"], "horizontal component"),
+    (["space", DFHS, "--shape", "solidRectangle"], "not one of solidCircle, hollowCircle"),
+    (["space", DFHS, "--preset", "fig15-alpha0.20-costa"], "rigid bed"),
+    (["space", DFHS, "--preset", "dharahara-F170-fm5"], "rigid bed"),
+    (["space", DFHS, "--Ro", "-1"], "Ro"),
+    (["space", "no/such/file.090"], "no such record file"),
+])
+def test_bad_input_is_one_line(tmp_path, args, words):
+    r = rocking(*args, "--out", tmp_path / "x")
+    assert r.returncode == 2, r.stdout + r.stderr
+    lines = [line for line in r.stderr.splitlines() if not line.startswith("rocking space: note")]
+    assert len(lines) == 1 and words in lines[0], r.stderr
