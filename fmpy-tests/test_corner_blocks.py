@@ -2,6 +2,7 @@
 limit analysis (an LP over contact forces) against closed forms, virtual work on its
 dual mechanism. The DEM's exact cases are in test_corner_blocks_dem.py."""
 
+import json
 import math
 
 import numpy as np
@@ -61,8 +62,49 @@ def test_single_block_slides_at_mu():
 
 def test_pyramid_is_the_circumscribed_polygon():
     """Along a vertex of the 8-facet pyramid the sliding multiplier is mu / cos(pi/8)."""
-    r = lp.solve(on_table([box((0, 0, 0), (B, D, H))], mu=0.1), math.pi / 8)
+    r = lp.solve(on_table([box((0, 0, 0), (B, D, H))], mu=0.1), math.pi / 8, facets=8)
     assert r.lam == pytest.approx(0.1 / math.cos(math.pi / 8), rel=1e-6)
+
+
+FACETS = (8, 16, 32, 64)
+
+
+def test_sliding_converges_to_the_cone_as_facets_double():
+    """A block sliding at an orientation on no facet's normal for any of FACETS (pi/7): the
+    circumscribed polygon's radius there, mu / cos(angle to the nearest facet normal),
+    which falls to the cone's mu as the facets double."""
+    mu, alpha = 0.1, math.pi / 7
+    lams = []
+    for n in FACETS:
+        gap = min(abs(alpha - 2 * math.pi * k / n) for k in range(n))
+        lams.append(lp.solve(on_table([box((0, 0, 0), (B, D, H))], mu=mu), alpha, facets=n).lam)
+        assert lams[-1] == pytest.approx(mu / math.cos(gap), rel=1e-6)
+        assert mu <= lams[-1] <= mu / math.cos(math.pi / n) + 1e-12
+    assert all(a >= b for a, b in zip(lams, lams[1:]))
+
+
+def test_corner_lambda_falls_monotonically_towards_the_cone():
+    """The 2N-facet pyramid lies inside the N-facet one (its planes include them), so lambda
+    cannot rise as the facets double; the pyramid inscribed in the cone, the circumscribed
+    one with mu cos(pi/N), bounds the cone's lambda from below. On the 4-course corner,
+    fixed ends at pi/2 (a sliding mechanism: 8 facets overestimate it most)."""
+    lams = {n: lp.solve(_small_corner("fixed"), math.pi / 2, facets=n).lam for n in FACETS}
+    assert all(lams[a] >= lams[b] - 1e-9 for a, b in zip(FACETS, FACETS[1:])), lams
+    inscribed = lp.solve(Assembly.from_specimen(Specimen(courses=4, blocks=3, ends="fixed",
+                                                         mu=0.66 * math.cos(math.pi / 64))),
+                         math.pi / 2, facets=64).lam
+    assert inscribed <= lams[64] + 1e-9
+    assert lams[8] > lams[64] * 1.01  # the case does depend on the facets
+    # the default keeps lambda within 0.5 % of the 64-facet value (and the cone lies within 0.3 % below the latter)
+    default = lp.solve(_small_corner("fixed"), math.pi / 2).lam
+    assert lp.FACETS <= 64 and default <= lams[8] + 1e-9
+    assert (default - lams[64]) / lams[64] < 0.005
+    assert (lams[64] - inscribed) / lams[64] < 0.003
+
+
+def test_facets_below_three_are_refused():
+    with pytest.raises(ValueError, match="invalid facets"):
+        lp.solve(on_table([box((0, 0, 0), (B, D, H))]), 0.0, facets=2)
 
 
 def test_two_block_stack():
@@ -204,3 +246,78 @@ def test_rocking_corner_runs_each_method(capsys):
     for bad, name in ((["--method", "fem"], "--method"), (["--ends", "free", "--alpha", "0.7"], "--ends")):
         assert main(["corner", *bad]) == 2
         assert name in capsys.readouterr().err
+
+
+def _lp_json(capsys, *args):
+    from rocking.cli import main
+
+    assert main(["corner-blocks", "lp", "--courses", "3", "--blocks", "3", "--ends", "free", "--alpha", "0.785398",
+                 "--json", *args]) == 0
+    return json.loads(capsys.readouterr().out.splitlines()[-1])[0]
+
+
+def test_cli_takes_the_specimen(capsys):
+    """--t --l --h --rho reach the LP: rigid blocks under their own weight have no length or
+    mass scale, so doubling every size and changing the density leaves lambda as it was,
+    while a taller block alone changes it."""
+    s = Specimen()
+    base = _lp_json(capsys)
+    assert base["specimen"] == {"t": s.t, "l": s.l, "h": s.h, "rho": s.rho, "mu": s.mu, "courses": 3, "blocks": 3,
+                                "ends": "free"}
+    scaled = _lp_json(capsys, "--t", str(2 * s.t), "--l", str(2 * s.l), "--h", str(2 * s.h), "--rho", "1000")
+    assert scaled["specimen"]["t"] == 2 * s.t and scaled["specimen"]["rho"] == 1000.0
+    assert scaled["lambda"] == pytest.approx(base["lambda"], rel=1e-6)
+    taller = _lp_json(capsys, "--h", "0.1", "--mu", "0.5")
+    lam = lp.solve(Assembly.from_specimen(Specimen(h=0.1, mu=0.5, courses=3, blocks=3, ends="free")), 0.785398).lam
+    assert taller["lambda"] == pytest.approx(lam, rel=1e-9)
+    assert abs(taller["lambda"] - base["lambda"]) > 0.01
+    assert taller["facets"] == lp.FACETS
+
+
+@pytest.mark.parametrize("args, name", [
+    (["--t", "-0.05"], "--t"), (["--l", "0"], "--l"), (["--h", "nan"], "--h"), (["--rho", "heavy"], "--rho"),
+    (["--mu", "0"], "--mu"), (["--mu", "-0.3"], "--mu"), (["--courses", "1"], "--courses"),
+    (["--blocks", "2.5"], "--blocks"), (["--l", "0.05"], "--l"), (["--thickness", "0.05"], "--thickness"),
+    (["--ends", "clamped"], "--ends"), (["--facets", "2"], "--facets")])
+@pytest.mark.parametrize("action", ["lp", "dem", "draw"])
+def test_cli_bad_specimen_is_one_line_naming_the_option(capsys, args, name, action):
+    from rocking.cli import main
+
+    if action != "lp" and name == "--facets":
+        return
+    extra = ["--out", "unused.png"] if action == "draw" else []
+    assert main(["corner-blocks", action, *args, *extra]) == 2
+    captured = capsys.readouterr()
+    err = captured.err.strip()
+    assert len(err.splitlines()) == 1 and name in err and not captured.out, err
+
+
+def test_study_refuses_block_sizes_it_would_ignore(capsys, tmp_path):
+    from rocking.cli import main
+
+    assert main(["corner-blocks", "study", "--h", "0.1", "--out", str(tmp_path)]) == 2
+    assert "invalid --h" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())
+
+
+def test_cli_dem_prints_every_level(capsys):
+    """The free course of a 2-course corner slides on the taped one at lambda = mu (along
+    a face axis, alpha = 0; mu = 0.4 is below every rocking ratio of these blocks): the
+    levels below mu stand, the first above it collapses. About 4 s of CPU."""
+    pytest.importorskip("compas_lmgc90")
+    from rocking.cli import main
+
+    mu, start, step = 0.4, 0.37, 0.02
+    assert main(["corner-blocks", "dem", "--courses", "2", "--blocks", "2", "--ends", "free", "--alpha", "0",
+                 "--mu", str(mu), "--h", "0.1", "--rho", "2400", "--start", str(start), "--step", str(step),
+                 "--size-factor", "8", "--json"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    (row,) = json.loads(lines[-1])
+    levels = [h["lambda"] for h in row["history"]]
+    assert levels == pytest.approx([start + k * step for k in range(len(levels))])
+    assert all(h["rested"] for h in row["history"][:-1])
+    assert row["collapsed"] and row["lambda"] == pytest.approx(levels[-1])
+    assert levels[-1] - step < mu < levels[-1]
+    assert row["specimen"]["h"] == 0.1 and row["specimen"]["rho"] == 2400.0
+    shown = [line for line in lines if line.startswith("  lambda ")]
+    assert len(shown) == len(levels) and "collapses" in shown[-1] and "stands" in shown[0]

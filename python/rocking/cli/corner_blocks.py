@@ -1,17 +1,35 @@
 """`rocking corner-blocks lp|dem|draw|study`: the corner block by block
 (docs/corner-blocks.md). `rocking corner` stays the macroblock analysis (the Rust binary)."""
 
+import argparse
+from dataclasses import fields
 import json
 import math
 import sys
 from pathlib import Path
 
+from ..corner_blocks.lp import FACETS
+from ..corner_blocks.specimen import Specimen
 from .common import CLIError
+
+SPECIMEN_DEFAULTS = {f.name: f.default for f in fields(Specimen)}
+
+
+#: The specimen's options, named as the fields of corner_blocks.specimen.Specimen (and as
+#: rocking-corner's, so that `rocking corner --method la|lp|dem --t ...` means one thing).
+SPECIMEN_OPTIONS = ("t", "l", "h", "rho", "mu", "courses", "blocks", "ends")
+
+
+def _specimen_fields(args):
+    """The Specimen's fields from the options; l > t checked here so that the error names both."""
+    if not args.l > args.t:
+        raise CLIError(f"invalid --l: the block length must exceed its thickness --t = {args.t:g} m, got {args.l:g} m")
+    return {name: getattr(args, name) for name in SPECIMEN_OPTIONS}
 
 
 def _specimen(args):
     from ..corner_blocks.specimen import Specimen
-    return Specimen(courses=args.courses, blocks=args.blocks, mu=args.mu, ends=args.ends)
+    return Specimen(**_specimen_fields(args))
 
 
 def _alphas(args):
@@ -30,7 +48,8 @@ def cmd_lp(args, _params):
     for alpha in _alphas(args):
         r = lp.solve(a, alpha, facets=args.facets)
         labels = [a.blocks[i].label() for i in r.moving]
-        rows.append({"alpha": alpha, "lambda": r.lam, "moving": labels, "power_dead": r.power_dead})
+        rows.append({"alpha": alpha, "lambda": r.lam, "moving": labels, "power_dead": r.power_dead,
+                     "facets": args.facets, "specimen": _specimen_fields(args)})
         print(f"alpha {alpha:.6f}  lambda {r.lam:.4f}  moving {len(labels)} blocks"
               + ("" if args.json else f": {' '.join(labels)}"))
         if args.plot:
@@ -53,13 +72,23 @@ def _protocol(args):
 def cmd_dem(args, _params):
     from ..corner_blocks import dem, draw
     from ..corner_blocks.assembly import Assembly
-    spec = {"specimen": {"courses": args.courses, "blocks": args.blocks, "mu": args.mu, "ends": args.ends}}
+    fields = _specimen_fields(args)
+    spec = {"specimen": fields}
     a = Assembly.from_specimen(_specimen(args))
+    rows = []
     for alpha in _alphas(args):
         r = dem.run_isolated(spec, alpha, _protocol(args))
         labels = [a.blocks[i].label() for i in r["moving"]]
-        print(f"alpha {alpha:.6f}  lambda {r['lam']:.4f}  ({r['steps']} steps, {r['cpu_s']:.1f} s CPU)  "
-              f"moving {len(labels)} blocks: {' '.join(labels)}")
+        for lam, rested, speed, disp, steps in r["history"]:
+            print(f"  lambda {lam:.4f}  {'stands    ' if rested and disp <= r['protocol']['collapse'] else 'collapses'}"
+                  f"  speed {speed:.2e} m/s  displacement {disp * 1e3:.3f} mm  (step {steps})")
+        shown = f"lambda {r['lam']:.4f}" if r["collapsed"] else f"no collapse up to {args.lam_max:g}"
+        print(f"alpha {alpha:.6f}  {shown}  ({r['steps']} steps, {r['cpu_s']:.1f} s CPU)  "
+              f"moving {len(labels)} blocks" + ("" if args.json else f": {' '.join(labels)}"))
+        rows.append({"alpha": alpha, "lambda": r["lam"] if r["collapsed"] else None, "collapsed": r["collapsed"],
+                     "moving": labels, "steps": r["steps"], "cpu_s": r["cpu_s"],
+                     "history": [dict(zip(HISTORY, level)) for level in r["history"]],
+                     "protocol": r["protocol"], "specimen": fields})
         if args.plot:
             import numpy as np
             out = Path(args.plot)
@@ -67,7 +96,15 @@ def cmd_dem(args, _params):
             draw.figure(a.blocks, name, [np.array(c) for c in r["corners"]], r["moving"],
                         title=f"DEM, ends {args.ends}, alpha {alpha:.4f}", fixed=a.fixed)
             print(f"wrote {name}")
+    if args.json:
+        print(json.dumps(rows))
     return 0
+
+
+#: The keys of a DEM level in `dem --json` (the tuple of dem.run's history): the level's
+#: lambda; it stood (the fastest corner below v_tol at the end of its hold); that speed
+#: (m/s); the largest block displacement since settling (m); time steps run so far.
+HISTORY = ("lambda", "rested", "speed", "displacement", "steps")
 
 
 def cmd_draw(args, _params):
@@ -94,6 +131,10 @@ def cmd_study(args, _params):
         raise CLIError(f"invalid --start-fraction: must be in (0, 1), got {args.start_fraction}")
     if args.workers < 1:
         raise CLIError(f"invalid --workers: must be at least 1, got {args.workers}")
+    for name in ("t", "l", "h", "rho"):  # study.run lays out the paper's blocks only
+        if getattr(args, name) != SPECIMEN_DEFAULTS[name]:
+            raise CLIError(f"invalid --{name}: the study runs the paper's blocks (--{name} "
+                           f"{SPECIMEN_DEFAULTS[name]:g}); `rocking corner-blocks lp|dem --{name}` runs others")
     study.run(args.out, ends=ends, mu=args.mu, methods=methods, binary=corner_binary(),
               dem_protocol=_protocol(args), log=lambda s: print(s, file=sys.stderr, flush=True),
               courses=args.courses, blocks=args.blocks, start_fraction=args.start_fraction, workers=args.workers,
@@ -108,11 +149,15 @@ def register(sub, common):
     acts = p.add_subparsers(dest="action", metavar="ACTION", required=True)
     spec = _specimen_parser()
     lp = acts.add_parser("lp", parents=[common, spec], help="the block LP's multiplier and mechanism")
-    lp.add_argument("--facets", type=int, default=8, help="planes of the friction pyramid (default 8)")
+    lp.add_argument("--facets", type=_at_least(3), default=FACETS,
+                    help=f"planes of the friction pyramid, circumscribed about the cone (default {FACETS}; "
+                         "docs/corner-blocks.md section 2)")
     lp.add_argument("--json", action="store_true")
     lp.add_argument("--plot", help="PNG of the mechanism, one per alpha (suffixed)")
     lp.set_defaults(func=cmd_lp)
     dem = acts.add_parser("dem", parents=[common, spec, _protocol_parser()], help="the LMGC90 tilting test")
+    dem.add_argument("--json", action="store_true", help="after the text, one line of JSON: per alpha, "
+                     "lambda_c and every level's history (lambda, rested, speed m/s, displacement m, steps)")
     dem.add_argument("--plot", help="PNG of the blocks after collapse, one per alpha (suffixed)")
     dem.set_defaults(func=cmd_dem)
     dr = acts.add_parser("draw", parents=[common, spec], help="a PNG of the specimen")
@@ -134,14 +179,47 @@ def register(sub, common):
 
 def _specimen_parser():
     from ..corner_blocks.specimen import ENDS
+    d = SPECIMEN_DEFAULTS
     p = argparse_parent()
     p.add_argument("--alpha", type=float, nargs="+", default=None,
                    help="load orientations (rad), docs/corner.md's convention (default pi/4 pi/2)")
     p.add_argument("--ends", choices=ENDS, default="fixed", help="the walls' free ends (default fixed)")
-    p.add_argument("--mu", type=float, default=0.66, help="joint friction (default 0.66)")
-    p.add_argument("--courses", type=int, default=9)
-    p.add_argument("--blocks", type=int, default=7, help="full blocks per wall (default 7)")
+    p.add_argument("--t", type=_positive("m"), default=d["t"], help=f"block thickness = wall thickness, m (default {d['t']:g})")
+    p.add_argument("--l", type=_positive("m"), default=d["l"], help=f"block length, m (default {d['l']:g})")
+    p.add_argument("--h", type=_positive("m"), default=d["h"], help=f"block height, m (default {d['h']:g})")
+    p.add_argument("--rho", type=_positive("kg/m3"), default=d["rho"], help=f"density, kg/m3 (default {d['rho']:g})")
+    p.add_argument("--mu", type=_positive(""), default=d["mu"], help=f"joint friction (default {d['mu']:g})")
+    p.add_argument("--courses", type=_at_least(2), default=d["courses"], help=f"courses (default {d['courses']})")
+    p.add_argument("--blocks", type=_at_least(2), default=d["blocks"], help=f"full blocks per wall (default {d['blocks']})")
     return p
+
+
+def _positive(unit):
+    """An argparse type: a finite number > 0; argparse names the option in the error."""
+    def convert(text):
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r}: not a number") from None
+        if not (math.isfinite(value) and value > 0):
+            raise argparse.ArgumentTypeError(f"{text!r}: must be positive and finite{' (' + unit + ')' if unit else ''}")
+        return value
+    convert.__name__ = "positive"
+    return convert
+
+
+def _at_least(least):
+    """An argparse type: an integer >= least."""
+    def convert(text):
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r}: not an integer") from None
+        if value < least:
+            raise argparse.ArgumentTypeError(f"{text!r}: must be at least {least}")
+        return value
+    convert.__name__ = "integer"
+    return convert
 
 
 def _protocol_parser():
