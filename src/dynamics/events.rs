@@ -221,8 +221,22 @@ impl StepCx<'_, '_> {
             Hit::Kink(_) | Hit::MovingKink => true,
         };
         let t = tr.t;
-        let status = if t + dt <= t || !direction {
+        // A crossing that the previous step ended a hair short of (theta on
+        // the near side by less than the polish's tolerance, moving toward
+        // it) lies at the very start of this step, where no time passes: it
+        // is the crossing there, not a spurious event (tests/chatter.rs).
+        let at_start = t + dt <= t && hit == Hit::Impact && converged;
+        let status = if !direction || (t + dt <= t && !at_start) {
             EventStatus::Spurious
+        } else if at_start {
+            dt = 0.0;
+            out = StepOut {
+                y: tr.y0,
+                accel: self.a0,
+                err: 0.0,
+                rho: 0.0,
+            };
+            EventStatus::Confirmed
         } else if converged && out.err <= 1.0 {
             EventStatus::Confirmed
         } else {
