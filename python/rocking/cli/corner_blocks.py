@@ -184,13 +184,15 @@ def _specimen_parser():
     p.add_argument("--alpha", type=float, nargs="+", default=None,
                    help="load orientations (rad), docs/corner.md's convention (default pi/4 pi/2)")
     p.add_argument("--ends", choices=ENDS, default="fixed", help="the walls' free ends (default fixed)")
-    p.add_argument("--t", type=_positive("m"), default=d["t"], help=f"block thickness = wall thickness, m (default {d['t']:g})")
+    p.add_argument("--t", type=_positive("m"), default=d["t"],
+                   help=f"block thickness = wall thickness, m (default {d['t']:g})")
     p.add_argument("--l", type=_positive("m"), default=d["l"], help=f"block length, m (default {d['l']:g})")
     p.add_argument("--h", type=_positive("m"), default=d["h"], help=f"block height, m (default {d['h']:g})")
     p.add_argument("--rho", type=_positive("kg/m3"), default=d["rho"], help=f"density, kg/m3 (default {d['rho']:g})")
     p.add_argument("--mu", type=_positive(""), default=d["mu"], help=f"joint friction (default {d['mu']:g})")
     p.add_argument("--courses", type=_at_least(2), default=d["courses"], help=f"courses (default {d['courses']})")
-    p.add_argument("--blocks", type=_at_least(2), default=d["blocks"], help=f"full blocks per wall (default {d['blocks']})")
+    p.add_argument("--blocks", type=_at_least(2), default=d["blocks"],
+                   help=f"full blocks per wall (default {d['blocks']})")
     return p
 
 
@@ -202,7 +204,8 @@ def _positive(unit):
         except ValueError:
             raise argparse.ArgumentTypeError(f"{text!r}: not a number") from None
         if not (math.isfinite(value) and value > 0):
-            raise argparse.ArgumentTypeError(f"{text!r}: must be positive and finite{' (' + unit + ')' if unit else ''}")
+            where = f" ({unit})" if unit else ""
+            raise argparse.ArgumentTypeError(f"{text!r}: must be positive and finite{where}")
         return value
     convert.__name__ = "positive"
     return convert
