@@ -157,8 +157,10 @@ def test_small_corner_converges_below_the_lp_and_does_work_by_friction_alone(end
 
 def test_committed_cases_lie_at_or_below_their_lp():
     """data/corner-blocks/nonassoc (`python -m rocking.corner_blocks.nonassoc`): every
-    committed case converged, at or below its own associative iteration 0, which is the
-    committed study's LP of the same case (data/corner-blocks/lp_*) where there is one."""
+    committed case that converged lies at or below its own associative iteration 0; one
+    that did not says so and keeps its history (an unconverged iterate is no answer: the
+    paper's corner at pi/2 went above its LP at iteration 1). Iteration 0 is the committed
+    study's LP of the same case (data/corner-blocks/lp_*) where there is one."""
     import json
     from pathlib import Path
 
@@ -166,8 +168,11 @@ def test_committed_cases_lie_at_or_below_their_lp():
     cases = 0
     for path in sorted((folder / "nonassoc").glob("nonassoc_*.json")):
         r = json.loads(path.read_text())
-        assert r["converged"], (path.name, r["status"])
-        assert r["lam"] <= r["lam_associative"] + 1e-9, path.name
+        if r["converged"]:
+            assert r["lam"] <= r["lam_associative"] + 1e-9, path.name
+        else:
+            assert r["status"].startswith("not converged in"), (path.name, r["status"])
+            assert len(r["history"]) == r["iterations"] + 1
         lp_path = folder / path.name.replace("nonassoc_", "lp_")
         if lp_path.is_file():
             assert r["lam_associative"] == pytest.approx(json.loads(lp_path.read_text())["lam"], rel=1e-6)
