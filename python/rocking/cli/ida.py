@@ -29,7 +29,8 @@ from .sweep import parse_scales
 STUDY_FILE_HELP = """SUITE_OR_TOML: a folder of records (every horizontal component of every file the readers
 know: PEER AT2, CSMIP V2, GeoNet V2A, USGS SMC, npts-dt ASCII, CSV), or a study file:
   records = ["../data/ground-motions"]    # folders or files, relative to the study file
-  im = "PGV"             # PGA (g), PGV (m/s), SA(T) (g, 5 %), AvgSA(T1-T2), PGA/gtana, PGV/(gtana/p)
+  im = "PGV"             # PGA (g), PGV (m/s), SA(T) (g, 5 %), AvgSA(T1-T2), PGA/gtana, PGV/(gtana/p),
+                         # RotD50, RotDnn(PGA), RotDnn(SA(T)) (g, of the record's two components)
   stripes = "0.2:2:0.2"                   # msa: target intensities (or a list)
   max_runs = 80                           # ida: runs per record at most
   resolution = 0.1                        # ida: widest gap left below the first collapse
@@ -74,8 +75,9 @@ def register(sub, common):
         p.add_argument("--preset", action="append", metavar="NAME", help="a body by preset name (repeatable)")
         p.add_argument("--params", action="append", metavar="FILE",
                        help="a body from a JSON object of parameters (repeatable; named by the file)")
-        p.add_argument("--im", help="intensity measure: PGA, PGV, SA(T), AvgSA(T1-T2), PGA/gtana or "
-                                    "PGV/(gtana/p) (default PGA/gtana)")
+        p.add_argument("--im", help="intensity measure: PGA, PGV, SA(T), AvgSA(T1-T2), PGA/gtana, "
+                                    "PGV/(gtana/p), or of both horizontal components RotDnn (of PGA) and "
+                                    "RotDnn(SA(T)), e.g. RotD50 (default PGA/gtana)")
         if method == "msa":
             p.add_argument("--stripes", help="target intensities: start:stop:step or a,b,c")
         else:
