@@ -12,8 +12,10 @@
 #       leak. Then the Model Exchange tests (fmu-rocking/tests/model_exchange.rs)
 #       under memcheck, and FMI 3.0: an instance's life in a plain C host
 #       (co-simulation with early return, Model Exchange) and the 3.0 call
-#       sequences (fmu-rocking/tests/fmi3_c_api.rs). This is what
-#       tools/test.sh runs (about 1.5 minutes).
+#       sequences (fmu-rocking/tests/fmi3_c_api.rs); then RoundBody.fmu's
+#       tests (fmu-round-body: FMI 2.0 and 3.0 through the in-process host,
+#       FMU states, random call sequences, beside RockingBlock). This is what
+#       tools/test.sh runs (about 2 minutes).
 #   tools/memcheck.sh --suites
 #       every test binary of fmu-rocking (fmu_import among them, which dlopens
 #       the packaged FMU) and fmi2-export, under memcheck
@@ -149,6 +151,15 @@ case "${1:-}" in
     (cd "$dir" && PROPTEST_CASES=64 "${vg[@]}" --suppressions="$root/$supp" --log-file="$log" "$exe" -q) | tail -n 2 || status=1
     summary "$log"
   done < <(test_binaries -p fmu-rocking --test fmi3_c_api)
+  # RoundBody.fmu: its tests through the in-process host (FMI 2.0 and 3.0,
+  # FMU states, bad input, random call sequences) and beside RockingBlock
+  # (tests/planar.rs)
+  while read -r name exe dir; do
+    log="$out/round_body_$name.log"
+    echo "-- memcheck: fmu-round-body's $name tests (release profile)"
+    (cd "$dir" && "${vg[@]}" --suppressions="$root/$supp" --log-file="$log" "$exe" -q) | tail -n 2 || status=1
+    summary "$log"
+  done < <(test_binaries -p fmu-round-body)
   ;;
 esac
 if [ "$status" -ne 0 ]; then
