@@ -1,6 +1,7 @@
 """Dump the two horizontal components and the vertical of the shipped records for
 examples/spatial_record.rs (the cost of the round body in space against the planar run,
-docs/performance.md): per record a file of the time step, then `agx agy av` per sample, m/s².
+docs/performance.md): per record a file of the examples' record-pair format (examples/support/pair_file.rs): a line
+`# name bearing_x`, the time step, then `agx agy av` per sample, m/s².
 
     .venv/bin/python benches/spatial_record.py --dump /tmp/spatial-records
     cargo run --release --example spatial_record -- /tmp/spatial-records/*.txt
@@ -36,6 +37,8 @@ def main():
         v = pair.vertical.acc if pair.vertical is not None else [0.0] * pair.npts
         out = args.dump / (re.sub(r"[^A-Za-z0-9]+", "_", name).strip("_")[:40] + ".txt")
         with open(out, "w") as f:
+            f.write(f"# {re.sub(r'[^A-Za-z0-9]+', '_', name).strip('_')[:40]} "
+                    f"{pair.bearing_x if pair.bearing_x is not None else 'none'}\n")
             f.write(f"{float(pair.dt)!r}\n")
             for x, y, z in zip(pair.x.acc, pair.y.acc, v):
                 f.write(f"{float(x)!r} {float(y)!r} {float(z)!r}\n")

@@ -22,6 +22,8 @@ use serde_json::{json, Value};
 
 #[path = "support/dharahara.rs"]
 mod dharahara;
+#[path = "support/pair_file.rs"]
+mod pair_file;
 
 const RTOL: f64 = 1e-10;
 /// Seconds of quiet after the record.
@@ -29,44 +31,7 @@ const TAIL_S: f64 = 10.0;
 /// History sampling, s.
 const EVERY: f64 = 0.05;
 
-struct Pair {
-    name: String,
-    bearing_x: Value,
-    dt: f64,
-    samples: Vec<[f64; 3]>,
-}
-
-fn read(path: &str) -> Pair {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let mut lines = text.lines();
-    let head = lines.next().unwrap_or_else(|| panic!("{path}: empty"));
-    let mut words = head.trim_start_matches('#').split_whitespace();
-    let name = words.next().unwrap_or("?").replace('_', " ");
-    let bearing_x = words
-        .next()
-        .and_then(|b| b.parse::<f64>().ok())
-        .map_or(Value::Null, |b| json!(b));
-    let number = |s: &str| -> f64 { s.parse().unwrap_or_else(|e| panic!("{path}: {s:?}: {e}")) };
-    let dt = number(
-        lines
-            .next()
-            .unwrap_or_else(|| panic!("{path}: no time step"))
-            .trim(),
-    );
-    let samples = lines
-        .map(|line| {
-            let v: Vec<f64> = line.split_whitespace().map(number).collect();
-            assert_eq!(v.len(), 3, "{path}: {line:?}: three numbers expected");
-            [v[0], v[1], v[2]]
-        })
-        .collect();
-    Pair {
-        name,
-        bearing_x,
-        dt,
-        samples,
-    }
-}
+use pair_file::PairFile as Pair;
 
 /// What a run did, and its history when asked: `[t, tilt (signed for a
 /// planar run), top x, top y]` every `EVERY`.
@@ -206,7 +171,7 @@ fn main() {
     let body = Spatial::new(&params, Some(c_axial), RTOL).unwrap();
     let mut out = vec![];
     for path in args {
-        let p = read(&path);
+        let p = pair_file::read(&path);
         for &scale in &scales {
             let sweep: Vec<(f64, Run)> = (0..36)
                 .map(|i| {
@@ -238,7 +203,7 @@ fn main() {
                 pw.peak / b.alpha
             );
             out.push(json!({
-                "record": p.name, "bearing_x": p.bearing_x, "scale": scale,
+                "record": p.name, "bearing_x": p.bearing_x.map_or(Value::Null, |b| json!(b)), "scale": scale,
                 "space": summary(&sp, b.alpha), "space_without_av": summary(&sp_h, b.alpha),
                 "planar_x": summary(&px, b.alpha), "planar_y": summary(&py, b.alpha),
                 "worst_azimuth_deg": worst, "planar_worst": summary(&pw, b.alpha),

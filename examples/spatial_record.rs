@@ -18,33 +18,14 @@ use rocking::spatial::{PlanInput, Spatial, SpatialState};
 mod cpu;
 #[path = "support/dharahara.rs"]
 mod dharahara;
+#[path = "support/pair_file.rs"]
+mod pair_file;
 
 use cpu::cpu;
 
 const RTOL: f64 = 1e-9;
 /// Samples of quiet after the record.
 const TAIL: usize = 1000;
-
-/// The record file: time step (s), then `agx agy av` per sample (m/s²).
-fn read(path: &str) -> (f64, Vec<[f64; 3]>) {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let mut lines = text.lines();
-    let number = |s: &str| -> f64 { s.parse().unwrap_or_else(|e| panic!("{path}: {s:?}: {e}")) };
-    let dt = number(
-        lines
-            .next()
-            .unwrap_or_else(|| panic!("{path}: empty"))
-            .trim(),
-    );
-    let samples = lines
-        .map(|line| {
-            let v: Vec<f64> = line.split_whitespace().map(number).collect();
-            assert_eq!(v.len(), 3, "{path}: {line:?}: three numbers expected");
-            [v[0], v[1], v[2]]
-        })
-        .collect();
-    (dt, samples)
-}
 
 /// What one run did: steps (accepted and rejected), peak tilt (rad), impacts, overturned.
 type Outcome = (u64, f64, u64, bool);
@@ -114,7 +95,8 @@ fn main() {
     println!("| record | scale | run | steps | CPU (ms) | CPU / planar | peak tilt / alpha | impacts | overturned |");
     println!("|---|---|---|---|---|---|---|---|---|");
     for path in std::env::args().skip(1) {
-        let (dt, rec) = read(&path);
+        let file = pair_file::read(&path);
+        let (dt, rec) = (file.dt, file.samples);
         let pga = rec.iter().map(|s| s[0].abs()).fold(0.0, f64::max);
         // to three times the tower's uplift acceleration along x
         let scale = 3.0 * b.g * b.b / b.hg / pga;
