@@ -4,8 +4,9 @@
 //! The value references the binary uses ([`vr`]), the `modelDescription.xml`
 //! and the variable table of `documentation/index.html` all come from here.
 
-use model_description::common;
+use model_description::rigid_body::{self, base, du, enumeration, item, real, units};
 use model_description::*;
+use model_description::{common, variables};
 
 /// Relative tolerance of the integrator when the master gives none
 /// (`DefaultExperiment/@tolerance`).
@@ -16,43 +17,6 @@ pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 /// apparent weight and two kinks of the inertia at the weight
 /// (`rocking::dynamics::continuous::EVENT_INDICATORS`, checked by the FMU).
 pub const EVENT_INDICATORS: u32 = 16;
-
-/// Declares the value-reference constants ([`vr`]) and the variable table
-/// ([`VARIABLES`]) from one list.
-macro_rules! variables {
-    ($( $(#[$meta:meta])* $konst:ident = $vr:literal => { $($field:ident : $value:expr),* $(,)? } )*) => {
-        /// Value references, one constant per variable.
-        pub mod vr {
-            $( $(#[$meta])* pub const $konst: u32 = $vr; )*
-        }
-        /// The variables, in XML order (sorted by value reference).
-        #[allow(clippy::needless_update)] // some entries set every field
-        pub static VARIABLES: &[Variable] = &[
-            $( Variable { vr: $vr, $($field: $value,)* ..Variable::DEFAULT }, )*
-        ];
-    };
-}
-
-const fn real(
-    unit: Option<&'static str>,
-    display_unit: Option<&'static str>,
-    start: Option<f64>,
-) -> Type {
-    Type::Real {
-        unit,
-        display_unit,
-        start,
-        min: None,
-        max: None,
-    }
-}
-
-const fn enumeration(declared_type: &'static str, start: i32) -> Type {
-    Type::Enumeration {
-        declared_type,
-        start: Some(start),
-    }
-}
 
 use Causality::{CalculatedParameter as CalcParam, Input, Local, Output, Parameter};
 use Initial::{Calculated, Exact};
@@ -203,10 +167,7 @@ const D_APPARENT: &[&str] = &[
 variables! {
     /// `shape` (enumeration `ShapeKind`).
     SHAPE = 0 => {
-        name: "shape",
-        description: "Base section: solidRectangle (B, L), hollowRectangle (B, L, t), solidCircle (Ro), hollowCircle (Ro, Ri)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: enumeration("ShapeKind", 1),
+        ..rigid_body::shape("Base section: solidRectangle (B, L), hollowRectangle (B, L, t), solidCircle (Ro), hollowCircle (Ro, Ri)", 1)
     }
     B = 1 => {
         name: "B",
@@ -227,52 +188,28 @@ variables! {
         ty: real(Some("m"), None, Some(0.1)),
     }
     RO = 4 => {
-        name: "Ro",
-        description: "Outer radius of the circular sections (base depth D = 2 Ro)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("m"), None, Some(0.5)),
+        ..rigid_body::ro("Outer radius of the circular sections (base depth D = 2 Ro)")
     }
     RI = 5 => {
-        name: "Ri",
-        description: "Inner radius of the hollow circle (Ri < Ro), concentric",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("m"), None, Some(0.3)),
+        ..rigid_body::ri("Inner radius of the hollow circle (Ri < Ro), concentric")
     }
     MASS_MODEL = 6 => {
-        name: "massModel",
-        description: "Mass model: prism (the section extruded to height H with density rho) or lumped (W, hG, Ic given)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: enumeration("MassModelKind", 1),
+        ..rigid_body::mass_model("Mass model: prism (the section extruded to height H with density rho) or lumped (W, hG, Ic given)")
     }
     H = 7 => {
-        name: "H",
-        description: "Prism height (hG = H/2)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("m"), None, Some(2.5)),
+        ..rigid_body::h(2.5)
     }
     RHO = 8 => {
-        name: "rho",
-        description: "Prism density",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("kg/m3"), None, Some(1800.0)),
+        ..rigid_body::RHO
     }
     W = 9 => {
-        name: "W",
-        description: "Lumped weight",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("N"), Some("kN"), Some(1.0e5)),
+        ..rigid_body::W
     }
     HG = 10 => {
-        name: "hG",
-        description: "Lumped height of the centre of mass above the base (G over the section centroid)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("m"), None, Some(1.25)),
+        ..rigid_body::hg("Lumped height of the centre of mass above the base (G over the section centroid)", 1.25)
     }
     IC = 11 => {
-        name: "Ic",
-        description: "Lumped inertia about the centre of mass, about the rocking axis",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("kg.m2"), None, Some(1.0e4)),
+        ..rigid_body::ic("Lumped inertia about the centre of mass, about the rocking axis")
     }
     INTERFACE = 12 => {
         name: "interface",
@@ -299,22 +236,13 @@ variables! {
         ty: enumeration("FormulationKind", 2),
     }
     RESTITUTION = 16 => {
-        name: "restitution",
-        description: "Coefficient of restitution at impacts: housner (1 - 2 m b^2/IO) or given (eta)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: enumeration("RestitutionKind", 1),
+        ..rigid_body::restitution("Coefficient of restitution at impacts: housner (1 - 2 m b^2/IO) or given (eta)")
     }
     ETA = 17 => {
-        name: "eta",
-        description: "Coefficient of restitution used when restitution = given (0 <= eta <= 1)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(None, None, Some(0.9)),
+        ..rigid_body::eta(None)
     }
     G = 18 => {
-        name: "g",
-        description: "Gravitational acceleration",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("m/s2"), None, Some(9.81)),
+        ..rigid_body::G
     }
     AG = 19 => {
         name: "ag",
@@ -405,46 +333,28 @@ variables! {
         depends_on: D_DYNAMIC,
     }
     MASS = 32 => {
-        name: "mass",
-        description: "Mass m = W/g",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("kg"), None, None),
         depends_on: D_WEIGHT,
+        ..rigid_body::MASS
     }
     WEIGHT = 33 => {
-        name: "weight",
-        description: "Weight W (rho g A H for the prism)",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("N"), Some("kN"), None),
         depends_on: D_WEIGHT,
+        ..rigid_body::WEIGHT
     }
     R0 = 34 => {
-        name: "R0",
-        description: "Distance from the toe to the centre of mass, sqrt(b^2 + hG^2)",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("m"), None, None),
         depends_on: D_LEVER,
+        ..rigid_body::r0("Distance from the toe to the centre of mass, sqrt(b^2 + hG^2)")
     }
     ALPHA = 35 => {
-        name: "alpha",
-        description: "Slenderness atan(b/hG)",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("rad"), Some("deg"), None),
         depends_on: D_LEVER,
+        ..rigid_body::alpha("Slenderness atan(b/hG)")
     }
     IO = 36 => {
-        name: "IO",
-        description: "Inertia about the toe, Ic + m R0^2",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("kg.m2"), None, None),
         depends_on: D_INERTIA,
+        ..rigid_body::io("Inertia about the toe, Ic + m R0^2")
     }
     ETA_HOUSNER = 37 => {
-        name: "etaHousner",
-        description: "Housner's coefficient of restitution 1 - 2 m b^2/IO",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("1"), None, None),
         depends_on: D_INERTIA,
+        ..rigid_body::eta_housner("Housner's coefficient of restitution 1 - 2 m b^2/IO")
     }
     THETA_JO = 38 => {
         name: "thetaJo",
@@ -461,11 +371,8 @@ variables! {
         depends_on: D_THRESHOLD,
     }
     THETA_OV = 40 => {
-        name: "thetaOv",
-        description: "Overturning rotation, the first root of hW(phi) = 0 (alpha for the rigid interface)",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("rad"), Some("deg"), None),
         depends_on: D_OVERTURN,
+        ..rigid_body::theta_ov("Overturning rotation, the first root of hW(phi) = 0 (alpha for the rigid interface)")
     }
     ZERO_CROSSINGS = 41 => {
         name: "zeroCrossings",
@@ -565,58 +472,16 @@ variables! {
     }
 }
 
-const fn base(kg: i32, m: i32, s: i32, rad: i32) -> BaseUnit {
-    BaseUnit {
-        kg,
-        m,
-        s,
-        rad,
-        ..BaseUnit::ONE
-    }
-}
-
-const fn du(name: &'static str, factor: f64) -> DisplayUnit {
-    DisplayUnit {
-        name,
-        factor,
-        offset: 0.0,
-    }
-}
-
 /// Standard gravity for the display unit `g` (not the parameter `g`).
-pub const STANDARD_GRAVITY: f64 = 9.80665;
+pub const STANDARD_GRAVITY: f64 = rigid_body::STANDARD_GRAVITY;
 
 pub static UNITS: &[Unit] = &[
-    Unit {
-        name: "1",
-        base: BaseUnit::ONE,
-        display: &[],
-    },
-    Unit {
-        name: "m",
-        base: base(0, 1, 0, 0),
-        display: &[du("mm", 1e3)],
-    },
-    Unit {
-        name: "kg",
-        base: base(1, 0, 0, 0),
-        display: &[du("t", 1e-3)],
-    },
-    Unit {
-        name: "kg/m3",
-        base: base(1, -3, 0, 0),
-        display: &[],
-    },
-    Unit {
-        name: "kg.m2",
-        base: base(1, 2, 0, 0),
-        display: &[du("t.m2", 1e-3)],
-    },
-    Unit {
-        name: "N",
-        base: base(1, 1, -2, 0),
-        display: &[du("kN", 1e-3), du("MN", 1e-6)],
-    },
+    units::ONE,
+    units::M,
+    units::KG,
+    units::KG_PER_M3,
+    units::KG_M2,
+    units::N,
     Unit {
         name: "N.m",
         base: base(1, 2, -2, 0),
@@ -632,21 +497,9 @@ pub static UNITS: &[Unit] = &[
         base: base(1, -2, -2, 0),
         display: &[du("MPa/m", 1e-6), du("GPa/m", 1e-9)],
     },
-    Unit {
-        name: "m/s2",
-        base: base(0, 1, -2, 0),
-        display: &[du("g", 1.0 / STANDARD_GRAVITY)],
-    },
-    Unit {
-        name: "rad",
-        base: base(0, 0, 0, 1),
-        display: &[du("deg", 180.0 / std::f64::consts::PI)],
-    },
-    Unit {
-        name: "rad/s",
-        base: base(0, 0, -1, 1),
-        display: &[du("deg/s", 180.0 / std::f64::consts::PI)],
-    },
+    units::M_PER_S2,
+    units::RAD,
+    units::RAD_PER_S,
     Unit {
         name: "rad/s2",
         base: base(0, 0, -2, 1),
@@ -654,38 +507,27 @@ pub static UNITS: &[Unit] = &[
     },
 ];
 
-const fn item(name: &'static str, value: i32, description: &'static str) -> EnumItem {
-    EnumItem {
-        name,
-        value,
-        description,
-    }
-}
-
 /// Values of the enumerations, as the binary sees them.
 pub mod enums {
-    pub const SOLID_RECTANGLE: i32 = 1;
-    pub const HOLLOW_RECTANGLE: i32 = 2;
-    pub const SOLID_CIRCLE: i32 = 3;
-    pub const HOLLOW_CIRCLE: i32 = 4;
-    pub const PRISM: i32 = 1;
-    pub const LUMPED: i32 = 2;
+    // the build script, which includes this file, uses none of them
+    #[allow(unused_imports)]
+    pub use model_description::rigid_body::enums::{
+        GIVEN, HOLLOW_CIRCLE, HOLLOW_RECTANGLE, HOUSNER, LUMPED, PRISM, SOLID_CIRCLE,
+        SOLID_RECTANGLE,
+    };
     pub const RIGID: i32 = 1;
     pub const ELASTIC: i32 = 2;
     pub const ELASTO_PLASTIC: i32 = 3;
     pub const COSTA: i32 = 1;
     pub const SHIFTING_PIVOT: i32 = 2;
-    pub const HOUSNER: i32 = 1;
-    pub const GIVEN: i32 = 2;
     pub const NONE: i32 = 1;
     pub const ONE_SIDED: i32 = 2;
 }
 
 pub static TYPES: &[EnumType] = &[
-    EnumType {
-        name: "ShapeKind",
-        description: "Base section shape",
-        items: &[
+    rigid_body::shape_kind(
+        "Base section shape",
+        &[
             item(
                 "solidRectangle",
                 enums::SOLID_RECTANGLE,
@@ -696,30 +538,11 @@ pub static TYPES: &[EnumType] = &[
                 enums::HOLLOW_RECTANGLE,
                 "Hollow rectangle B x L, wall t",
             ),
-            item(
-                "solidCircle",
-                enums::SOLID_CIRCLE,
-                "Solid circle of radius Ro",
-            ),
-            item(
-                "hollowCircle",
-                enums::HOLLOW_CIRCLE,
-                "Concentric ring Ro, Ri",
-            ),
+            rigid_body::SOLID_CIRCLE,
+            rigid_body::HOLLOW_CIRCLE,
         ],
-    },
-    EnumType {
-        name: "MassModelKind",
-        description: "How the body's mass is described",
-        items: &[
-            item(
-                "prism",
-                enums::PRISM,
-                "The section extruded to height H, density rho",
-            ),
-            item("lumped", enums::LUMPED, "W, hG and Ic given directly"),
-        ],
-    },
+    ),
+    rigid_body::mass_model_type(&rigid_body::mass_model_kind("W, hG and Ic given directly")),
     EnumType {
         name: "InterfaceLaw",
         description: "Law of the base interface",
@@ -757,14 +580,10 @@ pub static TYPES: &[EnumType] = &[
             ),
         ],
     },
-    EnumType {
-        name: "RestitutionKind",
-        description: "Coefficient of restitution at impacts",
-        items: &[
-            item("housner", enums::HOUSNER, "eta = 1 - 2 m b^2 / IO"),
-            item("given", enums::GIVEN, "eta = the parameter eta"),
-        ],
-    },
+    rigid_body::restitution_type(
+        "Coefficient of restitution at impacts",
+        &rigid_body::restitution_kind("eta = 1 - 2 m b^2 / IO", "eta = the parameter eta"),
+    ),
     EnumType {
         name: "RestraintKind",
         description: "Whether the body rocks both ways",
@@ -779,24 +598,8 @@ pub static TYPES: &[EnumType] = &[
     },
 ];
 
-pub static LOG_CATEGORIES: &[LogCategory] = &[
-    LogCategory {
-        name: "logEvents",
-        description: "Impacts, uplift, coming to rest, regime changes and overturning",
-    },
-    LogCategory {
-        name: "logStatusWarning",
-        description: "Messages that accompany fmi2Warning and fmi2Discard",
-    },
-    LogCategory {
-        name: "logStatusError",
-        description: "Messages that accompany fmi2Error and fmi2Fatal",
-    },
-    LogCategory {
-        name: "logAll",
-        description: "Everything, including a trace of the FMI calls",
-    },
-];
+pub static LOG_CATEGORIES: &[LogCategory] =
+    &rigid_body::log_categories("Impacts, uplift, coming to rest, regime changes and overturning");
 
 pub static ROCKING_BLOCK: ModelDescription = ModelDescription {
     model_name: "RockingBlock",

@@ -7,51 +7,15 @@
 //! Names shared with RockingBlock (`shape`, `Ro`, `massModel`, `Fx`,
 //! `frictionDemand`, ...) mean the same there and here.
 
-use model_description::common;
+use model_description::rigid_body::{self, real, units};
 use model_description::*;
+use model_description::{common, variables};
 
 /// Relative tolerance of the integrator when the master gives none
 /// (`DefaultExperiment/@tolerance`), as RockingBlock's.
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 
-/// Declares the value-reference constants ([`vr`]) and the variable table
-/// ([`VARIABLES`]) from one list.
-macro_rules! variables {
-    ($( $(#[$meta:meta])* $konst:ident = $vr:literal => { $($field:ident : $value:expr),* $(,)? } )*) => {
-        /// Value references, one constant per variable.
-        pub mod vr {
-            $( $(#[$meta])* pub const $konst: u32 = $vr; )*
-        }
-        /// The variables, in XML order (sorted by value reference).
-        #[allow(clippy::needless_update)] // some entries set every field
-        pub static VARIABLES: &[Variable] = &[
-            $( Variable { vr: $vr, $($field: $value,)* ..Variable::DEFAULT }, )*
-        ];
-    };
-}
-
-const fn real(
-    unit: Option<&'static str>,
-    display_unit: Option<&'static str>,
-    start: Option<f64>,
-) -> Type {
-    Type::Real {
-        unit,
-        display_unit,
-        start,
-        min: None,
-        max: None,
-    }
-}
-
-const fn enumeration(declared_type: &'static str, start: i32) -> Type {
-    Type::Enumeration {
-        declared_type,
-        start: Some(start),
-    }
-}
-
-use Causality::{CalculatedParameter as CalcParam, Input, Output, Parameter};
+use Causality::{Input, Output, Parameter};
 use Initial::{Calculated, Exact};
 use Variability::{Continuous, Discrete, Fixed};
 
@@ -100,58 +64,31 @@ const D_DYNAMIC: &[&str] = &[
 variables! {
     /// `shape` (enumeration `ShapeKind`, its round items only).
     SHAPE = 0 => {
-        name: "shape",
-        description: "Base section: solidCircle (Ro) or hollowCircle (Ro, Ri); RockingBlock's codes (its rectangles are no body of revolution)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: enumeration("ShapeKind", 3),
+        ..rigid_body::shape("Base section: solidCircle (Ro) or hollowCircle (Ro, Ri); RockingBlock's codes (its rectangles are no body of revolution)", 3)
     }
     RO = 1 => {
-        name: "Ro",
-        description: "Outer radius of the base (base depth D = 2 Ro), > 0",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("m"), None, Some(0.5)),
+        ..rigid_body::ro("Outer radius of the base (base depth D = 2 Ro), > 0")
     }
     RI = 2 => {
-        name: "Ri",
-        description: "Inner radius of the hollow circle (0 < Ri < Ro), concentric",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("m"), None, Some(0.3)),
+        ..rigid_body::ri("Inner radius of the hollow circle (0 < Ri < Ro), concentric")
     }
     MASS_MODEL = 3 => {
-        name: "massModel",
-        description: "Mass model: prism (the section extruded to height H with density rho) or lumped (W, hG, Ic and IcAxial given)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: enumeration("MassModelKind", 1),
+        ..rigid_body::mass_model("Mass model: prism (the section extruded to height H with density rho) or lumped (W, hG, Ic and IcAxial given)")
     }
     H = 4 => {
-        name: "H",
-        description: "Prism height (hG = H/2)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("m"), None, Some(3.0)),
+        ..rigid_body::h(3.0)
     }
     RHO = 5 => {
-        name: "rho",
-        description: "Prism density",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("kg/m3"), None, Some(1800.0)),
+        ..rigid_body::RHO
     }
     W = 6 => {
-        name: "W",
-        description: "Lumped weight",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("N"), Some("kN"), Some(1.0e5)),
+        ..rigid_body::W
     }
     HG = 7 => {
-        name: "hG",
-        description: "Lumped height of the centre of mass above the base, on the axis",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("m"), None, Some(1.5)),
+        ..rigid_body::hg("Lumped height of the centre of mass above the base, on the axis", 1.5)
     }
     IC = 8 => {
-        name: "Ic",
-        description: "Lumped inertia about a horizontal axis through the centre of mass",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("kg.m2"), None, Some(1.0e4)),
+        ..rigid_body::ic("Lumped inertia about a horizontal axis through the centre of mass")
     }
     IC_AXIAL = 9 => {
         name: "IcAxial",
@@ -160,22 +97,13 @@ variables! {
         ty: real(Some("kg.m2"), None, Some(1.0e4)),
     }
     RESTITUTION = 10 => {
-        name: "restitution",
-        description: "Restitution at impacts: housner (the planar limit is Housner's 1 - 2 m b^2/IO; in space the angular momentum about the striking rim point is kept) or given (the planar limit is eta)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: enumeration("RestitutionKind", 1),
+        ..rigid_body::restitution("Restitution at impacts: housner (the planar limit is Housner's 1 - 2 m b^2/IO; in space the angular momentum about the striking rim point is kept) or given (the planar limit is eta)")
     }
     ETA = 11 => {
-        name: "eta",
-        description: "Coefficient of restitution used when restitution = given (0 <= eta <= 1)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("1"), None, Some(0.9)),
+        ..rigid_body::eta(Some("1"))
     }
     G = 12 => {
-        name: "g",
-        description: "Gravitational acceleration",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("m/s2"), None, Some(9.81)),
+        ..rigid_body::G
     }
     THETA0 = 13 => {
         name: "theta0",
@@ -349,201 +277,83 @@ variables! {
         ty: Type::Boolean { start: None },
     }
     MASS = 39 => {
-        name: "mass",
-        description: "Mass m = W/g",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("kg"), None, None),
         depends_on: D_WEIGHT,
+        ..rigid_body::MASS
     }
     WEIGHT = 40 => {
-        name: "weight",
-        description: "Weight W (rho g A H for the prism)",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("N"), Some("kN"), None),
         depends_on: D_WEIGHT,
+        ..rigid_body::WEIGHT
     }
     R0 = 41 => {
-        name: "R0",
-        description: "Distance from the rim to the centre of mass, sqrt(Ro^2 + hG^2)",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("m"), None, None),
         depends_on: D_LEVER,
+        ..rigid_body::r0("Distance from the rim to the centre of mass, sqrt(Ro^2 + hG^2)")
     }
     ALPHA = 42 => {
-        name: "alpha",
-        description: "Slenderness atan(Ro/hG)",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("rad"), Some("deg"), None),
         depends_on: D_LEVER,
+        ..rigid_body::alpha("Slenderness atan(Ro/hG)")
     }
     IO = 43 => {
-        name: "IO",
-        description: "Inertia about a horizontal tangent to the rim, Ic + m R0^2",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("kg.m2"), None, None),
         depends_on: D_INERTIA,
+        ..rigid_body::io("Inertia about a horizontal tangent to the rim, Ic + m R0^2")
     }
     ETA_HOUSNER = 44 => {
-        name: "etaHousner",
-        description: "Housner's coefficient of restitution 1 - 2 m Ro^2/IO (the planar impact's)",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("1"), None, None),
         depends_on: D_INERTIA,
+        ..rigid_body::eta_housner("Housner's coefficient of restitution 1 - 2 m Ro^2/IO (the planar impact's)")
     }
     THETA_OV = 45 => {
-        name: "thetaOv",
-        description: "Overturning tilt: alpha on the rigid bed",
-        causality: CalcParam, variability: Fixed, initial: Some(Calculated),
-        ty: real(Some("rad"), Some("deg"), None),
         depends_on: D_LEVER,
-    }
-}
-
-const fn base(kg: i32, m: i32, s: i32, rad: i32) -> BaseUnit {
-    BaseUnit {
-        kg,
-        m,
-        s,
-        rad,
-        ..BaseUnit::ONE
-    }
-}
-
-const fn du(name: &'static str, factor: f64) -> DisplayUnit {
-    DisplayUnit {
-        name,
-        factor,
-        offset: 0.0,
+        ..rigid_body::theta_ov("Overturning tilt: alpha on the rigid bed")
     }
 }
 
 /// Standard gravity for the display unit `g` (not the parameter `g`).
-pub const STANDARD_GRAVITY: f64 = 9.80665;
+pub const STANDARD_GRAVITY: f64 = rigid_body::STANDARD_GRAVITY;
 
 pub static UNITS: &[Unit] = &[
-    Unit {
-        name: "1",
-        base: BaseUnit::ONE,
-        display: &[],
-    },
-    Unit {
-        name: "m",
-        base: base(0, 1, 0, 0),
-        display: &[du("mm", 1e3)],
-    },
-    Unit {
-        name: "kg",
-        base: base(1, 0, 0, 0),
-        display: &[du("t", 1e-3)],
-    },
-    Unit {
-        name: "kg/m3",
-        base: base(1, -3, 0, 0),
-        display: &[],
-    },
-    Unit {
-        name: "kg.m2",
-        base: base(1, 2, 0, 0),
-        display: &[du("t.m2", 1e-3)],
-    },
-    Unit {
-        name: "N",
-        base: base(1, 1, -2, 0),
-        display: &[du("kN", 1e-3), du("MN", 1e-6)],
-    },
-    Unit {
-        name: "m/s2",
-        base: base(0, 1, -2, 0),
-        display: &[du("g", 1.0 / STANDARD_GRAVITY)],
-    },
-    Unit {
-        name: "rad",
-        base: base(0, 0, 0, 1),
-        display: &[du("deg", 180.0 / std::f64::consts::PI)],
-    },
-    Unit {
-        name: "rad/s",
-        base: base(0, 0, -1, 1),
-        display: &[du("deg/s", 180.0 / std::f64::consts::PI)],
-    },
+    units::ONE,
+    units::M,
+    units::KG,
+    units::KG_PER_M3,
+    units::KG_M2,
+    units::N,
+    units::M_PER_S2,
+    units::RAD,
+    units::RAD_PER_S,
 ];
-
-const fn item(name: &'static str, value: i32, description: &'static str) -> EnumItem {
-    EnumItem {
-        name,
-        value,
-        description,
-    }
-}
 
 /// Values of the enumerations, as the binary sees them (the shape and mass
 /// codes are RockingBlock's).
 pub mod enums {
-    pub const SOLID_CIRCLE: i32 = 3;
-    pub const HOLLOW_CIRCLE: i32 = 4;
-    pub const PRISM: i32 = 1;
-    pub const LUMPED: i32 = 2;
-    pub const HOUSNER: i32 = 1;
-    pub const GIVEN: i32 = 2;
+    // the build script, which includes this file, uses none of them
+    #[allow(unused_imports)]
+    pub use model_description::rigid_body::enums::{
+        GIVEN, HOLLOW_CIRCLE, HOUSNER, LUMPED, PRISM, SOLID_CIRCLE,
+    };
     pub const REST: i32 = 1;
     pub const ROCKING: i32 = 2;
 }
 
 pub static TYPES: &[EnumType] = &[
-    EnumType {
-        name: "ShapeKind",
-        description: "Base section shape (RockingBlock's round items, with its codes)",
-        items: &[
-            item(
-                "solidCircle",
-                enums::SOLID_CIRCLE,
-                "Solid circle of radius Ro",
-            ),
-            item(
-                "hollowCircle",
-                enums::HOLLOW_CIRCLE,
-                "Concentric ring Ro, Ri",
-            ),
-        ],
-    },
-    EnumType {
-        name: "MassModelKind",
-        description: "How the body's mass is described",
-        items: &[
-            item(
-                "prism",
-                enums::PRISM,
-                "The section extruded to height H, density rho",
-            ),
-            item(
-                "lumped",
-                enums::LUMPED,
-                "W, hG, Ic and IcAxial given directly",
-            ),
-        ],
-    },
-    EnumType {
-        name: "RestitutionKind",
-        description: "Restitution at impacts",
-        items: &[
-            item(
-                "housner",
-                enums::HOUSNER,
-                "Angular momentum about the striking rim point kept (planar: 1 - 2 m b^2 / IO)",
-            ),
-            item(
-                "given",
-                enums::GIVEN,
-                "Planar limit eta = the parameter eta",
-            ),
-        ],
-    },
+    rigid_body::shape_kind(
+        "Base section shape (RockingBlock's round items, with its codes)",
+        &[rigid_body::SOLID_CIRCLE, rigid_body::HOLLOW_CIRCLE],
+    ),
+    rigid_body::mass_model_type(&rigid_body::mass_model_kind(
+        "W, hG, Ic and IcAxial given directly",
+    )),
+    rigid_body::restitution_type(
+        "Restitution at impacts",
+        &rigid_body::restitution_kind(
+            "Angular momentum about the striking rim point kept (planar: 1 - 2 m b^2 / IO)",
+            "Planar limit eta = the parameter eta",
+        ),
+    ),
     EnumType {
         name: "RegimeKind",
         description: "How the body stands on the bed",
         items: &[
-            item("rest", enums::REST, "Upright at rest on the whole base"),
-            item(
+            rigid_body::item("rest", enums::REST, "Upright at rest on the whole base"),
+            rigid_body::item(
                 "rocking",
                 enums::ROCKING,
                 "On a point of the rim: rocking, wobbling or rolling",
@@ -552,24 +362,8 @@ pub static TYPES: &[EnumType] = &[
     },
 ];
 
-pub static LOG_CATEGORIES: &[LogCategory] = &[
-    LogCategory {
-        name: "logEvents",
-        description: "Uplift, impacts, coming to rest and overturning",
-    },
-    LogCategory {
-        name: "logStatusWarning",
-        description: "Messages that accompany fmi2Warning and fmi2Discard",
-    },
-    LogCategory {
-        name: "logStatusError",
-        description: "Messages that accompany fmi2Error and fmi2Fatal",
-    },
-    LogCategory {
-        name: "logAll",
-        description: "Everything, including a trace of the FMI calls",
-    },
-];
+pub static LOG_CATEGORIES: &[LogCategory] =
+    &rigid_body::log_categories("Uplift, impacts, coming to rest and overturning");
 
 pub static ROUND_BODY: ModelDescription = ModelDescription {
     model_name: "RoundBody",

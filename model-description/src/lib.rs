@@ -8,6 +8,8 @@
 //!   enumeration types, capabilities, default experiment);
 //! - [`common`]: what every FMU of this project declares alike (authors,
 //!   licence, the co-simulation capabilities of `fmi2-export`);
+//! - [`rigid_body`]: the entries RockingBlock and RoundBody share (the body's
+//!   parameters, units, enumerations) and the [`variables!`] table macro;
 //! - `xml` (feature `xml`): `modelDescription.xml` through serde + quick-xml,
 //!   and the GUID derived from its content (SHA-256 of the XML without it);
 //! - `xml3` (feature `xml`): the FMI 3.0 `modelDescription.xml` of the same
@@ -66,6 +68,7 @@
 
 pub mod common;
 pub mod fmi3;
+pub mod rigid_body;
 pub mod schema;
 
 #[cfg(feature = "xml")]
