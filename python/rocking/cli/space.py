@@ -248,7 +248,8 @@ def register(sub, common):
     p.add_argument("--preset", metavar="NAME", help="a parameter set of `rocking info --presets` on the rigid bed "
                    "(its planar-only names are left out)")
     p.add_argument("--params", metavar="FILE", help="parameters from a JSON object of name -> value")
-    p.add_argument("--fmu", metavar="PATH", help="RoundBody.fmu (default: target/fmu/RoundBody.fmu)")
+    p.add_argument("--fmu", metavar="PATH", help="RoundBody.fmu (default: the one an installed wheel carries; "
+                   "in a clone target/fmu/RoundBody.fmu, written by `cargo xtask fmu`)")
     p.add_argument("--planar-fmu", metavar="PATH", help="RockingBlock.fmu for --compare (default as simulate's)")
     p.add_argument("--stop-time", type=seconds(0, strict=False), metavar="S", help="default: the record's end")
     p.add_argument("--tail", type=seconds(0, strict=False), metavar="S", help="run S seconds past the record")
