@@ -117,6 +117,33 @@ impl<'a> Inputs<'a> {
             .unwrap_or_else(|| panic!("no Real variable with value reference {vr}"));
         self.derivatives[i]
     }
+
+    /// The Real input `vr` (called `name` in messages, in `unit`) over a
+    /// step of `h` s as `(x, dx/dt)`, checked: finite, and `|x| <= max_abs`
+    /// at both ends of the step. A model bounds its inputs where its
+    /// arithmetic would overflow; the message names the input and the bound.
+    pub fn line(
+        &self,
+        vr: u32,
+        name: &str,
+        unit: &str,
+        h: f64,
+        max_abs: f64,
+    ) -> Result<(f64, f64), String> {
+        let (x, dx) = (self.real(vr), self.derivative(vr));
+        if !(x.is_finite() && dx.is_finite()) {
+            return Err(format!(
+                "{name} = {x}, d{name}/dt = {dx}: the input must be finite"
+            ));
+        }
+        let x_end = x + dx * h;
+        if x.abs().max(x_end.abs()) > max_abs {
+            return Err(format!(
+                "{name} = {x} at the start of the step, {x_end} at its end: |{name}| must be <= {max_abs:e} {unit}"
+            ));
+        }
+        Ok((x, dx))
+    }
 }
 
 /// Experiment settings from `fmi2SetupExperiment`, and the interface the

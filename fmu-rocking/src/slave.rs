@@ -16,7 +16,9 @@ use rocking::dynamics::{
 use rocking::{Params, Regime};
 
 /// Largest |ag| a step accepts, m/s2 (far beyond any ground motion; the
-/// arithmetic of the equations of motion overflows around 1e200).
+/// arithmetic of the equations of motion overflows around 1e200, and beyond
+/// it the integrator could not finish a step on the way to overturning;
+/// the check costs microseconds).
 pub const MAX_GROUND_ACCELERATION: f64 = 1e100;
 
 /// Layout version of the serialized state (inside the generic envelope):
@@ -168,27 +170,6 @@ impl RockingSlave {
         }
     }
 
-    /// The input `name` over a step of `h` s, `(x, dx/dt)`, checked: finite,
-    /// and `|x| <= MAX_GROUND_ACCELERATION` at both ends of the step.
-    fn input_line(inputs: &Inputs<'_>, r: u32, name: &str, h: f64) -> Result<(f64, f64), String> {
-        let (x, dx) = (inputs.real(r), inputs.derivative(r));
-        if !(x.is_finite() && dx.is_finite()) {
-            return Err(format!(
-                "{name} = {x}, d{name}/dt = {dx}: the input must be finite"
-            ));
-        }
-        // Beyond this the equations of motion overflow on the way to
-        // overturning and the integrator cannot finish the step (the limit
-        // itself is far above any ground motion and costs microseconds).
-        let x_end = x + dx * h;
-        if x.abs().max(x_end.abs()) > MAX_GROUND_ACCELERATION {
-            return Err(format!(
-                "{name} = {x} at the start of the step, {x_end} at its end: |{name}| must be <= {MAX_GROUND_ACCELERATION:e} m/s2"
-            ));
-        }
-        Ok((x, dx))
-    }
-
     /// A step from `t` to `t + h`, or (`to_event`) to the first event in it.
     fn step(
         &mut self,
@@ -198,9 +179,9 @@ impl RockingSlave {
         log: &mut EventLog,
         to_event: bool,
     ) -> Result<StepEnd, String> {
-        let (ag, dag) = Self::input_line(&inputs, vr::AG, "ag", h)?;
+        let (ag, dag) = inputs.line(vr::AG, "ag", "m/s2", h, MAX_GROUND_ACCELERATION)?;
         // docs/model.md §7.4: av is checked like ag
-        let (av, dav) = Self::input_line(&inputs, vr::AV, "av", h)?;
+        let (av, dav) = inputs.line(vr::AV, "av", "m/s2", h, MAX_GROUND_ACCELERATION)?;
         let v = VerticalInput { av, dav };
         if self.state.overturned {
             return Ok(StepEnd::Terminated {

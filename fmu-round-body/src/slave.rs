@@ -79,24 +79,6 @@ fn public_name(physics: &str) -> &str {
     }
 }
 
-/// The input `name` over a step of `h` s, `(x, dx/dt)`: finite, and at most
-/// [`MAX_GROUND_ACCELERATION`] in magnitude at both ends of the step.
-fn input_line(inputs: &Inputs<'_>, r: u32, name: &str, h: f64) -> Result<(f64, f64), String> {
-    let (x, dx) = (inputs.real(r), inputs.derivative(r));
-    if !(x.is_finite() && dx.is_finite()) {
-        return Err(format!(
-            "{name} = {x}, d{name}/dt = {dx}: the input must be finite"
-        ));
-    }
-    let x_end = x + dx * h;
-    if x.abs().max(x_end.abs()) > MAX_GROUND_ACCELERATION {
-        return Err(format!(
-            "{name} = {x} at the start of the step, {x_end} at its end: |{name}| must be <= {MAX_GROUND_ACCELERATION:e} m/s2"
-        ));
-    }
-    Ok((x, dx))
-}
-
 /// The inputs now, checked finite: `([agx, agy], av)`.
 fn inputs_now(inputs: &Inputs<'_>) -> Result<([f64; 2], f64), String> {
     let mut x = [0.0; 3];
@@ -268,9 +250,9 @@ impl Slave for RoundBodySlave {
         inputs: Inputs<'_>,
         log: &mut EventLog,
     ) -> Result<StepEnd, String> {
-        let (agx, dagx) = input_line(&inputs, vr::AGX, "agx", h)?;
-        let (agy, dagy) = input_line(&inputs, vr::AGY, "agy", h)?;
-        let (av, dav) = input_line(&inputs, vr::AV, "av", h)?;
+        let (agx, dagx) = inputs.line(vr::AGX, "agx", "m/s2", h, MAX_GROUND_ACCELERATION)?;
+        let (agy, dagy) = inputs.line(vr::AGY, "agy", "m/s2", h, MAX_GROUND_ACCELERATION)?;
+        let (av, dav) = inputs.line(vr::AV, "av", "m/s2", h, MAX_GROUND_ACCELERATION)?;
         if self.state.overturned {
             return Ok(StepEnd::Terminated {
                 time: self.state.t,
