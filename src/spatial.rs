@@ -11,10 +11,10 @@
 //! its restitution and rest rules and its Runge-Kutta tableau; the state
 //! and the loop are its own (`y` has seven components, see `eom`).
 //!
-//! - [`frame`]: the tilted body's geometry and the contact on the rim;
-//! - [`eom`]: the balance of angular momentum about the contact;
-//! - [`impact`]: the return of the base to the bed;
-//! - [`run`]: the stepping loop, its events (the tilt crossing upright,
+//! - `frame`: the tilted body's geometry and the contact on the rim;
+//! - `eom`: the balance of angular momentum about the contact;
+//! - `impact`: the return of the base to the bed;
+//! - `run`: the stepping loop, its events (the tilt crossing upright,
 //!   overturning) and rest.
 //!
 //! [`Body`]: crate::body::Body
@@ -25,7 +25,7 @@ mod impact;
 mod run;
 mod step;
 
-pub use run::SpatialEvents;
+pub use run::{SpatialEvents, UPRIGHT};
 
 use nalgebra::Vector3;
 
@@ -236,7 +236,7 @@ impl SpatialState {
     }
 
     /// Direction of the contact (unit): the tilt's, or within
-    /// [`run::UPRIGHT`] of upright the contact's direction kept from before
+    /// [`UPRIGHT`] of upright the contact's direction kept from before
     /// (round-off decides the tilt's direction there).
     pub fn contact_direction(&self) -> [f64; 2] {
         let s = self.e[0].hypot(self.e[1]);
