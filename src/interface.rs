@@ -10,7 +10,9 @@
 
 use crate::shape::Shape;
 
+mod spatial;
 mod table;
+pub use spatial::{RoundBed, RoundReaction};
 pub use table::ContactTable;
 
 /// Interface law (docs/model.md §2).
