@@ -91,13 +91,14 @@ struct Sums {
 }
 
 /// The errors of one case, relative: the force at the planar law's plane
-/// (to N), the moment along and across the tilt (to N R), the closed and
-/// crushed areas (to A).
+/// (to N), the moment about the axis across the tilt (the planar one) and
+/// about the tilt's direction `d` (zero) (to N R), the closed and crushed
+/// areas (to A).
 #[derive(Clone, Copy, Debug, Default)]
 struct Errors {
     n: f64,
-    m_along: f64,
-    m_across: f64,
+    m_planar: f64,
+    m_about_d: f64,
     closed: f64,
     crushed: f64,
 }
@@ -106,8 +107,8 @@ impl Errors {
     fn max(self, o: Errors) -> Errors {
         Errors {
             n: self.n.max(o.n),
-            m_along: self.m_along.max(o.m_along),
-            m_across: self.m_across.max(o.m_across),
+            m_planar: self.m_planar.max(o.m_planar),
+            m_about_d: self.m_about_d.max(o.m_about_d),
             closed: self.closed.max(o.closed),
             crushed: self.crushed.max(o.crushed),
         }
@@ -150,8 +151,8 @@ fn compare(case: &Case, fibres: &Fibres) -> (Errors, RoundReaction) {
     let scale = case.n * ro;
     let errors = Errors {
         n: (at_law.n - case.n).abs() / case.n,
-        m_along: (dot(s.m, across) - dot(r.moment, across)).abs() / scale,
-        m_across: (dot(s.m, d) - dot(r.moment, d)).abs() / scale,
+        m_planar: (dot(s.m, across) - dot(r.moment, across)).abs() / scale,
+        m_about_d: (dot(s.m, d) - dot(r.moment, d)).abs() / scale,
         closed: (s.closed - r.contact_area).abs() / a_sec,
         crushed: (s.crushed - r.crushed_area).abs() / a_sec,
     };
@@ -233,11 +234,11 @@ fn the_planar_law_along_the_tilt_is_the_fibres_sum() {
     let (coarse, regimes) = worst(&cases, 40, 160);
     let (fine, _) = worst(&cases, 80, 320);
     println!("{} cases, worst relative errors:", cases.len());
-    println!("fibres      N        M along   M across  closed A  crushed A");
+    println!("fibres      N        M planar  M about d closed A  crushed A");
     for (name, e) in [("40x160", coarse), ("80x320", fine)] {
         println!(
             "{name:8} {:9.2e} {:9.2e} {:9.2e} {:9.2e} {:9.2e}",
-            e.n, e.m_along, e.m_across, e.closed, e.crushed
+            e.n, e.m_planar, e.m_about_d, e.closed, e.crushed
         );
     }
     for r in [
@@ -255,8 +256,8 @@ fn the_planar_law_along_the_tilt_is_the_fibres_sum() {
     let rate = |c: f64, f: f64| (c / f).log2();
     for (what, c, f, tol, order) in [
         ("N", coarse.n, fine.n, 4e-4, 1.8),
-        ("M along", coarse.m_along, fine.m_along, 1.5e-4, 1.8),
-        ("M across", coarse.m_across, fine.m_across, 4e-5, 1.8),
+        ("M planar", coarse.m_planar, fine.m_planar, 1.5e-4, 1.8),
+        ("M about d", coarse.m_about_d, fine.m_about_d, 4e-5, 1.8),
         ("closed area", coarse.closed, fine.closed, 4e-3, 0.9),
         ("crushed area", coarse.crushed, fine.crushed, 2e-3, 0.9),
     ] {
