@@ -511,6 +511,95 @@ def test_short_rectangular_pulse_tends_to_housners_impulse_limit(fmu):
     assert gaps[1] == pytest.approx(gaps[0] / 2, rel=0.05) and gaps[2] == pytest.approx(gaps[1] / 2, rel=0.05)
 
 
+def linear_psi(lam, b, wt):
+    """The linearised one-sine response psi = phi / alpha of a slender block (docs/maps.md,
+    "Overturning without impact: the linearised boundary"): phi'' = p^2 (phi - alpha +
+    ag / g), ag = a_p sin(w_p t), lam = a_p / (g alpha), b = w_p / p, from rest at the uplift
+    w_p t_u = asin(1 / lam); wt = w_p t (>= w_p t_u), worked by hand."""
+    wtu = math.asin(1 / lam)
+    ps = (np.asarray(wt) - wtu) / b  # p (t - t_u)
+    return (1 - lam / (1 + b * b) * np.sin(wt) - b * b / (1 + b * b) * np.cosh(ps)
+            + b * math.sqrt(lam * lam - 1) / (1 + b * b) * np.sinh(ps))
+
+
+def linear_reaches_alpha(lam, b):
+    """Whether the linearised block reaches phi = alpha before it returns to phi = 0: during
+    the pulse (the largest psi before its first zero, refined by a bounded search), or in the
+    free motion after it, psi'' = p^2 (psi - 1), which reaches 1 when (psi - 1) + psi' / p >= 0
+    at the pulse's end: e^{p (T_p - t_u)} (sqrt(lam^2 - 1) - b) >= lam."""
+    from scipy.optimize import minimize_scalar
+    wtu = math.asin(1 / lam)
+    wt = np.linspace(wtu, 2 * math.pi, 4001)
+    y = linear_psi(lam, b, wt)
+    zero = np.flatnonzero(y[1:] <= 0)
+    end = zero[0] + 1 if zero.size else len(wt) - 1
+    k = int(np.argmax(y[:end + 1]))
+    best = minimize_scalar(lambda x: -linear_psi(lam, b, x), bounds=(wt[max(k - 1, 0)], wt[min(k + 1, end)]),
+                           method="bounded", options={"xatol": 1e-12})
+    if max(-best.fun, y[k]) >= 1:
+        return True
+    if zero.size:
+        return False
+    return math.exp((2 * math.pi - wtu) / b) * (math.sqrt(lam * lam - 1) - b) >= lam
+
+
+def linear_no_impact_boundary(b):
+    """The least lam = a_p / (g alpha) at which the linearised block reaches alpha without an
+    impact, bisected to 1e-11."""
+    lo, hi = 1.0 + 1e-12, 2.0
+    while not linear_reaches_alpha(hi, b):
+        lo, hi = hi, hi * 1.5
+    while hi - lo > 1e-11 * hi:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if linear_reaches_alpha(mid, b) else (mid, hi)
+    return 0.5 * (lo + hi)
+
+
+def test_linearised_one_sine_response_is_the_linear_equations_solution():
+    """The closed form of linear_psi against solve_ivp of the linearised equation itself."""
+    for lam, b in ((1.4, 1.0), (3.2, 3.0), (6.0, 5.0)):
+        wtu = math.asin(1 / lam)
+        sol = solve_ivp(lambda wt, y: [y[1], (y[0] - 1 + lam * math.sin(wt)) / (b * b)], (wtu, 2 * math.pi),
+                        [0.0, 0.0], rtol=1e-12, atol=1e-14, dense_output=True)
+        wt = np.linspace(wtu, 2 * math.pi, 50)
+        assert np.max(np.abs(sol.sol(wt)[0] - linear_psi(lam, b, wt))) < 1e-8
+
+
+def test_one_sine_no_impact_boundary_against_the_linearised_solution(fmu):
+    """Slender blocks (alpha 0.2, 0.1, 0.05 rad): the map's least amplitude of overturning
+    without impact (the onset of its no-impact region, bisected to 1e-5) against the
+    linearised solution's (sin(alpha - phi) ~ alpha - phi, cos ~ 1; a_p / (g alpha) of the
+    linear model against the map's a_p / (g tan alpha): both the uplift threshold). The gap
+    is the linearisation's: it falls as alpha^2, the order of the terms it drops
+    (measured: at w_p/p = 2, 3, 5: +8.9e-4, +2.24e-3, +4.34e-3 at alpha 0.2; about a quarter
+    of that at each halving of alpha)."""
+    from rocking.maps import NO_IMPACT, outcome
+    ws = [2.0, 3.0, 5.0]
+    linear = {w: linear_no_impact_boundary(w) for w in ws}
+    gaps, lines = {}, []
+    for alpha in (0.2, 0.1, 0.05):
+        body = dict(RIGID, B=2.0 * math.tan(alpha), H=2.0)
+        spec = MapSpec(params=body, shape="one-sine", frequencies=ws, amplitudes=[1.0, 2.5, 4.0, 5.5, 7.0],
+                       tol=1e-5, tail=10.0)
+        runs = run_map(spec, fmu, workers=1)
+        assert spec.scales["alpha"] == pytest.approx(alpha, rel=1e-12)
+        for w, col in runs.groupby("w"):
+            recs = col.sort_values("a").to_dict("records")
+            k = next(i for i, r in enumerate(recs) if outcome(r) == NO_IMPACT)
+            assert k > 0 and all(outcome(r) == NO_IMPACT for r in recs[k:])  # one onset, mode 1 above it
+            assert recs[k]["a"] - recs[k - 1]["a"] <= 1e-5 * recs[k]["a"] * (1 + 1e-9)
+            onset = 0.5 * (recs[k - 1]["a"] + recs[k]["a"])
+            gaps[alpha, w] = onset / linear[w] - 1
+            lines.append(f"alpha {alpha} w/p {w}: map {onset:.6f}, linearised {linear[w]:.6f}, "
+                         f"gap {gaps[alpha, w]:+.2e}")
+    print("\n".join(lines))
+    for w in ws:
+        assert 0 < gaps[0.2, w] < 0.01, "\n".join(lines)
+        # halving alpha cuts the gap to about 1/4 (alpha^2); 1/2 (a gap linear in alpha) fails
+        for big, small in ((0.2, 0.1), (0.1, 0.05)):
+            assert 0.18 < gaps[small, w] / gaps[big, w] < 0.36, "\n".join(lines)
+
+
 def test_rigid_tail_skipped_by_energy_agrees_with_full_runs(fmu, rigid_map):
     """A rigid block's tail is not run when its free energy at the pulse's end is below p^2
     (it cannot overturn any more): the same outcomes, impacts aside, and peaks (to 1e-5,
