@@ -203,3 +203,29 @@ def test_a_body_the_fmu_refuses_is_a_row_with_its_error(fmu, loma):
     assert "crushes at rest" in sp["error"].iloc[1] and math.isnan(sp["p"].iloc[1])
     assert "crushes at rest" in sp["unresolved"].iloc[1]
     assert len(runs) == 2
+
+
+def test_spectrum_on_dask_gives_the_process_pools_tables(fmu, loma):
+    """The bodies as tasks of the fragility runner's Dask code (rocking.maps.on_dask: its FMU
+    plugin, the record sent once), on an in-process scheduler and worker: the same tables as
+    the process pool's; `rocking spectrum` takes --dask and --scheduler as `rocking map` does."""
+    import pandas as pd
+    from distributed import Client
+
+    from rocking.cli import map as map_cli, spectrum as spectrum_cli
+    from rocking.cli.main import build_parser
+    bodies = rectangle_family(RIGID, alpha=ALPHA, p=[3.0, 6.0])
+    short = Record(time=loma.time[:1500], acc=loma.acc[:1500], dt=loma.dt, name="first 1500 samples")
+    options = SpectrumOptions(scales=(1.0, 2.0), hunt=False, tail=2.0)
+    pool = run_spectrum(bodies, short, fmu, options, workers=2)
+    done = []
+    with Client(processes=False, n_workers=1, threads_per_worker=1, dashboard_address=None) as client:
+        dask = run_spectrum(bodies, short, fmu, options, client=client,
+                            progress=lambda k, n, summary: done.append((k, n, summary["body"])))
+    for a, b in zip(dask, pool):
+        pd.testing.assert_frame_equal(a.drop(columns="wall_s", errors="ignore"),
+                                      b.drop(columns="wall_s", errors="ignore"))
+    assert sorted(d[2] for d in done) == ["p=3", "p=6"] and [d[:2] for d in done] == [(1, 2), (2, 2)]
+    parser = build_parser({"map": map_cli, "spectrum": spectrum_cli})
+    args = parser.parse_args(["spectrum", str(LOMA), "--p", "3", "--dask", "--scheduler", "tcp://h:1", "--out", "x"])
+    assert args.dask and args.scheduler == "tcp://h:1" and args.func is spectrum_cli.cmd_spectrum

@@ -353,32 +353,42 @@ def run_map(spec, fmu, workers=None, progress=None, store=None, resume=True, cli
 
 
 class _Collect:
-    """A store for rocking.fragility.cluster.execute that hands each column to run_map."""
+    """A store for rocking.fragility.cluster.execute that hands each task's result to `got`."""
 
-    def __init__(self, by_key, got):
-        self.by_key, self.got = by_key, got
+    def __init__(self, got):
+        self.got = got
 
     def finished(self, keys):
         return set()
 
-    def write(self, key, rows):
-        self.got(self.by_key[key], rows)
+    def write(self, key, result):
+        self.got(key, result)
 
 
-def _run_on_dask(client, fmu, spec, todo, keys, store, got):
-    """The columns `todo` as tasks of rocking.fragility.cluster.execute (its FMU plugin, its
-    submission window); a task lost or failed is an error here (rerun the map: the columns
-    done are in the store)."""
+def on_dask(client, fmu, tasks, got, what, hint=""):
+    """Run `tasks` [(key, function, args, expected runs)] as tasks of rocking.fragility.cluster.
+    execute (its FMU plugin, records sent once, its submission window): function(digest, *args)
+    on a worker, the FMU there `rocking.fragility.runner._FMUS[digest]`; got(key, result) as
+    each finishes. A task lost or failed is a RuntimeError naming `what` (the map's columns,
+    a spectrum's bodies) and ending with `hint`, once the others are done."""
     from .fragility import cluster
     if fmu.path is None:
         raise ValueError("client: the FMU must be opened from its .fmu file to send it to Dask workers")
     digest = cluster.register_fmu(client, fmu.path)
-    tasks = [(keys[w], _dask_column, (digest, spec, w), len(spec.amplitudes)) for w in todo]
-    _, _, failures = cluster.execute(client, tasks, _Collect({keys[w]: w for w in todo}, got))
+    _, _, failures = cluster.execute(client, [(key, fn, (digest, *args), n) for key, fn, args, n in tasks],
+                                     _Collect(got))
     if failures:
         key, err = next(iter(failures.items()))
-        raise RuntimeError(f"{len(failures)} map column(s) failed on Dask, e.g. {key}: {err} "
-                           "(the finished columns are in the store: run the map again)")
+        raise RuntimeError(f"{len(failures)} {what} failed on Dask, e.g. {key}: {err}" + (f" ({hint})" if hint else ""))
+
+
+def _run_on_dask(client, fmu, spec, todo, keys, store, got):
+    """The columns `todo` as Dask tasks (`on_dask`); a column lost or failed is an error here
+    (rerun the map: the columns done are in the store)."""
+    by_key = {keys[w]: w for w in todo}
+    on_dask(client, fmu, [(keys[w], _dask_column, (spec, w), len(spec.amplitudes)) for w in todo],
+            lambda key, rows: got(by_key[key], rows),
+            "map column(s)", "the finished columns are in the store: run the map again" if store is not None else "")
 
 
 def boundaries(runs, spec):

@@ -210,17 +210,36 @@ def _body_task(args):
     return run_body(label, params, record, options)
 
 
-def run_spectrum(bodies, record, fmu, options=SpectrumOptions(), workers=None, progress=None):
+def _dask_body(digest, job, options):
+    """run_body in a Dask worker of rocking.fragility.cluster (its FMU by digest, the record
+    sent once per call: job {"label", "params", "record"})."""
+    from .fragility import runner
+    job = runner._with_record(job)
+    with runner._LOCK:  # one run at a time per process (RockingFMU is not thread-safe)
+        return run_body(job["label"], job["params"], job["record"], options, runner._FMUS[digest])
+
+
+def run_spectrum(bodies, record, fmu, options=SpectrumOptions(), workers=None, progress=None, client=None):
     """Every body [(label, params)] under `record`: (runs, spectrum) DataFrames; runs one row per
     body and scale run, spectrum one row per body and asked scale (its peak there, and the
     body's least overturning scale). fmu: a RockingFMU (its extraction shared with the
-    workers); progress(bodies done, bodies, summary) after each body."""
+    workers); progress(bodies done, bodies, summary) after each body. client: a
+    dask.distributed Client (rocking.fragility.cluster.open_client) to run the bodies on, one
+    task each (rocking.maps.on_dask), instead of the process pool."""
     options.check()
     if not bodies:
         raise ValueError("the family of bodies is empty")
     workers = max(1, min(int(workers or os.cpu_count() or 1), len(bodies)))
     results = {}
-    if workers == 1:
+    if client is not None:
+        def got(label, result):
+            results[label] = result
+            if progress:
+                progress(len(results), len(bodies), result[1])
+        maps.on_dask(client, fmu, [(label, _dask_body, ({"label": label, "params": params, "record": record},
+                                                        options), 1) for label, params in bodies],
+                     got, "spectrum bodies")
+    elif workers == 1:
         for k, (label, params) in enumerate(bodies, 1):
             results[label] = run_body(label, params, record, options, fmu)
             if progress:

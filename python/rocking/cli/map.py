@@ -147,6 +147,15 @@ def cmd_map(args, params_given):
     return 0
 
 
+def add_dask_options(p, tasks, worth):
+    """--dask and --scheduler of `p` (map, spectrum): `tasks` run on the fragility runner's Dask
+    cluster (`_client`); `worth`: what it is worth starting a cluster for."""
+    p.add_argument("--dask", action="store_true",
+                   help=f"run {tasks} on a Dask LocalCluster of --workers processes (the fragility "
+                        f"runner's; worth it for {worth}, it costs seconds to start)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help=f"run {tasks} on this Dask scheduler")
+
+
 def _client(args):
     """A Dask client (rocking.fragility.cluster) for --dask or --scheduler, else nothing."""
     import contextlib
@@ -290,10 +299,7 @@ def register(sub, common):
                         "can no longer overturn (docs/maps.md) (default 10)")
     p.add_argument("--per-period", type=int, default=400, help="samples of the pulse per period (default 400)")
     p.add_argument("--workers", type=int, help="processes (default: one per core)")
-    p.add_argument("--dask", action="store_true",
-                   help="run the frequency columns on a Dask LocalCluster of --workers processes (the "
-                        "fragility runner's; worth it for large grids, it costs seconds to start)")
-    p.add_argument("--scheduler", metavar="ADDRESS", help="run the columns on this Dask scheduler")
+    add_dask_options(p, "the frequency columns", "large grids")
     p.add_argument("--no-resume", action="store_true",
                    help="run every column again, not reading those a previous run of this map left in "
                         "DIR/parts")

@@ -77,7 +77,7 @@ def cmd_spectrum(args, params_given):
     from tqdm import tqdm
 
     from .. import maps, paths, spectra
-    from .map import _variant, parse_grid
+    from .map import _client, _variant, parse_grid
     from .simulate import gather_parameters
 
     if sum(x is not None for x in (args.p, args.sizes, args.bodies)) != 1:
@@ -102,18 +102,19 @@ def cmd_spectrum(args, params_given):
         beds = [("body", params)] + [(text, _variant(fmu, _Base(params), given, text, maps).params)
                                      for text in args.beside or []]
         tables = []
-        for bed, base in beds:
-            bodies = family(fmu, args, base)
-            with tqdm(total=len(bodies), unit="body", desc=f"spectrum {bed}", file=sys.stderr,
-                      dynamic_ncols=True, disable=args.quiet) as bar:
-                def progress(done, total, summary):
-                    bar.update(1)
-                try:
-                    runs, spectrum = spectra.run_spectrum(bodies, rec, fmu, options, workers=args.workers,
-                                                          progress=progress)
-                except ValueError as exc:
-                    raise CLIError(str(exc)) from None
-            tables.append((bed, base, runs.assign(bed=bed), spectrum.assign(bed=bed)))
+        with _client(args) as client:
+            for bed, base in beds:
+                bodies = family(fmu, args, base)
+                with tqdm(total=len(bodies), unit="body", desc=f"spectrum {bed}", file=sys.stderr,
+                          dynamic_ncols=True, disable=args.quiet) as bar:
+                    def progress(done, total, summary):
+                        bar.update(1)
+                    try:
+                        runs, spectrum = spectra.run_spectrum(bodies, rec, fmu, options, workers=args.workers,
+                                                              progress=progress, client=client)
+                    except ValueError as exc:
+                        raise CLIError(str(exc)) from None
+                tables.append((bed, base, runs.assign(bed=bed), spectrum.assign(bed=bed)))
         guid = fmu.model_description.guid
     wall = time.perf_counter() - t0
     try:
@@ -241,6 +242,8 @@ def _bed_name(bed, meta):
 
 def register(sub, common):
     """Add the subcommand to `sub` (argparse subparsers); `common` is the parent parser of --debug."""
+    from .map import add_dask_options
+
     p = sub.add_parser(
         "spectrum", parents=[common], allow_abbrev=False,
         help="rocking spectrum of a record: peak theta/alpha and least overturning scale against p or size",
@@ -286,6 +289,7 @@ def register(sub, common):
     p.add_argument("--record-frequency", type=float, metavar="W", help="w_rec (rad/s) of --against ratio "
                    "(default 2 pi / T_m, the record's mean period)")
     p.add_argument("--workers", type=int, help="processes (default: one per core)")
+    add_dask_options(p, "the bodies (one task each)", "large families or long records")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--no-plot", action="store_true", help="no DIR/spectrum.png")
     p.add_argument("--out", required=True, metavar="DIR", help="folder of the tables and the plot")
