@@ -360,8 +360,8 @@ fn upright_and_rigid() {
         .unwrap();
     // N at the toe R d: the moment -N R (z x d)
     let expected = [n * 3.99 * psi.sin(), -n * 3.99 * psi.cos()];
-    for i in 0..2 {
-        assert!((r.moment[i] - expected[i]).abs() <= 1e-9 * n * 3.99);
+    for (i, want) in expected.into_iter().enumerate() {
+        assert!((r.moment[i] - want).abs() <= 1e-9 * n * 3.99);
         assert!((r.resultant[i] - r.toe[i]).abs() <= 1e-15 * 3.99);
     }
     assert_eq!(r.contact_area, 0.0);
