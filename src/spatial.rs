@@ -15,16 +15,20 @@
 //! - `eom`: the balance of angular momentum about the contact;
 //! - `impact`: the return of the base to the bed;
 //! - `run`: the stepping loop, its events (the tilt crossing upright,
-//!   overturning) and rest.
+//!   overturning) and rest;
+//! - [`continuous`]: Model Exchange, the same motion as a host's solver
+//!   integrates it (derivatives, event indicators, the event update).
 //!
 //! [`Body`]: crate::body::Body
 
+pub mod continuous;
 mod eom;
 mod frame;
 mod impact;
 mod run;
 mod step;
 
+pub use continuous::SpatialUpdate;
 pub use run::{SpatialEvents, UPRIGHT};
 
 use nalgebra::Vector3;

@@ -4,8 +4,9 @@
 //! or the tilt has crossed upright) or reaches the overturning limit.
 //!
 //! A crossing is the base's return to the bed when the tilt there is
-//! within [`UPRIGHT`] of zero: exactly in a plane, and within round-off of
-//! it for a planar motion along an oblique azimuth. Off a plane the tilt
+//! within [`UPRIGHT`] of the line of its contact side (`strikes`): exactly
+//! on it in a plane, and within round-off of it for a planar motion along
+//! an oblique azimuth. Off a plane the tilt
 //! passes upright at a distance and the contact runs round the rim instead
 //! (rolling, without an impact: the rigid model's motion, docs/model.md §10.3).
 
@@ -22,6 +23,16 @@ use crate::dynamics::{OutOfRange, Terminal, VerticalInput};
 /// return to the bed. Round-off leaves about `1e-16` of the motion's tilt
 /// off the plane of a planar motion along an oblique azimuth.
 pub const UPRIGHT: f64 = 1e-9;
+
+/// Whether a crossing at the tilt `e` from the contact side `d0` (unit) is
+/// the base's return to the bed: the tilt's part off the line of `d0`,
+/// `|e x d0|`, is within [`UPRIGHT`]. It is exactly 0 for a planar motion
+/// along an axis and round-off along an oblique one, wherever on the line
+/// the crossing was located (a Model Exchange host locates it only to its
+/// tolerance); at a quarter turn, where `e . d0 = 0`, it is `|e|`.
+pub(crate) fn strikes(e: [f64; 2], d0: [f64; 2]) -> bool {
+    (e[0] * d0[1] - e[1] * d0[0]).abs() <= UPRIGHT
+}
 
 /// The controller's exponent (`-1/8`, the order of DOP853's estimate).
 const ERR_EXP: f64 = -1.0 / 8.0;
@@ -40,6 +51,10 @@ pub struct SpatialEvents {
     /// The call stopped at [`Spatial::max_steps`] before `t_end`, with the
     /// state consistent at its time.
     pub limited: bool,
+    /// Only from [`Spatial::advance_to_event`]: the call stopped at an
+    /// uplift, an impact (and coming to rest) or overturning, the state
+    /// the one just after it.
+    pub stopped_at_event: bool,
     /// The input left the model's range (`g + av <= 0`: the body would leave
     /// the bed): the call ended there and the run is over.
     pub terminal: Option<Terminal>,
@@ -47,7 +62,7 @@ pub struct SpatialEvents {
 
 /// What ends a step early.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Cut {
+pub(crate) enum Cut {
     /// The tilt turned a right angle from the step's contact side.
     Quarter,
     Overturning,
@@ -62,6 +77,32 @@ impl Spatial {
         t_end: f64,
         input: PlanInput,
         vertical: VerticalInput,
+    ) -> SpatialEvents {
+        self.run(st, t_end, input, vertical, false)
+    }
+
+    /// [`advance`](Self::advance), stopping at the first uplift, impact
+    /// (with coming to rest) or overturning inside the call (FMI 3.0's early
+    /// return): [`SpatialEvents::stopped_at_event`], the state just after
+    /// the event at its time. The contact running on round the rim off a
+    /// plane is no event.
+    pub fn advance_to_event(
+        &self,
+        st: &mut SpatialState,
+        t_end: f64,
+        input: PlanInput,
+        vertical: VerticalInput,
+    ) -> SpatialEvents {
+        self.run(st, t_end, input, vertical, true)
+    }
+
+    fn run(
+        &self,
+        st: &mut SpatialState,
+        t_end: f64,
+        input: PlanInput,
+        vertical: VerticalInput,
+        stop_at_event: bool,
     ) -> SpatialEvents {
         let eom = Eom::new(self, st.t, input, vertical);
         let mut ev = SpatialEvents::default();
@@ -88,6 +129,10 @@ impl Spatial {
                             ..*st
                         };
                         ev.uplift = true;
+                        if stop_at_event {
+                            ev.stopped_at_event = true;
+                            break;
+                        }
                     }
                 }
                 continue;
@@ -123,7 +168,12 @@ impl Spatial {
                     st.pivot = d0;
                     st.t += tau;
                     st.h = next_h.min(hh);
+                    let impacts = ev.impacts;
                     self.apply(st, cut, &eom, &mut ev);
+                    if stop_at_event && (ev.impacts > impacts || st.overturned) {
+                        ev.stopped_at_event = true;
+                        break;
+                    }
                 }
             }
         }
@@ -255,16 +305,22 @@ impl Spatial {
         (b, cut, yb)
     }
 
-    /// Apply the event `cut` at the state `st` (at its time).
-    fn apply(&self, st: &mut SpatialState, cut: Cut, eom: &Eom, ev: &mut SpatialEvents) {
+    /// Apply the event `cut` at the state `st` (at its time), whose `pivot`
+    /// is the side `d0` the tilt was measured from: overturning, or at a
+    /// crossing the impact ([`strikes`]) with the rest check, else the
+    /// contact running on round the rim (`pivot` becomes the tilt's
+    /// direction, the motion unchanged).
+    pub(crate) fn apply(&self, st: &mut SpatialState, cut: Cut, eom: &Eom, ev: &mut SpatialEvents) {
         match cut {
             Cut::Overturning => {
                 st.overturned = true;
                 ev.overturned_at = Some(st.t);
             }
             Cut::Quarter => {
-                if st.e[0].hypot(st.e[1]) > UPRIGHT {
+                if !strikes(st.e, st.pivot) {
                     // off a plane: the contact runs on round the rim
+                    let s = st.e[0].hypot(st.e[1]);
+                    st.pivot = [st.e[0] / s, st.e[1] / s];
                     return;
                 }
                 let old = st.pivot;
@@ -287,7 +343,7 @@ impl Spatial {
     /// tolerance: the planar rule ([`crate::dynamics::Simulator::rest_bound_at`])
     /// with the horizontal input's magnitude and the whole angular velocity
     /// (the flat base stops the spin too).
-    fn comes_to_rest(&self, st: &SpatialState, eom: &Eom) -> bool {
+    pub(crate) fn comes_to_rest(&self, st: &SpatialState, eom: &Eom) -> bool {
         let ag = eom.ag(st.t);
         let n = self.model.body.weight + self.mass() * eom.av(st.t);
         let w = Vector3::from(st.omega).norm();
@@ -303,12 +359,7 @@ impl Spatial {
     /// the body at rest, `|ag| > (g + av) tan(alpha)` (both inputs linear:
     /// a quadratic), and the direction it tips toward, `-ag/|ag|`.
     fn uplift(&self, eom: &Eom, t: f64, t_end: f64) -> Option<(f64, [f64; 2])> {
-        let b = &self.model.body;
-        let k2 = (b.b / b.hg).powi(2);
-        let q = |tau: f64| {
-            let a = eom.ag(t + tau);
-            a[0] * a[0] + a[1] * a[1] - k2 * (b.g + eom.av(t + tau)).powi(2)
-        };
+        let q = |tau: f64| self.tipping(eom, t + tau);
         let span = t_end - t;
         let tau = if q(0.0) > 0.0 {
             0.0
@@ -344,6 +395,26 @@ impl Spatial {
         let a = eom.ag(t + tau);
         let n = a[0].hypot(a[1]);
         Some((t + tau, [-a[0] / n, -a[1] / n]))
+    }
+
+    /// `|ag|² - ((g + av) tan(alpha))²` at `t`, m²/s⁴: positive where the
+    /// horizontal input lifts the body at rest.
+    pub(crate) fn tipping(&self, eom: &Eom, t: f64) -> f64 {
+        let b = &self.model.body;
+        let k2 = (b.b / b.hg).powi(2);
+        let a = eom.ag(t);
+        a[0] * a[0] + a[1] * a[1] - k2 * (b.g + eom.av(t)).powi(2)
+    }
+
+    /// The direction `-ag/|ag|` the body at rest at `t` tips toward, if the
+    /// input lifts it there: `uplift`'s test at one instant.
+    pub(crate) fn lifts_at(&self, eom: &Eom, t: f64) -> Option<[f64; 2]> {
+        if !(self.tipping(eom, t) > 0.0 && self.tilting(eom, t) > 0.0) {
+            return None;
+        }
+        let a = eom.ag(t);
+        let n = a[0].hypot(a[1]);
+        Some([-a[0] / n, -a[1] / n])
     }
 
     /// The tilt's acceleration toward `-ag/|ag|` of the body upright at rest

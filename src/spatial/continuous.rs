@@ -1,0 +1,222 @@
+//! Model Exchange of the round body in space: the motion as a host's own
+//! solver integrates it (docs/round-body.md, "Model Exchange"). The host
+//! integrates the seven continuous states with [`Spatial::derivatives`],
+//! watches [`Spatial::event_indicators`] for sign changes and, at each one,
+//! calls [`Spatial::event_update`]; this module only evaluates. The
+//! equation of motion is the one the co-simulation integrator steps
+//! (`eom`), the impact, the rest check and the uplift test are the
+//! co-simulation's (`Spatial::apply`, `comes_to_rest`, `lifts_at`).
+//!
+//! The continuous states are `y = (ex, ey, omegaX, omegaY, omegaZ, xG,
+//! yG)` ([`SpatialState::continuous_states`]); the discrete state is the
+//! contact side `pivot`, held between events: the rates are those of the
+//! contact on the side of `pivot`, so a tilt that crosses upright goes on
+//! about the old contact, smoothly, until the host locates the crossing
+//! (co-simulation holds it over one of its steps).
+//!
+//! Event indicators (a state event where one changes sign), in this order:
+//!
+//! | index | indicator | event |
+//! |---|---|---|
+//! | 0 | `e . pivot` while the body moves, else 1 | the tilt turned a right angle from the contact side: an impact if `|e x pivot| <= UPRIGHT` (it crossed upright in a plane), else the contact runs on round the rim (`pivot = e/|e|`) |
+//! | 1 | `sin²(alpha) - |e|²` | overturning: the run ends |
+//! | 2 | `(g + av) tan(alpha) - |ag|` at rest, else 1 | uplift: the body tips toward `-ag/|ag|` |
+//! | 3 | `(g + av)/g` | lift-off (`g + av <= 0`, docs/model.md §6.5): the run ends |
+//!
+//! After overturning or lift-off every indicator is 1 and the derivatives
+//! are 0; at rest the derivatives are 0 (the states frozen) until uplift.
+
+use super::eom::{Eom, N};
+use super::run::Cut;
+use super::{PlanInput, Spatial, SpatialEvents, SpatialState};
+use crate::dynamics::VerticalInput;
+
+/// Number of continuous states.
+pub const STATES: usize = N;
+/// Number of event indicators (see the module doc).
+pub const EVENT_INDICATORS: usize = 4;
+
+/// The tilt (`sin(theta)`) an impact or an uplift leaves along the new
+/// contact side instead of 0, so that indicator 0 starts positive: a
+/// repeated or spurious event update there then finds no crossing. Its
+/// effect on the motion is below any tolerance (the rates at `|e| <=
+/// UPRIGHT` are the upright ones).
+const OFF_ZERO: f64 = 1e-300;
+
+/// What an event update did.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct SpatialUpdate {
+    /// The continuous states changed (the host must re-read them).
+    pub states_changed: bool,
+    /// An impact was applied (the base returned to the bed).
+    pub impact: bool,
+    /// The contact ran on round the rim (a quarter turn, or the tilt passing
+    /// upright off a plane): `pivot` changed, the states did not.
+    pub rolled_on: bool,
+    pub came_to_rest: bool,
+    pub uplift: bool,
+    /// The body overturned: the run is over.
+    pub overturned: bool,
+    /// `g + av` reached 0 (liftOff): the run is over.
+    pub out_of_range: bool,
+}
+
+impl SpatialState {
+    /// The continuous states `(ex, ey, omegaX, omegaY, omegaZ, xG, yG)`:
+    /// 1, 1, rad/s (three), m (two).
+    pub fn continuous_states(&self) -> [f64; STATES] {
+        self.to_y()
+    }
+
+    /// Sets the continuous states (as
+    /// [`continuous_states`](Self::continuous_states)); the discrete state
+    /// is kept.
+    pub fn set_continuous_states(&mut self, y: &[f64; STATES]) {
+        self.set_y(y);
+    }
+}
+
+impl Spatial {
+    /// The right-hand side under the inputs at `t` held (the host gives no
+    /// input derivatives under Model Exchange).
+    fn eom_at(&self, t: f64, ag: [f64; 2], av: f64) -> Eom<'_> {
+        Eom::new(
+            self,
+            t,
+            PlanInput {
+                a: ag,
+                da: [0.0; 2],
+            },
+            VerticalInput { av, dav: 0.0 },
+        )
+    }
+
+    /// `dy/dt` at `st` (its time) under the ground accelerations `ag`
+    /// (horizontal) and `av` (vertical), m/s²: the equation of motion with
+    /// the contact on the side of `st.pivot`; zero at rest, after
+    /// overturning and after lift-off, whatever states the host sets.
+    pub fn derivatives(&self, st: &SpatialState, ag: [f64; 2], av: f64) -> [f64; STATES] {
+        if st.at_rest || st.overturned || st.out_of_range {
+            return [0.0; STATES];
+        }
+        self.eom_at(st.t, ag, av).rates(st.t, &st.to_y(), st.pivot)
+    }
+
+    /// The event indicators at `st` under `ag`, `av` (see the module doc).
+    pub fn event_indicators(
+        &self,
+        st: &SpatialState,
+        ag: [f64; 2],
+        av: f64,
+    ) -> [f64; EVENT_INDICATORS] {
+        let mut z = [1.0; EVENT_INDICATORS];
+        if st.overturned || st.out_of_range {
+            return z;
+        }
+        let b = &self.model.body;
+        let [ex, ey] = st.e;
+        z[1] = b.sin_alpha * b.sin_alpha - (ex * ex + ey * ey);
+        z[3] = (b.g + av) / b.g;
+        if st.at_rest {
+            z[2] = (b.g + av) * (b.b / b.hg) - ag[0].hypot(ag[1]);
+        } else {
+            z[0] = ex * st.pivot[0] + ey * st.pivot[1];
+        }
+        z
+    }
+
+    /// The event update at `st` (its time) under `ag`, `av`: lift-off,
+    /// overturning, uplift from rest, or the crossing of indicator 0,
+    /// whichever the state shows, with co-simulation's rules
+    /// (`Spatial::advance`). The state is examined, not the indicator that
+    /// fired, so a repeated or a spurious call changes nothing.
+    ///
+    /// At a crossing the host has located to its tolerance, `e` is not 0:
+    /// the impact criterion is `|e x pivot| <= UPRIGHT` (the tilt's part off
+    /// the line of the contact side), the one co-simulation uses at its own
+    /// crossings.
+    pub fn event_update(&self, st: &mut SpatialState, ag: [f64; 2], av: f64) -> SpatialUpdate {
+        let mut u = SpatialUpdate::default();
+        if st.overturned || st.out_of_range {
+            return u;
+        }
+        let b = &self.model.body;
+        if b.g + av <= 0.0 {
+            st.out_of_range = true;
+            u.out_of_range = true;
+            return u;
+        }
+        let eom = self.eom_at(st.t, ag, av);
+        let mut ev = SpatialEvents::default();
+        if st.at_rest {
+            if let Some(pivot) = self.lifts_at(&eom, st.t) {
+                st.at_rest = false;
+                st.pivot = pivot;
+                st.omega = [0.0; 3];
+                st.e = [OFF_ZERO * pivot[0], OFF_ZERO * pivot[1]];
+                u.uplift = true;
+                u.states_changed = true;
+            }
+            return u;
+        }
+        let [ex, ey] = st.e;
+        if ex * ex + ey * ey >= b.sin_alpha * b.sin_alpha {
+            self.apply(st, Cut::Overturning, &eom, &mut ev);
+            u.overturned = true;
+            return u;
+        }
+        if !crossed(st) {
+            return u;
+        }
+        let before = st.pivot;
+        self.apply(st, Cut::Quarter, &eom, &mut ev);
+        if ev.impacts == 0 {
+            u.rolled_on = st.pivot != before;
+            return u;
+        }
+        u.impact = true;
+        u.states_changed = true;
+        u.came_to_rest = ev.came_to_rest;
+        if !st.at_rest {
+            st.e = [OFF_ZERO * st.pivot[0], OFF_ZERO * st.pivot[1]];
+        }
+        u
+    }
+
+    /// After an accepted step of the host at `st` under `ag`, `av`: whether
+    /// an event is due that no indicator's sign change showed (a crossing
+    /// or an overturning inside one step, or at rest an uplift whose
+    /// indicator changed sign where round-off still held the body), so that
+    /// the host must enter event mode.
+    pub fn completed_step(&self, st: &SpatialState, ag: [f64; 2], av: f64) -> bool {
+        if st.overturned || st.out_of_range {
+            return false;
+        }
+        let b = &self.model.body;
+        if b.g + av <= 0.0 {
+            return true;
+        }
+        if st.at_rest {
+            return self.lifts_at(&self.eom_at(st.t, ag, av), st.t).is_some();
+        }
+        let [ex, ey] = st.e;
+        ex * ex + ey * ey >= b.sin_alpha * b.sin_alpha || crossed(st)
+    }
+
+    /// Nominal values of the continuous states: the planar model's scales
+    /// of the motion, `thetaOv` for the tilt, `p thetaOv` for the angular
+    /// velocity and `R0 thetaOv` for the centre of mass (1, rad/s, m).
+    pub fn nominals(&self) -> [f64; STATES] {
+        let (th, om) = self.planar.scales();
+        let x = self.model.body.r0 * th;
+        [th, th, om, om, om, x, x]
+    }
+}
+
+/// The tilt has turned a right angle from the contact side (or crossed
+/// upright): `e . pivot <= 0`, not at exactly zero tilt (upright at an
+/// impact's own instant, before the host has moved).
+fn crossed(st: &SpatialState) -> bool {
+    let [ex, ey] = st.e;
+    ex * st.pivot[0] + ey * st.pivot[1] <= 0.0 && (ex != 0.0 || ey != 0.0)
+}
