@@ -17,19 +17,24 @@ SPECIMEN_DEFAULTS = {f.name: f.default for f in fields(Specimen)}
 
 #: The specimen's options, named as the fields of corner_blocks.specimen.Specimen (and as
 #: rocking-corner's, so that `rocking corner --method la|lp|dem --t ...` means one thing).
-SPECIMEN_OPTIONS = ("t", "l", "h", "rho", "mu", "courses", "blocks", "ends")
+SPECIMEN_OPTIONS = ("t", "l", "h", "rho", "mu", "courses", "blocks", "ends", "closers", "clamp")
 
 
 def _specimen_fields(args):
     """The Specimen's fields from the options; l > t checked here so that the error names both."""
     if not args.l > args.t:
         raise CLIError(f"invalid --l: the block length must exceed its thickness --t = {args.t:g} m, got {args.l:g} m")
-    return {name: getattr(args, name) for name in SPECIMEN_OPTIONS}
+    # closers and clamp only when set: the default clamp is inf, which JSON cannot carry
+    return {name: getattr(args, name) for name in SPECIMEN_OPTIONS
+            if name not in ("closers", "clamp") or getattr(args, name) != SPECIMEN_DEFAULTS[name]}
 
 
 def _specimen(args):
     from ..corner_blocks.specimen import Specimen
-    return Specimen(**_specimen_fields(args))
+    try:
+        return Specimen(**_specimen_fields(args))
+    except ValueError as e:  # the combinations argparse cannot see (--clamp without --ends outOfPlane)
+        raise CLIError(str(e).replace("invalid ", "invalid --", 1)) from None
 
 
 def _alphas(args):
@@ -66,7 +71,8 @@ def cmd_lp(args, _params):
 def _protocol(args):
     from ..corner_blocks.dem import SIZE_FACTOR, Protocol
     return Protocol(step=args.step, collapse=args.collapse, hold=args.hold, start=args.start,
-                    lam_max=args.lam_max, size_factor=args.size_factor or SIZE_FACTOR)
+                    lam_max=args.lam_max, size_factor=args.size_factor or SIZE_FACTOR, dt=args.dt,
+                    v_tol=args.v_tol, nlgs_tol=args.nlgs_tol or 0.0, nlgs_relax=args.nlgs_relax or 0.0)
 
 
 def cmd_dem(args, _params):
@@ -75,6 +81,9 @@ def cmd_dem(args, _params):
     fields = _specimen_fields(args)
     spec = {"specimen": fields}
     a = Assembly.from_specimen(_specimen(args))
+    if a.clamp != math.inf:
+        raise CLIError("invalid --clamp: the DEM has no bounded restraint (the wrapper drives a velocity or a "
+                       "force, no spring); `corner-blocks lp` takes it")
     rows = []
     for alpha in _alphas(args):
         r = dem.run_isolated(spec, alpha, _protocol(args))
@@ -131,14 +140,31 @@ def cmd_study(args, _params):
         raise CLIError(f"invalid --start-fraction: must be in (0, 1), got {args.start_fraction}")
     if args.workers < 1:
         raise CLIError(f"invalid --workers: must be at least 1, got {args.workers}")
-    for name in ("t", "l", "h", "rho"):  # study.run lays out the paper's blocks only
+    for name in ("t", "l", "h", "rho", "closers", "clamp"):  # study.run lays out the paper's blocks only
         if getattr(args, name) != SPECIMEN_DEFAULTS[name]:
             raise CLIError(f"invalid --{name}: the study runs the paper's blocks (--{name} "
-                           f"{SPECIMEN_DEFAULTS[name]:g}); `rocking corner-blocks lp|dem --{name}` runs others")
+                           f"{SPECIMEN_DEFAULTS[name]}); `rocking corner-blocks lp|dem --{name}` or "
+                           "`corner-blocks boundaries` runs others")
     study.run(args.out, ends=ends, mu=args.mu, methods=methods, binary=corner_binary(),
               dem_protocol=_protocol(args), log=lambda s: print(s, file=sys.stderr, flush=True),
               courses=args.courses, blocks=args.blocks, start_fraction=args.start_fraction, workers=args.workers,
               table_only=args.table_only)
+    print(Path(args.out, "table.md").read_text())
+    return 0
+
+
+def cmd_boundaries(args, _params):
+    from ..corner_blocks import study
+    methods = tuple(args.methods.split(","))
+    for m in methods:
+        if m not in ("lp", "nonassoc", "dem"):
+            raise CLIError(f"invalid --methods: lp, nonassoc and/or dem, got {m}")
+    keys = tuple(args.boundaries.split(",")) if args.boundaries else None
+    for k in keys or ():
+        if k not in study.BOUNDARIES:
+            raise CLIError(f"invalid --boundaries: each one of {', '.join(study.BOUNDARIES)}, got {k}")
+    study.run_boundaries(args.out, methods=methods, keys=keys, study=args.study, nonassoc_iter=args.max_iter,
+                         log=lambda s: print(s, file=sys.stderr, flush=True))
     print(Path(args.out, "table.md").read_text())
     return 0
 
@@ -175,15 +201,29 @@ def register(sub, common):
     st.add_argument("--table-only", action="store_true",
                     help="compute no DEM case: the table and plot of those already in --out, the others as -")
     st.set_defaults(func=cmd_study)
+    bd = acts.add_parser("boundaries", parents=[common],
+                         help="the paper's corner with each end boundary at pi/4 and pi/2 (cached, resumable)")
+    bd.add_argument("--out", required=True, help="directory: one JSON per case, table.md, table.json")
+    bd.add_argument("--methods", default="lp", help="lp,nonassoc,dem (default lp)")
+    bd.add_argument("--boundaries", default=None, help="comma-separated keys of study.BOUNDARIES (default all)")
+    bd.add_argument("--study", default="data/corner-blocks",
+                    help="the study's folder, whose DEM cases of fixed, free and outOfPlane ends are read, not rerun")
+    bd.add_argument("--max-iter", type=int, default=40, help="non-associative iterations (default 40)")
+    bd.set_defaults(func=cmd_boundaries)
 
 
 def _specimen_parser():
-    from ..corner_blocks.specimen import ENDS
+    from ..corner_blocks.specimen import CLOSERS, ENDS
     d = SPECIMEN_DEFAULTS
     p = argparse_parent()
     p.add_argument("--alpha", type=float, nargs="+", default=None,
                    help="load orientations (rad), docs/corner.md's convention (default pi/4 pi/2)")
     p.add_argument("--ends", choices=ENDS, default="fixed", help="the walls' free ends (default fixed)")
+    p.add_argument("--closers", choices=CLOSERS, default="held",
+                   help="the closing pieces (the butting courses' end blocks): as the other ends, or free (default held)")
+    p.add_argument("--clamp", type=_non_negative("block weights"), default=math.inf,
+                   help="LP, --ends outOfPlane: the largest out-of-plane reaction of an end block, in units of its "
+                        "weight (default inf: a rigid roller)")
     p.add_argument("--t", type=_positive("m"), default=d["t"],
                    help=f"block thickness = wall thickness, m (default {d['t']:g})")
     p.add_argument("--l", type=_positive("m"), default=d["l"], help=f"block length, m (default {d['l']:g})")
@@ -196,18 +236,32 @@ def _specimen_parser():
     return p
 
 
-def _positive(unit):
-    """An argparse type: a finite number > 0; argparse names the option in the error."""
+def _positive(unit, infinite=False):
+    """An argparse type: a finite number > 0 (or inf, if infinite); argparse names the option in the error."""
     def convert(text):
         try:
             value = float(text)
         except ValueError:
             raise argparse.ArgumentTypeError(f"{text!r}: not a number") from None
-        if not (math.isfinite(value) and value > 0):
+        if not ((math.isfinite(value) or (infinite and value == math.inf)) and value > 0):
             where = f" ({unit})" if unit else ""
             raise argparse.ArgumentTypeError(f"{text!r}: must be positive and finite{where}")
         return value
     convert.__name__ = "positive"
+    return convert
+
+
+def _non_negative(unit):
+    """An argparse type: a number >= 0 (inf allowed)."""
+    def convert(text):
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r}: not a number") from None
+        if not value >= 0:
+            raise argparse.ArgumentTypeError(f"{text!r}: must be >= 0 ({unit})")
+        return value
+    convert.__name__ = "non-negative"
     return convert
 
 
@@ -233,6 +287,13 @@ def _protocol_parser():
     p.add_argument("--start", type=float, default=0.0, help="DEM: first lambda (default 0)")
     p.add_argument("--lam-max", type=float, default=1.5, help="DEM: last lambda (default 1.5)")
     p.add_argument("--size-factor", type=int, default=0, help="DEM: the engine's contact room (default 16; 8 for the 3 x 3 corner)")
+    p.add_argument("--dt", type=_positive("s"), default=1e-3, help="DEM: time step, s (default 0.001)")
+    p.add_argument("--v-tol", type=_positive("m/s", infinite=True), default=1e-3,
+                   help="DEM: rest speed, m/s; inf: collapse by the displacement alone (default 0.001)")
+    p.add_argument("--nlgs-tol", type=_positive(""), default=None,
+                   help="DEM: the contact solver's tolerance (default the wrapper's, 1.666e-4)")
+    p.add_argument("--nlgs-relax", type=_positive(""), default=None,
+                   help="DEM: the contact solver's relaxation (default the wrapper's, 0.1)")
     return p
 
 

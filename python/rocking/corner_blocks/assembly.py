@@ -12,7 +12,8 @@ from .specimen import Block, load_direction
 class Assembly:
     """blocks: the boxes; fixed[i]: block i does not move (table, taped course, clamped
     end); roller[i]: None, or a unit vector along which block i is restrained (a
-    bilateral support at its centroid, no moment); rho, g: density (kg/m3), gravity (m/s2)."""
+    bilateral support at its centroid, no moment); rho, g: density (kg/m3), gravity (m/s2);
+    clamp: the largest roller reaction in units of the block's weight (inf: rigid)."""
 
     blocks: list
     fixed: list
@@ -20,12 +21,20 @@ class Assembly:
     rho: float
     g: float
     mu: float
+    clamp: float = float("inf")
 
     @classmethod
     def from_specimen(cls, specimen):
         blocks = specimen.layout()
         return cls(blocks, [specimen.fixed(b) for b in blocks], [specimen.roller(b) for b in blocks],
-                   specimen.rho, specimen.g, specimen.mu)
+                   specimen.rho, specimen.g, specimen.mu, specimen.clamp)
+
+    def roller_bounds(self, i):
+        """(low, high) of block i's roller reaction (N)."""
+        if self.clamp == float("inf"):
+            return (None, None)
+        r = self.clamp * self.weight(i)
+        return (-r, r)
 
     def weight(self, i):
         """W (N) of block i."""

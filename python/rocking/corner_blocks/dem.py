@@ -55,7 +55,9 @@ DOFS = ("Vx", "Vy", "Vz", "Rx", "Ry", "Rz")
 class Protocol:
     """step: lambda increment; v_tol: rest (m/s); collapse: displacement (m); dt: time
     step (s); settle: under gravity alone (s); hold: each level (s); start: first lambda;
-    lam_max: the last; size_factor: the engine's contact detection room (see SIZE_FACTOR)."""
+    lam_max: the last; size_factor: the engine's contact detection room (see SIZE_FACTOR);
+    nlgs_tol, nlgs_relax: the contact solver's tolerance and relaxation (see NLGS), 0 for
+    the wrapper's own (1.666e-4 and 0.1). v_tol = inf: collapse is the displacement alone."""
 
     step: float = 0.005
     v_tol: float = 1e-3
@@ -66,6 +68,8 @@ class Protocol:
     start: float = 0.0
     lam_max: float = 1.5
     size_factor: int = 4
+    nlgs_tol: float = 0.0
+    nlgs_relax: float = 0.0
 
 
 def turn(alpha):
@@ -88,11 +92,16 @@ def build(assembly: Assembly, protocol: Protocol, alpha):
     block by the staircase of `schedule`, given before the run (see the note above state)."""
     from compas_lmgc90.solver import Solver
 
+    if assembly.clamp != math.inf:
+        raise ValueError(f"invalid clamp {assembly.clamp}: the DEM has no bounded restraint (the wrapper drives "
+                         "a velocity or a force, no spring); only a rigid roller (clamp inf)")
     rot = turn(alpha)
     times, lams = schedule(protocol)
     solver = Solver(dt=protocol.dt, theta=0.5, density=assembly.rho)
     if protocol.size_factor != 4:
         size_factor(protocol.size_factor)
+    if protocol.nlgs_tol or protocol.nlgs_relax:
+        nlgs(tol=protocol.nlgs_tol or None, relax=protocol.nlgs_relax or None)
     solver.geometry_from_v_f([vertices_faces(b, rot) for b in assembly.blocks])
     for i, b in enumerate(assembly.blocks):
         if assembly.fixed[i]:
@@ -123,6 +132,38 @@ def size_factor(factor):
 
     lib = ctypes.CDLL(_lmgc90.__file__)
     lib.__prprx_MOD_set_size_factor_polyr_prprx(ctypes.byref(ctypes.c_int(factor)))
+
+
+#: The contact solver's parameters, which the wrapper (compas_lmgc90 0.1.11) passes to the
+#: engine's set_nlgs_parameter at every step from its library's writable data and does not
+#: expose: name -> (offset of the value from the exported lmgc90_compute_one_step, ctypes
+#: type, the wrapper's value). tol: the NLGS convergence tolerance (norm QM/16); relax:
+#: its relaxation; the loop is up to 500 checks of 50 Gauss-Seidel sweeps each.
+NLGS = {"tol": (0x53B850 - 0x7D8E0, "c_double", 1.666e-4), "relax": (0x53B860 - 0x7D8E0, "c_double", 0.1)}
+
+
+def nlgs(**values):
+    """Set the contact solver's tol and/or relax (None: leave it). Refuses, naming the
+    parameter, when the value found is not the wrapper's own: another build of the wrapper
+    keeps its data elsewhere, and a blind write there would corrupt it. Once per process
+    (one LMGC90 run per process: run_isolated)."""
+    import ctypes
+
+    from compas_lmgc90 import _lmgc90
+
+    lib = ctypes.CDLL(_lmgc90.__file__)
+    anchor = ctypes.cast(lib.lmgc90_compute_one_step, ctypes.c_void_p).value
+    for name, value in values.items():
+        if value is None:
+            continue
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"invalid nlgs_{name}: must be positive and finite, got {value}")
+        offset, kind, default = NLGS[name]
+        cell = getattr(ctypes, kind).from_address(anchor + offset)
+        if abs(cell.value - default) > 1e-6 * default:
+            raise RuntimeError(f"nlgs_{name}: the wrapper's value is not where compas_lmgc90 0.1.11 keeps it "
+                               f"(found {cell.value!r}, expected {default}); this build's solver cannot be tuned")
+        cell.value = value
 
 
 def _roller_dof(direction):

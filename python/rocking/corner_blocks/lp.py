@@ -3,7 +3,7 @@ as a linear program over contact forces), solved by HiGHS through scipy.
 
 Unknowns: at each corner of every interface a normal force n >= 0 (no tension) and two
 tangential forces (t1, t2) along the face's axes; the multiplier lambda; for a roller
-end, its reaction. Each free block is in equilibrium (3 forces, 3 moments about its
+end, its reaction (bounded by the assembly's clamp, if finite). Each free block is in equilibrium (3 forces, 3 moments about its
 centroid) under its weight W, the lateral load lambda W d (d = load_direction(alpha)),
 and the contact forces. Friction: the cone |t| <= mu n replaced by the pyramid of
 `facets` planes t . (cos phi_k, sin phi_k) <= mu n, which contains the cone (exact along
@@ -74,10 +74,12 @@ def solve(assembly: Assembly, alpha, facets=FACETS, move_tol=0.02):
                         _add_wrench(rows, cols, vals, row_of[block], col + k, sign * vec, p - centroid[block])
             friction.append((col, col + 1, col + 2))
             col += 3
+    rollers = []  # (column, block)
     for i in free:
         r = assembly.roller[i]
         if r is not None:
             _add_wrench(rows, cols, vals, row_of[i], col, r, np.zeros(3))
+            rollers.append((col, i))
             col += 1
     dead, live = assembly.dead_and_live(alpha)
     lam_col = col
@@ -90,6 +92,8 @@ def solve(assembly: Assembly, alpha, facets=FACETS, move_tol=0.02):
     bounds = [(None, None)] * n_var
     for cn, _, _ in friction:
         bounds[cn] = (0.0, None)
+    for rc, i in rollers:
+        bounds[rc] = assembly.roller_bounds(i)
     bounds[lam_col] = (0.0, LAMBDA_CAP)
     c = np.zeros(n_var)
     c[lam_col] = -1.0

@@ -162,10 +162,12 @@ class _Problem:
                                         p - self.centroid[block])
                 n_cols.append(col)
                 col += 3
+        rollers = []  # (column, block)
         for i in free:
             r = assembly.roller[i]
             if r is not None:
                 _add_wrench(rows, cols, vals, self.row_of[i], col, r, np.zeros(3))
+                rollers.append((col, i))
                 col += 1
         self.dead, self.live = assembly.dead_and_live(alpha)
         self.lam_col = col
@@ -181,6 +183,8 @@ class _Problem:
         self.bounds = [(None, None)] * n_var
         for cn in self.n_cols:
             self.bounds[cn] = (0.0, None)
+        for rc, i in rollers:
+            self.bounds[rc] = assembly.roller_bounds(i)
         self.bounds[self.lam_col] = (0.0, LAMBDA_CAP)
         self.c = np.zeros(n_var)
         self.c[self.lam_col] = -1.0

@@ -14,6 +14,9 @@ import numpy as np
 
 #: End conditions of the walls' free ends (the last block of each wall in every course).
 ENDS = ("fixed", "free", "outOfPlane")
+#: What the closing pieces (the end blocks of the butting courses, l - t long) do: as the
+#: other end blocks ("held"), or move like any block ("free").
+CLOSERS = ("held", "free")
 
 
 @dataclass(frozen=True)
@@ -53,7 +56,10 @@ class Specimen:
     t, l, h: block thickness (= wall thickness), length, height; courses; blocks:
     full blocks per wall in the course where the wall runs through the corner
     (its length L = blocks * l from the outer vertex); mu: joint friction;
-    ends: one of ENDS; fixed_base: the first course taped to the table."""
+    ends: one of ENDS; fixed_base: the first course taped to the table; closers: one of
+    CLOSERS; clamp: with ends=outOfPlane, the largest out-of-plane reaction of an end block,
+    in units of that block's weight (inf: a rigid roller; a finite one is a clamp that slips
+    at that force, the rigid-plastic stand-in for a spring, docs/corner-blocks.md)."""
 
     t: float = 0.0573
     l: float = 0.1149
@@ -65,6 +71,8 @@ class Specimen:
     mu: float = 0.66
     ends: str = "fixed"
     fixed_base: bool = True
+    closers: str = "held"
+    clamp: float = math.inf
 
     def __post_init__(self):
         for name in ("t", "l", "h", "rho", "g", "mu"):
@@ -77,6 +85,12 @@ class Specimen:
             raise ValueError(f"invalid blocks: at least 2, got {self.blocks}")
         if self.ends not in ENDS:
             raise ValueError(f"invalid ends: one of {', '.join(ENDS)}, got {self.ends}")
+        if self.closers not in CLOSERS:
+            raise ValueError(f"invalid closers: one of {', '.join(CLOSERS)}, got {self.closers}")
+        if not (self.clamp >= 0 and not math.isnan(self.clamp)):
+            raise ValueError(f"invalid clamp: must be >= 0 (inf: rigid), got {self.clamp}")
+        if self.clamp != math.inf and self.ends != "outOfPlane":
+            raise ValueError(f"invalid clamp: bounds the outOfPlane ends' reaction, got ends={self.ends}")
         if not self.t < self.l:
             raise ValueError(f"invalid l: must exceed t = {self.t}, got {self.l}")
 
@@ -118,14 +132,23 @@ class Specimen:
         full = [(self.t + i * self.l, self.t + (i + 1) * self.l) for i in range(self.blocks - 1)]
         return full + [(full[-1][1], self.length)]
 
+    def restrained(self, block):
+        """True for an end block that takes the ends' restraint (a closing piece only if
+        closers is "held")."""
+        return block.role == "end" and (self.closers == "held" or not self.is_closer(block))
+
+    def is_closer(self, block):
+        """The closing piece: the end block of a course where its wall butts (shorter than l)."""
+        return block.role == "end" and (block.wall == "WX") != (block.course % 2 == 0)
+
     def fixed(self, block):
         """True if the block does not move: the base course, the ends under ends=fixed."""
-        return block.role == "base" or (block.role == "end" and self.ends == "fixed")
+        return block.role == "base" or (self.restrained(block) and self.ends == "fixed")
 
     def roller(self, block):
         """The restrained direction (unit vector) of an end block under ends=outOfPlane, else None:
         out of the wall's plane (y for WX, x for WY)."""
-        if block.role != "end" or self.ends != "outOfPlane":
+        if not self.restrained(block) or self.ends != "outOfPlane":
             return None
         return np.array([0.0, 1.0, 0.0]) if block.wall == "WX" else np.array([1.0, 0.0, 0.0])
 

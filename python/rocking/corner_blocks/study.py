@@ -40,7 +40,15 @@ def cached(out, name, compute):
     return result
 
 
-def lp_case(specimen, alpha, facets=8):
+#: Planes of the study's friction pyramid: 8, not lp.FACETS (32). The non-associative
+#: analysis (nonassoc.py) solves two LPs per iteration for 40 or more iterations on the
+#: paper's corner, 10-20 s CPU each with 8 planes and 5-10 times that with 32; the study's
+#: LP stays on the same pyramid so that the two compare like with like. Section 2 of
+#: docs/corner-blocks.md gives what 8 planes add: 1.3-6.3 % over 32 on these cases.
+STUDY_FACETS = 8
+
+
+def lp_case(specimen, alpha, facets=STUDY_FACETS):
     """The block LP as a JSON-able dict (lambda, moving block labels, velocities)."""
     a = Assembly.from_specimen(specimen)
     r = lp.solve(a, alpha, facets=facets)
@@ -63,7 +71,7 @@ def run(out, ends=("fixed", "free", "outOfPlane"), mu=0.66, methods=("lp",), bin
     """Every case of the study into out/ (the paper's columns only make sense for the
     paper's 9 courses of 7 blocks); returns the table's columns. DEM cases run on a Dask
     LocalCluster of `workers` processes; with start_fraction, each DEM test starts at that
-    fraction of the same case's LP multiplier (an upper bound of it, see dem_start).
+    fraction of the same case's LP multiplier (rounded down to the step; see dem_start).
     table_only: no case is computed; the table and plot show the cached ones (a study
     still running, or stopped), the others as "-"."""
     out = Path(out)
@@ -169,9 +177,11 @@ def dem_supports(ends, alpha):
 
 
 def dem_start(protocol, lam_lp, fraction):
-    """The first load level: `fraction` of the LP's multiplier, which bounds the DEM's from
-    above (associative friction), rounded down to the step so the levels stay on the grid
-    of a run from 0."""
+    """The first load level: `fraction` of the LP's multiplier, rounded down to the step so
+    the levels stay on the grid of a run from 0. A guess that saves levels, not a bound:
+    the LP bounds the DEM's lambda_c from above, which says nothing about the levels below
+    a start; what makes the start safe is dem_case, which reruns a test that collapses at
+    its first level from half that level."""
     return math.floor(fraction * lam_lp / protocol.step + 1e-9) * protocol.step
 
 
@@ -246,6 +256,113 @@ def mechanism_figure(path, specimen, result, title):
     velocity = np.array(result["velocity"])
     corners = draw.mechanism_corners(a.blocks, velocity, 0.04)
     draw.figure(a.blocks, path, corners, result["moving"], title=title, fixed=a.fixed)
+
+
+#: The end boundaries of the boundary study (docs/corner-blocks.md, "Which boundary"): key
+#: (in the cases' file names) -> (label, Specimen fields). The first three are the study's
+#: end conditions, whose LP and DEM cases the study above committed.
+BOUNDARIES = {
+    "fixed": ("all 6 dofs held", {"ends": "fixed"}),
+    "fixed-closersFree": ("all 6 dofs held, closing pieces free", {"ends": "fixed", "closers": "free"}),
+    "outOfPlane": ("out of plane held", {"ends": "outOfPlane"}),
+    "outOfPlane-closersFree": ("out of plane held, closing pieces free", {"ends": "outOfPlane", "closers": "free"}),
+    "outOfPlane-clamp2": ("out of plane, reaction <= 2 W", {"ends": "outOfPlane", "clamp": 2.0}),
+    "outOfPlane-clamp0.5": ("out of plane, reaction <= 0.5 W", {"ends": "outOfPlane", "clamp": 0.5}),
+    "free": ("free", {"ends": "free"}),
+}
+
+#: The orientations of the boundary study: indices into ORIENTATIONS (pi/4, pi/2).
+BOUNDARY_CASES = (0, 4)
+
+
+def boundary_lp(out, key, i, mu=0.66):
+    """The LP of one boundary at ORIENTATIONS[i], cached in out (as lp_case)."""
+    spec = Specimen(mu=mu, **BOUNDARIES[key][1])
+    return cached(out, f"lp_{key}_mu{mu:g}_{i}", lambda: lp_case(spec, ORIENTATIONS[i][0]))
+
+
+def boundary_nonassoc(out, key, i, mu=0.66, max_iter=40, tol=1e-4, relaxation=0.5):
+    """The non-associative analysis (nonassoc.case) of one boundary, cached in out; an
+    unconverged case is kept with converged false and its history."""
+    from . import nonassoc
+
+    spec = Specimen(mu=mu, **BOUNDARIES[key][1])
+    return cached(out, f"nonassoc_{key}_mu{mu:g}_{i}",
+                  lambda: {**nonassoc.case(spec, ORIENTATIONS[i][0], facets=STUDY_FACETS, max_iter=max_iter,
+                                           tol=tol, relaxation=relaxation),
+                           "max_iter": max_iter, "tol": tol, "relaxation": relaxation})
+
+
+def boundary_dem(out, key, i, lam_lp, mu=0.66, fraction=0.6):
+    """The DEM of one boundary (the study's protocol: step 0.01 from fraction x the LP),
+    cached in out; None where the DEM cannot hold that boundary (a finite clamp, or
+    outOfPlane ends away from pi/2)."""
+    fields = BOUNDARIES[key][1]
+    if "clamp" in fields or not dem_supports(fields["ends"], ORIENTATIONS[i][0]):
+        return None
+    from .dem import SIZE_FACTOR, Protocol
+
+    protocol = Protocol(step=0.01, size_factor=SIZE_FACTOR)
+    protocol = replace(protocol, start=dem_start(protocol, lam_lp, fraction))
+    return cached(out, f"dem_{key}_mu{mu:g}_{i}",
+                  lambda: dem_case({"specimen": {"mu": mu, **fields}}, ORIENTATIONS[i][0], protocol))
+
+
+def run_boundaries(out, methods=("lp",), keys=None, cases=BOUNDARY_CASES, study="data/corner-blocks",
+                   nonassoc_iter=40, log=print):
+    """Every boundary of BOUNDARIES (or keys) at the orientations `cases` with each method
+    (lp, nonassoc, dem), cached in out; the DEM of the study's own end conditions is read
+    from the study's folder (not rerun). Writes out/table.md and out/table.json and returns
+    the rows (one per boundary and orientation)."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    rows = []
+    for key in keys or BOUNDARIES:
+        fields = BOUNDARIES[key][1]
+        for i in cases:
+            row = {"key": key, "boundary": BOUNDARIES[key][0], "i": i, "alpha": ORIENTATIONS[i][1],
+                   "experiment": PAPER["experiment"][i], "3DEC": PAPER["3DEC"][i]}
+            if "lp" in methods or "dem" in methods:
+                row["lp"] = boundary_lp(out, key, i)["lam"]
+                log(f"{key} {ORIENTATIONS[i][1]}: LP {row['lp']:.4f}")
+            if "nonassoc" in methods:
+                r = boundary_nonassoc(out, key, i, max_iter=nonassoc_iter)
+                row["nonassoc"], row["nonassoc_converged"] = r["lam"], r["converged"]
+                row["nonassoc_iterations"] = r["iterations"]
+                log(f"{key} {ORIENTATIONS[i][1]}: non-associative {r['lam']:.4f} ({r['status']})")
+            if "dem" in methods:
+                committed = Path(study) / f"dem_{fields['ends']}_mu0.66_{i}.json"
+                if key in ("fixed", "free", "outOfPlane") and committed.is_file():
+                    r = json.loads(committed.read_text())
+                    row["dem_source"] = str(committed)
+                else:
+                    r = boundary_dem(out, key, i, row["lp"])
+                row["dem"] = r["lam"] if r and r.get("collapsed") else None
+                log(f"{key} {ORIENTATIONS[i][1]}: DEM {row['dem']}")
+            rows.append(row)
+    (out / "table.json").write_text(json.dumps(rows, indent=1))
+    (out / "table.md").write_text(boundary_table(rows))
+    return rows
+
+
+def boundary_table(rows):
+    """The boundary study as Markdown: each method against the experiments and 3DEC."""
+    def cell(v, digits=3):
+        return "-" if v is None or (isinstance(v, float) and math.isnan(v)) else f"{v:.{digits}f}"
+
+    def ratio(a, b):
+        return "-" if a is None or (isinstance(a, float) and math.isnan(a)) else f"{a / b:.2f}"
+
+    lines = ["| boundary | alpha | experiment | 3DEC | LP | LP / exp. | LP / 3DEC | non-assoc. | iterations "
+             "| non-assoc. / exp. | DEM | DEM / exp. | DEM / 3DEC |", "|---" * 13 + "|"]
+    for r in rows:
+        na = r.get("nonassoc")
+        its = "-" if na is None else f"{r['nonassoc_iterations']}" + ("" if r["nonassoc_converged"] else " (not conv.)")
+        lines.append(f"| {r['boundary']} | {r['alpha']} | {r['experiment']:.3f} | {r['3DEC']:.3f} | {cell(r.get('lp'))} "
+                     f"| {ratio(r.get('lp'), r['experiment'])} | {ratio(r.get('lp'), r['3DEC'])} | {cell(na)} | {its} "
+                     f"| {ratio(na, r['experiment'])} | {cell(r.get('dem'), 2)} | {ratio(r.get('dem'), r['experiment'])} "
+                     f"| {ratio(r.get('dem'), r['3DEC'])} |")
+    return "\n".join(lines) + "\n"
 
 
 def main(argv=None):
