@@ -7,7 +7,7 @@
 //! Names shared with RockingBlock (`shape`, `Ro`, `massModel`, `Fx`,
 //! `frictionDemand`, ...) mean the same there and here.
 
-use model_description::rigid_body::{self, real, units};
+use model_description::rigid_body::{self, base, du, real, units};
 use model_description::*;
 use model_description::{common, variables};
 
@@ -15,7 +15,7 @@ use model_description::{common, variables};
 /// (`DefaultExperiment/@tolerance`), as RockingBlock's.
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 
-use Causality::{Input, Output, Parameter};
+use Causality::{Input, Local, Output, Parameter};
 use Initial::{Calculated, Exact};
 use Variability::{Continuous, Discrete, Fixed};
 
@@ -39,6 +39,14 @@ const D_THETA_ALPHA: &[&str] = &["shape", "Ro", "massModel", "H", "hG", "theta0"
 const D_LEAN: &[&str] = &["theta0", "psi0"];
 const D_POSITION: &[&str] = &["shape", "Ro", "massModel", "H", "hG", "theta0", "psi0"];
 const D_REGIME: &[&str] = &["theta0", "omegaX0", "omegaY0", "omegaZ0"];
+/// Number of Model Exchange event indicators (`rocking::spatial::continuous`:
+/// the quarter turn or crossing, overturning, uplift, lift-off).
+pub const EVENT_INDICATORS: u32 = 4;
+
+/// What a state derivative depends on in a run: the continuous states and
+/// the inputs (`ModelStructure/Derivatives`).
+const D_RATES: &[&str] = &["ex", "ey", "omegaX", "omegaY", "omegaZ", "agx", "agy", "av"];
+
 const D_DYNAMIC: &[&str] = &[
     "shape",
     "Ro",
@@ -304,6 +312,69 @@ variables! {
         depends_on: D_LEVER,
         ..rigid_body::theta_ov("Overturning tilt: alpha on the rigid bed")
     }
+    DER_EX = 46 => {
+        name: "der(ex)",
+        description: "Model Exchange: derivative of the continuous state ex (0 at rest and after overturning)",
+        causality: Local, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("1/s"), None, None),
+        depends_on: D_DYNAMIC,
+        derivative: Some("ex"),
+        run_depends_on: &["ex", "ey", "omegaX", "omegaY", "omegaZ"],
+    }
+    DER_EY = 47 => {
+        name: "der(ey)",
+        description: "Model Exchange: derivative of the continuous state ey (0 at rest and after overturning)",
+        causality: Local, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("1/s"), None, None),
+        depends_on: D_DYNAMIC,
+        derivative: Some("ey"),
+        run_depends_on: &["ex", "ey", "omegaX", "omegaY", "omegaZ"],
+    }
+    DER_OMEGA_X = 48 => {
+        name: "der(omegaX)",
+        description: "Model Exchange: derivative of the continuous state omegaX, the angular acceleration about x (0 at rest and after overturning)",
+        causality: Local, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("rad/s2"), Some("deg/s2"), None),
+        depends_on: D_DYNAMIC,
+        derivative: Some("omegaX"),
+        run_depends_on: D_RATES,
+    }
+    DER_OMEGA_Y = 49 => {
+        name: "der(omegaY)",
+        description: "Model Exchange: derivative of the continuous state omegaY, the angular acceleration about y (0 at rest and after overturning)",
+        causality: Local, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("rad/s2"), Some("deg/s2"), None),
+        depends_on: D_DYNAMIC,
+        derivative: Some("omegaY"),
+        run_depends_on: D_RATES,
+    }
+    DER_OMEGA_Z = 50 => {
+        name: "der(omegaZ)",
+        description: "Model Exchange: derivative of the continuous state omegaZ, the angular acceleration about the vertical (0 at rest and after overturning)",
+        causality: Local, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("rad/s2"), Some("deg/s2"), None),
+        depends_on: D_DYNAMIC,
+        derivative: Some("omegaZ"),
+        run_depends_on: D_RATES,
+    }
+    DER_XG = 51 => {
+        name: "der(xG)",
+        description: "Model Exchange: derivative of the continuous state xG, the centre of mass's velocity along x (0 at rest and after overturning)",
+        causality: Local, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("m/s"), None, None),
+        depends_on: D_DYNAMIC,
+        derivative: Some("xG"),
+        run_depends_on: &["ex", "ey", "omegaX", "omegaY", "omegaZ"],
+    }
+    DER_YG = 52 => {
+        name: "der(yG)",
+        description: "Model Exchange: derivative of the continuous state yG, the centre of mass's velocity along y (0 at rest and after overturning)",
+        causality: Local, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("m/s"), None, None),
+        depends_on: D_DYNAMIC,
+        derivative: Some("yG"),
+        run_depends_on: &["ex", "ey", "omegaX", "omegaY", "omegaZ"],
+    }
 }
 
 /// Standard gravity for the display unit `g` (not the parameter `g`).
@@ -319,6 +390,22 @@ pub static UNITS: &[Unit] = &[
     units::M_PER_S2,
     units::RAD,
     units::RAD_PER_S,
+    // Model Exchange's state derivatives
+    Unit {
+        name: "1/s",
+        base: base(0, 0, -1, 0),
+        display: &[],
+    },
+    Unit {
+        name: "m/s",
+        base: base(0, 1, -1, 0),
+        display: &[du("mm/s", 1e3)],
+    },
+    Unit {
+        name: "rad/s2",
+        base: base(0, 0, -2, 1),
+        display: &[du("deg/s2", 180.0 / std::f64::consts::PI)],
+    },
 ];
 
 /// Values of the enumerations, as the binary sees them (the shape and mass
@@ -367,7 +454,7 @@ pub static LOG_CATEGORIES: &[LogCategory] =
 
 pub static ROUND_BODY: ModelDescription = ModelDescription {
     model_name: "RoundBody",
-    description: "A round body (solid or hollow circle) rocking, wobbling and rolling in space on a rigid bed under two horizontal ground accelerations and the vertical one (co-simulation)",
+    description: "A round body (solid or hollow circle) rocking, wobbling and rolling in space on a rigid bed under two horizontal ground accelerations and the vertical one (co-simulation and model exchange)",
     author: common::AUTHOR,
     version: env!("CARGO_PKG_VERSION"),
     copyright: common::COPYRIGHT,
@@ -376,9 +463,12 @@ pub static ROUND_BODY: ModelDescription = ModelDescription {
     co_simulation: CoSimulation {
         // no output derivatives: the spatial physics gives none yet
         max_output_derivative_order: 0,
+        // FMI 3.0: fmi3DoStep stops at uplift, impacts, rest and overturning
+        has_event_mode: true,
+        might_return_early_from_do_step: true,
         ..common::co_simulation("RoundBody")
     },
-    model_exchange: None,
+    model_exchange: Some(common::model_exchange("RoundBody", EVENT_INDICATORS)),
     units: UNITS,
     types: TYPES,
     log_categories: LOG_CATEGORIES,
@@ -459,10 +549,17 @@ mod tests {
             "IO",
             "etaHousner",
             "thetaOv",
+            "der(ex)",
+            "der(ey)",
+            "der(omegaX)",
+            "der(omegaY)",
+            "der(omegaZ)",
+            "der(xG)",
+            "der(yG)",
         ] {
             assert!(ROUND_BODY.variable(n).is_some(), "{n}");
         }
-        assert_eq!(VARIABLES.len(), 46);
+        assert_eq!(VARIABLES.len(), 53);
     }
 
     /// docs/round-body.md has one row per variable, with its causality and
@@ -480,6 +577,7 @@ mod tests {
                 Causality::CalculatedParameter => "calculatedParameter",
                 Causality::Input => "input",
                 Causality::Output => "output",
+                Causality::Local => "local",
                 _ => unreachable!(),
             };
             assert!(row.contains(causality), "{row}");

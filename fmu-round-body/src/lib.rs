@@ -1,4 +1,4 @@
-//! The RoundBody FMU: FMI 2.0 and 3.0 co-simulation of a round body (a
+//! The RoundBody FMU: FMI 2.0 and 3.0 co-simulation and Model Exchange of a round body (a
 //! solid or hollow circle's base) rocking, wobbling and rolling in space on
 //! a rigid bed under both horizontal components of the ground motion and
 //! the vertical one.
@@ -18,6 +18,8 @@ pub mod slave;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_me;
 
 pub use slave::RoundBodySlave;
 

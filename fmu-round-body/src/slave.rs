@@ -1,13 +1,17 @@
 //! The round body in space as an FMI co-simulation slave (served in FMI
 //! 2.0 and 3.0 by the generic layers): parameters from the stored values,
-//! outputs from `rocking::spatial`, one `Spatial::advance` per step.
+//! outputs from `rocking::spatial`, one `Spatial::advance` per step (FMI
+//! 3.0's early return: `Spatial::advance_to_event`); and as a Model
+//! Exchange model, whose derivatives, indicators and event update are
+//! `rocking::spatial::continuous`'s.
 
 use crate::description::{enums, vr, ROUND_BODY};
 use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
 use fmi2_export::model_description::ModelDescription;
-use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Values};
+use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Update, Values};
 use rocking::dynamics::VerticalInput;
 use rocking::model::{LawKind, MassKind, ShapeKind};
+use rocking::spatial::continuous::{EVENT_INDICATORS, STATES};
 use rocking::spatial::{PlanInput, Spatial, SpatialState};
 use rocking::{Params, Restitution};
 
@@ -20,7 +24,12 @@ pub const MAX_GROUND_ACCELERATION: f64 = 1e100;
 pub const UNBOUNDED: f64 = 1e60;
 
 /// Layout version of the serialized state (inside the generic envelope).
+/// Model Exchange's discrete state (the contact side `pivot`, rest, the
+/// terminal flags) is the co-simulation state's: the layout is unchanged.
 const STATE_VERSION: u32 = 1;
+
+// the model description declares as many indicators as the physics has
+const _: () = assert!(crate::description::EVENT_INDICATORS as usize == EVENT_INDICATORS);
 
 pub struct RoundBodySlave {
     body: Spatial,
@@ -104,7 +113,137 @@ fn azimuth(d: [f64; 2]) -> f64 {
     }
 }
 
+/// The inputs now for Model Exchange, checked as in a step: `([agx, agy], av)`.
+fn ground(inputs: &Inputs<'_>) -> Result<([f64; 2], f64), String> {
+    let (ag, av) = inputs_now(inputs)?;
+    for (name, x) in [("agx", ag[0]), ("agy", ag[1]), ("av", av)] {
+        if x.abs() > MAX_GROUND_ACCELERATION {
+            return Err(format!(
+                "{name} = {x}: |{name}| must be <= {MAX_GROUND_ACCELERATION:e} m/s2"
+            ));
+        }
+    }
+    Ok((ag, av))
+}
+
 impl RoundBodySlave {
+    /// The state derivatives under the inputs now (Model Exchange).
+    fn rates(&self, inputs: &Inputs<'_>) -> Result<[f64; STATES], String> {
+        let (ag, av) = ground(inputs)?;
+        let d = self.body.derivatives(&self.state, ag, av);
+        if let Some(x) = d.iter().find(|x| !x.is_finite()) {
+            return Err(self.overflow(*x));
+        }
+        Ok(d)
+    }
+
+    fn step(
+        &mut self,
+        t: f64,
+        h: f64,
+        inputs: Inputs<'_>,
+        log: &mut EventLog,
+        to_event: bool,
+    ) -> Result<StepEnd, String> {
+        let (agx, dagx) = inputs.line(vr::AGX, "agx", "m/s2", h, MAX_GROUND_ACCELERATION)?;
+        let (agy, dagy) = inputs.line(vr::AGY, "agy", "m/s2", h, MAX_GROUND_ACCELERATION)?;
+        let (av, dav) = inputs.line(vr::AV, "av", "m/s2", h, MAX_GROUND_ACCELERATION)?;
+        if self.state.overturned {
+            return Ok(StepEnd::Terminated {
+                time: self.state.t,
+                reason: "the body has already overturned".into(),
+            });
+        }
+        if self.state.out_of_range {
+            return Ok(StepEnd::Terminated {
+                time: self.state.t,
+                reason: "the run ended when g + av reached 0 (liftOff)".into(),
+            });
+        }
+        let plan = PlanInput {
+            a: [agx, agy],
+            da: [dagx, dagy],
+        };
+        let mut s = self.state;
+        let vertical = VerticalInput { av, dav };
+        let ev = if to_event {
+            self.body.advance_to_event(&mut s, t + h, plan, vertical)
+        } else {
+            self.body.advance(&mut s, t + h, plan, vertical)
+        };
+        let finite = s.t.is_finite()
+            && s.e
+                .iter()
+                .chain(&s.omega)
+                .chain(&s.xg)
+                .all(|x| x.is_finite());
+        if !finite {
+            return Err(format!(
+                "the integration produced a non-finite state (e = {:?}, omega = {:?} rad/s) at t = {}",
+                s.e, s.omega, s.t
+            ));
+        }
+        self.state = s;
+        if log.enabled() {
+            if ev.uplift {
+                log.event(format!(
+                    "uplift in ({t}, {}]: the body starts rocking",
+                    t + h
+                ));
+            }
+            if ev.impacts > 0 {
+                log.event(format!(
+                    "{} impact(s) in ({t}, {}]; {} so far",
+                    ev.impacts,
+                    t + h,
+                    s.impacts
+                ));
+            }
+            if ev.came_to_rest {
+                log.event(format!("came to rest in ({t}, {}]", t + h));
+            }
+        }
+        if let Some(t_ov) = ev.overturned_at {
+            let theta_ov = self.body.model.theta_ov;
+            log.event(format!(
+                "overturned at t = {t_ov}: theta reached thetaOv = {theta_ov} rad"
+            ));
+            return Ok(StepEnd::Terminated {
+                time: t_ov,
+                reason: format!(
+                    "the body overturned (theta reached thetaOv = {theta_ov} rad) at t = {t_ov}"
+                ),
+            });
+        }
+        if let Some(term) = ev.terminal {
+            log.event(format!("{} at t = {}", term.condition.name(), term.t));
+            return Ok(StepEnd::Terminated {
+                time: term.t,
+                reason: format!(
+                    "{} at t = {}: av = {} m/s2; the apparent weight m (g + av) reached 0: the body leaves the bed (free flight is not modelled)",
+                    term.condition.name(),
+                    term.t,
+                    term.av
+                ),
+            });
+        }
+        if ev.limited {
+            return Ok(StepEnd::Stopped {
+                time: s.t,
+                reason: format!(
+                    "work limit reached after {} integrator steps ({} rejected) in the step of {h} s from t = {t} (maxSteps = {})",
+                    ev.steps + ev.rejected,
+                    ev.rejected,
+                    self.body.max_steps.unwrap_or(0)
+                ),
+            });
+        }
+        if ev.stopped_at_event {
+            return Ok(StepEnd::Event { time: s.t });
+        }
+        Ok(StepEnd::Completed)
+    }
+
     /// The bed's force on the body under the inputs now, N.
     fn force(&self, inputs: &Inputs<'_>) -> Result<[f64; 3], String> {
         let (ag, av) = inputs_now(inputs)?;
@@ -207,6 +346,7 @@ impl Slave for RoundBodySlave {
             vr::IO => b.io,
             vr::ETA_HOUSNER => b.eta_housner(),
             vr::THETA_OV => self.body.model.theta_ov,
+            vr::DER_EX..=vr::DER_YG => self.rates(&inputs)?[(r - vr::DER_EX) as usize],
             _ => return Err(format!("no computed Real with value reference {r}")),
         };
         if !x.is_finite() {
@@ -250,97 +390,19 @@ impl Slave for RoundBodySlave {
         inputs: Inputs<'_>,
         log: &mut EventLog,
     ) -> Result<StepEnd, String> {
-        let (agx, dagx) = inputs.line(vr::AGX, "agx", "m/s2", h, MAX_GROUND_ACCELERATION)?;
-        let (agy, dagy) = inputs.line(vr::AGY, "agy", "m/s2", h, MAX_GROUND_ACCELERATION)?;
-        let (av, dav) = inputs.line(vr::AV, "av", "m/s2", h, MAX_GROUND_ACCELERATION)?;
-        if self.state.overturned {
-            return Ok(StepEnd::Terminated {
-                time: self.state.t,
-                reason: "the body has already overturned".into(),
-            });
-        }
-        if self.state.out_of_range {
-            return Ok(StepEnd::Terminated {
-                time: self.state.t,
-                reason: "the run ended when g + av reached 0 (liftOff)".into(),
-            });
-        }
-        let plan = PlanInput {
-            a: [agx, agy],
-            da: [dagx, dagy],
-        };
-        let mut s = self.state;
-        let ev = self
-            .body
-            .advance(&mut s, t + h, plan, VerticalInput { av, dav });
-        let finite = s.t.is_finite()
-            && s.e
-                .iter()
-                .chain(&s.omega)
-                .chain(&s.xg)
-                .all(|x| x.is_finite());
-        if !finite {
-            return Err(format!(
-                "the integration produced a non-finite state (e = {:?}, omega = {:?} rad/s) at t = {}",
-                s.e, s.omega, s.t
-            ));
-        }
-        self.state = s;
-        if log.enabled() {
-            if ev.uplift {
-                log.event(format!(
-                    "uplift in ({t}, {}]: the body starts rocking",
-                    t + h
-                ));
-            }
-            if ev.impacts > 0 {
-                log.event(format!(
-                    "{} impact(s) in ({t}, {}]; {} so far",
-                    ev.impacts,
-                    t + h,
-                    s.impacts
-                ));
-            }
-            if ev.came_to_rest {
-                log.event(format!("came to rest in ({t}, {}]", t + h));
-            }
-        }
-        if let Some(t_ov) = ev.overturned_at {
-            let theta_ov = self.body.model.theta_ov;
-            log.event(format!(
-                "overturned at t = {t_ov}: theta reached thetaOv = {theta_ov} rad"
-            ));
-            return Ok(StepEnd::Terminated {
-                time: t_ov,
-                reason: format!(
-                    "the body overturned (theta reached thetaOv = {theta_ov} rad) at t = {t_ov}"
-                ),
-            });
-        }
-        if let Some(term) = ev.terminal {
-            log.event(format!("{} at t = {}", term.condition.name(), term.t));
-            return Ok(StepEnd::Terminated {
-                time: term.t,
-                reason: format!(
-                    "{} at t = {}: av = {} m/s2; the apparent weight m (g + av) reached 0: the body leaves the bed (free flight is not modelled)",
-                    term.condition.name(),
-                    term.t,
-                    term.av
-                ),
-            });
-        }
-        if ev.limited {
-            return Ok(StepEnd::Stopped {
-                time: s.t,
-                reason: format!(
-                    "work limit reached after {} integrator steps ({} rejected) in the step of {h} s from t = {t} (maxSteps = {})",
-                    ev.steps + ev.rejected,
-                    ev.rejected,
-                    self.body.max_steps.unwrap_or(0)
-                ),
-            });
-        }
-        Ok(StepEnd::Completed)
+        self.step(t, h, inputs, log, false)
+    }
+
+    /// Stops at the first uplift, impact (with coming to rest) or
+    /// overturning inside the step.
+    fn do_step_to_event(
+        &mut self,
+        t: f64,
+        h: f64,
+        inputs: Inputs<'_>,
+        log: &mut EventLog,
+    ) -> Result<StepEnd, String> {
+        self.step(t, h, inputs, log, true)
     }
 
     fn state(&self) -> SpatialState {
@@ -419,5 +481,91 @@ impl Slave for RoundBodySlave {
             return Err(format!("step h = {}: must be finite and >= 0", s.h));
         }
         Ok(s)
+    }
+
+    fn set_time(&mut self, t: f64) -> Result<(), String> {
+        self.state.t = t;
+        Ok(())
+    }
+
+    fn continuous_states(&self, x: &mut [f64]) -> Result<(), String> {
+        x.copy_from_slice(&self.state.continuous_states());
+        Ok(())
+    }
+
+    /// The host's states (finite: the layer checked), kept as given; at
+    /// rest and after the run's end the derivatives are 0 whatever they are.
+    fn set_continuous_states(&mut self, x: &[f64]) -> Result<(), String> {
+        let y: [f64; STATES] = x
+            .try_into()
+            .map_err(|_| format!("nx = {}: this model has {STATES}", x.len()))?;
+        if y[0].hypot(y[1]) >= 1.0 {
+            return Err(format!(
+                "ex = {}, ey = {}: the tilt's sine sqrt(ex^2 + ey^2) must be < 1",
+                y[0], y[1]
+            ));
+        }
+        self.state.set_continuous_states(&y);
+        Ok(())
+    }
+
+    fn derivatives(&mut self, inputs: Inputs<'_>, dx: &mut [f64]) -> Result<(), String> {
+        dx.copy_from_slice(&self.rates(&inputs)?);
+        Ok(())
+    }
+
+    fn event_indicators(&mut self, inputs: Inputs<'_>, z: &mut [f64]) -> Result<(), String> {
+        let (ag, av) = ground(&inputs)?;
+        z.copy_from_slice(&self.body.event_indicators(&self.state, ag, av));
+        Ok(())
+    }
+
+    fn event_update(&mut self, inputs: Inputs<'_>, log: &mut EventLog) -> Result<Update, String> {
+        let (ag, av) = ground(&inputs)?;
+        let u = self.body.event_update(&mut self.state, ag, av);
+        let s = &self.state;
+        let t = s.t;
+        if u.uplift {
+            log.event(format!(
+                "uplift at t = {t}: the body starts rocking toward psi = {}",
+                azimuth(s.pivot)
+            ));
+        }
+        if u.impact {
+            log.event(format!("impact at t = {t}; {} so far", s.impacts));
+        }
+        if u.came_to_rest {
+            log.event(format!("came to rest at t = {t}"));
+        }
+        let theta_ov = self.body.model.theta_ov;
+        let terminate = if u.overturned {
+            Some(format!(
+                "the body overturned (theta reached thetaOv = {theta_ov} rad) at t = {t}"
+            ))
+        } else if u.out_of_range {
+            Some(format!(
+                "liftOff at t = {t}: av = {av} m/s2; the apparent weight m (g + av) reached 0: the body leaves the bed (free flight is not modelled)"
+            ))
+        } else {
+            None
+        };
+        Ok(Update {
+            states_changed: u.states_changed,
+            terminate,
+        })
+    }
+
+    fn completed_integrator_step(
+        &mut self,
+        inputs: Inputs<'_>,
+        _log: &mut EventLog,
+    ) -> Result<bool, String> {
+        let (ag, av) = ground(&inputs)?;
+        Ok(self.body.completed_step(&self.state, ag, av))
+    }
+
+    fn nominals(&self, x: &mut [f64]) -> Result<(), String> {
+        x.copy_from_slice(&self.body.nominals());
+        Ok(())
     }
 }

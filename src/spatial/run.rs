@@ -530,9 +530,15 @@ fn first_positive(q: impl Fn(f64) -> f64, span: f64) -> Option<f64> {
         .flatten()
         .filter(|&r| r > 0.0 && r <= span)
         .fold(f64::INFINITY, f64::min);
-    if !tau.is_finite() {
+    let tau = if tau.is_finite() {
+        tau
+    } else if q1v > 0.0 {
+        // q(0) is zero to round-off and the fitted root at or before 0:
+        // the bisection below finds the first float where q > 0
+        0.0
+    } else {
         return None;
-    }
+    };
     // the root's float, then the first float past it where q > 0
     let (mut lo, mut hi) = (
         (tau * (1.0 - 1e-9)).max(0.0),
