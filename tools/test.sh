@@ -40,6 +40,9 @@ cargo clippy --manifest-path fmi-import/Cargo.toml --release --all-targets --qui
 cargo test --release --manifest-path fmi-import/Cargo.toml
 stage "the documentation site, strict, and its main pages in headless chromium (tools/docs.sh)"
 tools/docs.sh --check
-stage "fmpy suite"
-.venv/bin/python -m pytest fmpy-tests -q -rs --durations=12
+stage "fmpy suite, two workers (pytest-xdist), each test file whole on one of them"
+# A file's module fixtures (the wheels, a built site, an extracted FMU) are
+# built once, on its worker; tests of different files share only the archives
+# and binaries built above, which they read (wine is used by one file alone).
+.venv/bin/python -m pytest fmpy-tests -q -rs -n 2 --dist loadfile --durations=12
 stage "done"
