@@ -602,14 +602,16 @@ def test_one_sine_no_impact_boundary_against_the_linearised_solution(fmu):
 
 def test_rigid_tail_skipped_by_energy_agrees_with_full_runs(fmu, rigid_map):
     """A rigid block's tail is not run when its free energy at the pulse's end is below p^2
-    (it cannot overturn any more): the same outcomes, impacts aside, and peaks (to 1e-5,
-    sampled against the energy's) as runs through the whole tail, on the map's grid."""
+    (it cannot overturn any more), and is run from the pulse's last state when it can: the
+    same outcomes, impacts and overturning times of the overturned (to 1e-9 s), and peaks (to
+    1e-5, sampled against the energy's) as runs through the whole tail, on the map's grid."""
     from rocking.maps import body_scales, run_one
     spec, runs, _ = rigid_map
     full = MapSpec(params=RIGID, shape="one-sine", frequencies=MAP_W, amplitudes=MAP_A, tol=TOL, tail=5.0,
                    cut_tail=False, scales=body_scales(fmu, RIGID))
     grid = runs[runs["phase"] == "grid"]
     assert grid["tail_skipped"].sum() >= 5
+    assert (grid["overturned"].astype(bool) & (grid["t_overturn"] > grid["pulse_end"])).sum() >= 5  # tail runs
     for r in grid.itertuples():
         f = run_one(fmu, full, r.w, r.a)
         assert not f["tail_skipped"]

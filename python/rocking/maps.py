@@ -37,6 +37,11 @@ OUTCOMES = {SAFE: "no overturning", NO_IMPACT: "overturning without impact",
 #: 2 pi / p of the body; each next run's tail is twice as long, up to the stated tail.
 FIRST_TAIL = 1.0
 
+#: The communication step of a rigid block's tail run after its pulse, in periods 2 pi / p of
+#: the body (or the pulse's own step if longer): the FMU locates overturning and impacts
+#: itself, between communication points.
+TAIL_STEP = 0.02
+
 #: A bisection stops after this many runs per bracket whatever the tolerance (2^-40 of the step).
 MAX_BISECTIONS = 40
 
@@ -169,7 +174,8 @@ def settled(result, t_free):
 def run_one(fmu, spec, w, a):
     """One run at grid values (w, a): a row. The tail ends at spec.tail s after the pulse, or
     once the body can no longer overturn (spec.cut_tail): for Housner's block by its energy at
-    the pulse's end (no tail run), for other bodies whose free energy cannot grow (rigid, or
+    the pulse's end (no tail run; when it can still overturn, the tail is run from the pulse's
+    last theta, omega), for other bodies whose free energy cannot grow (rigid, or
     shiftingPivot) at its first free turning point or rest (`settled`), found by running the
     tail in lengths doubling from FIRST_TAIL 2 pi / p."""
     w_p, a_p = physical(spec, w, a)
@@ -190,8 +196,22 @@ def run_one(fmu, spec, w, a):
                                outputs=("theta", "omega", "thetaOverAlpha", "impacts"), loop="auto")
             if not run.overturned:
                 end = run.result[-1]
-                can, peak = free_rigid_fate(spec.scales, float(end["theta"]), float(end["omega"]))
-                if can:
+                theta, omega = float(end["theta"]), float(end["omega"])
+                can, peak = free_rigid_fate(spec.scales, theta, omega)
+                if can and theta != 0.0:
+                    # the tail as a run of its own from the pulse's last state (the rigid
+                    # block's state is theta, omega), communicating every TAIL_STEP periods
+                    # of the body rather than at the pulse's samples
+                    t_end = float(t[-1])
+                    tail = fmu.simulate(dict(spec.params, theta=theta, omega=omega), stop_time=full_stop - t_end,
+                                        output_interval=max(float(t[1] - t[0]),
+                                                            TAIL_STEP * 2 * math.pi / spec.scales["p"]),
+                                        outputs=("thetaOverAlpha", "impacts"), loop="auto")
+                    row.update(overturned=bool(tail.overturned), t_overturn=t_end + tail.t_overturn,
+                               impacts=run.impacts + tail.impacts, tail_end="overturned" if tail.overturned else "time",
+                               peak_theta_over_alpha=max(run.peak_theta_over_alpha, tail.peak_theta_over_alpha),
+                               tail_run=(t_end + tail.t_overturn if tail.overturned else full_stop) - pulse.duration)
+                elif can:  # at theta = 0 (an impact's instant): the whole run decides
                     run = None
                 else:
                     row.update(overturned=False, impacts=run.impacts, tail_skipped=True,
