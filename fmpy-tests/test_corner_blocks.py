@@ -4,6 +4,7 @@ dual mechanism. The DEM's exact cases are in test_corner_blocks_dem.py."""
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -278,7 +279,8 @@ BAD_SPECIMEN = [
     (["--t", "-0.05"], "--t"), (["--l", "0"], "--l"), (["--h", "nan"], "--h"), (["--rho", "heavy"], "--rho"),
     (["--mu", "0"], "--mu"), (["--mu", "-0.3"], "--mu"), (["--courses", "1"], "--courses"),
     (["--blocks", "2.5"], "--blocks"), (["--l", "0.05"], "--l"), (["--thickness", "0.05"], "--thickness"),
-    (["--ends", "clamped"], "--ends")]
+    (["--ends", "clamped"], "--ends"), (["--closers", "loose"], "--closers"), (["--clamp", "-1"], "--clamp"),
+    (["--ends", "fixed", "--clamp", "1"], "--clamp")]
 
 
 @pytest.mark.parametrize("action, args, name", [(a, *bad) for a in ("lp", "dem", "draw") for bad in BAD_SPECIMEN]
@@ -322,3 +324,79 @@ def test_cli_dem_prints_every_level(capsys):
     assert row["specimen"]["h"] == 0.1 and row["specimen"]["rho"] == 2400.0
     shown = [line for line in lines if line.startswith("  lambda ")]
     assert len(shown) == len(levels) and "collapses" in shown[-1] and "stands" in shown[0]
+
+
+def test_closing_pieces_are_the_butting_courses_end_blocks():
+    """closers=free frees exactly the end blocks of the courses where a wall butts (l - t
+    long), and no other block; their number is one per wall in every other course above
+    the taped one."""
+    s = Specimen(ends="fixed", closers="free")
+    held = Specimen(ends="fixed")
+    freed = [b for b in s.layout() if held.fixed(b) and not s.fixed(b)]
+    assert freed and all(b.role == "end" and b.size[0 if b.wall == "WX" else 1] == pytest.approx(s.l - s.t)
+                         for b in freed)
+    assert len(freed) == sum(1 for c in range(1, s.courses) for _ in ("WX", "WY")) // 2
+    assert all(b.size[0 if b.wall == "WX" else 1] == pytest.approx(s.l) for b in s.layout() if s.fixed(b)
+               and b.role == "end")
+
+
+def test_a_clamp_runs_from_free_to_the_rigid_roller():
+    """The bounded out-of-plane reaction (clamp, in end-block weights): 0 is the free end
+    and inf the rigid roller, exactly; lambda cannot fall as the bound grows; freeing the
+    closing pieces cannot raise it (each a restraint taken away)."""
+    def lam(alpha, **kw):
+        return lp.solve(Assembly.from_specimen(Specimen(courses=3, blocks=3, **kw)), alpha, facets=8).lam
+
+    for alpha in (math.pi / 2,):  # where the roller matters most (0.574 free, 0.709 rigid, 3 x 3 corner)
+        free, roller = lam(alpha, ends="free"), lam(alpha, ends="outOfPlane")
+        assert lam(alpha, ends="outOfPlane", clamp=0.0) == pytest.approx(free, rel=1e-9)
+        assert lam(alpha, ends="outOfPlane", clamp=math.inf) == pytest.approx(roller, rel=1e-9)
+        clamped = [lam(alpha, ends="outOfPlane", clamp=c) for c in (0.25, 1.0)]
+        assert free - 1e-9 <= clamped[0] <= clamped[1] + 1e-9 <= roller + 2e-9
+        assert lam(alpha, ends="fixed", closers="free") <= lam(alpha, ends="fixed") + 1e-9
+        assert lam(alpha, ends="outOfPlane", closers="free") <= roller + 1e-9
+    with pytest.raises(ValueError, match="clamp"):
+        Specimen(ends="fixed", clamp=1.0)
+    with pytest.raises(ValueError, match="closers"):
+        Specimen(closers="loose")
+
+
+def test_the_boundary_table_reproduces_the_study():
+    """The committed boundary study (data/corner-blocks/boundaries, `rocking corner-blocks
+    boundaries`) computed its LP cases afresh: those it shares with the committed study
+    (fixed, free, outOfPlane ends; data/corner-blocks/lp_*) carry the same lambda, and its
+    DEM column is the study's for those ends. Restraints order the LP: free <= clamp 0.5 W
+    <= clamp 2 W <= roller <= fixed, and freeing the closing pieces cannot raise it."""
+    folder = Path(__file__).resolve().parents[1] / "data" / "corner-blocks"
+    rows = json.loads((folder / "boundaries" / "table.json").read_text())
+    lam = {(r["key"], r["i"]): r for r in rows}
+    shared = 0
+    for r in rows:
+        if r["key"] in ("fixed", "free", "outOfPlane"):
+            study_lp = json.loads((folder / f"lp_{r['key']}_mu0.66_{r['i']}.json").read_text())["lam"]
+            fresh = json.loads((folder / "boundaries" / f"lp_{r['key']}_mu0.66_{r['i']}.json").read_text())["lam"]
+            assert r["lp"] == fresh == pytest.approx(study_lp, rel=1e-6), r
+            if r.get("dem") is not None:
+                assert r["dem"] == json.loads((folder / f"dem_{r['key']}_mu0.66_{r['i']}.json").read_text())["lam"]
+            shared += 1
+        if r.get("nonassoc") is not None and r["nonassoc_converged"]:
+            assert r["nonassoc"] <= r["lp"] + 1e-9, r
+        if r.get("dem") is not None:
+            assert r["dem"] <= r["lp"] + 1e-9, r  # associative friction bounds the DEM from above
+    assert shared == 6
+    for i in (0, 4):
+        chain = [lam[k, i]["lp"] for k in ("free", "outOfPlane-clamp0.5", "outOfPlane-clamp2", "outOfPlane", "fixed")]
+        assert all(a <= b + 1e-9 for a, b in zip(chain, chain[1:])), chain
+        assert lam["fixed-closersFree", i]["lp"] <= lam["fixed", i]["lp"] + 1e-9
+        assert lam["outOfPlane-closersFree", i]["lp"] <= lam["outOfPlane", i]["lp"] + 1e-9
+
+
+def test_dem_refuses_what_it_cannot_hold():
+    """No DEM run: a bounded clamp and a bad solver setting are refused before the engine starts."""
+    from rocking.corner_blocks import dem
+
+    a = Assembly.from_specimen(Specimen(courses=3, blocks=3, ends="outOfPlane", clamp=1.0))
+    with pytest.raises(ValueError, match="clamp"):
+        dem.build(a, dem.Protocol(), math.pi / 2)
+    with pytest.raises(ValueError, match="nlgs_tol"):
+        dem.nlgs(tol=-1e-4)

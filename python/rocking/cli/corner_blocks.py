@@ -164,8 +164,10 @@ def cmd_boundaries(args, _params):
         if k not in study.BOUNDARIES:
             raise CLIError(f"invalid --boundaries: each one of {', '.join(study.BOUNDARIES)}, got {k}")
     study.run_boundaries(args.out, methods=methods, keys=keys, study=args.study, nonassoc_iter=args.max_iter,
-                         log=lambda s: print(s, file=sys.stderr, flush=True))
-    print(Path(args.out, "table.md").read_text())
+                         log=lambda s: print(s, file=sys.stderr, flush=True), courses=args.courses,
+                         blocks=args.blocks, table_only=args.table_only)
+    suffix = "" if (args.courses, args.blocks) == (9, 7) else f"_{args.courses}x{args.blocks}"
+    print(Path(args.out, f"table{suffix}.md").read_text())
     return 0
 
 
@@ -209,6 +211,10 @@ def register(sub, common):
     bd.add_argument("--study", default="data/corner-blocks",
                     help="the study's folder, whose DEM cases of fixed, free and outOfPlane ends are read, not rerun")
     bd.add_argument("--max-iter", type=int, default=40, help="non-associative iterations (default 40)")
+    bd.add_argument("--courses", type=_at_least(2), default=9, help="courses (default 9, the paper's)")
+    bd.add_argument("--table-only", action="store_true",
+                    help="compute no non-associative or DEM case: the table of those already cached, the others as -")
+    bd.add_argument("--blocks", type=_at_least(2), default=7, help="full blocks per wall (default 7, the paper's)")
     bd.set_defaults(func=cmd_boundaries)
 
 

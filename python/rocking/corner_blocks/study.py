@@ -275,25 +275,34 @@ BOUNDARIES = {
 BOUNDARY_CASES = (0, 4)
 
 
-def boundary_lp(out, key, i, mu=0.66):
-    """The LP of one boundary at ORIENTATIONS[i], cached in out (as lp_case)."""
-    spec = Specimen(mu=mu, **BOUNDARIES[key][1])
-    return cached(out, f"lp_{key}_mu{mu:g}_{i}", lambda: lp_case(spec, ORIENTATIONS[i][0]))
+def _suffix(geometry):
+    """The cases' file name suffix of a corner other than the paper's 9 courses of 7 blocks."""
+    c, b = geometry.get("courses", 9), geometry.get("blocks", 7)
+    return "" if (c, b) == (9, 7) else f"_{c}x{b}"
 
 
-def boundary_nonassoc(out, key, i, mu=0.66, max_iter=40, tol=1e-4, relaxation=0.5):
+def boundary_lp(out, key, i, mu=0.66, geometry=None):
+    """The LP of one boundary at ORIENTATIONS[i], cached in out (as lp_case); geometry:
+    courses and blocks, if not the paper's."""
+    geometry = geometry or {}
+    spec = Specimen(mu=mu, **BOUNDARIES[key][1], **geometry)
+    return cached(out, f"lp_{key}_mu{mu:g}_{i}{_suffix(geometry)}", lambda: lp_case(spec, ORIENTATIONS[i][0]))
+
+
+def boundary_nonassoc(out, key, i, mu=0.66, max_iter=40, tol=1e-4, relaxation=0.5, geometry=None):
     """The non-associative analysis (nonassoc.case) of one boundary, cached in out; an
     unconverged case is kept with converged false and its history."""
     from . import nonassoc
 
-    spec = Specimen(mu=mu, **BOUNDARIES[key][1])
-    return cached(out, f"nonassoc_{key}_mu{mu:g}_{i}",
+    geometry = geometry or {}
+    spec = Specimen(mu=mu, **BOUNDARIES[key][1], **geometry)
+    return cached(out, f"nonassoc_{key}_mu{mu:g}_{i}{_suffix(geometry)}",
                   lambda: {**nonassoc.case(spec, ORIENTATIONS[i][0], facets=STUDY_FACETS, max_iter=max_iter,
                                            tol=tol, relaxation=relaxation),
                            "max_iter": max_iter, "tol": tol, "relaxation": relaxation})
 
 
-def boundary_dem(out, key, i, lam_lp, mu=0.66, fraction=0.6):
+def boundary_dem(out, key, i, lam_lp, mu=0.66, fraction=0.6, geometry=None):
     """The DEM of one boundary (the study's protocol: step 0.01 from fraction x the LP),
     cached in out; None where the DEM cannot hold that boundary (a finite clamp, or
     outOfPlane ends away from pi/2)."""
@@ -302,18 +311,26 @@ def boundary_dem(out, key, i, lam_lp, mu=0.66, fraction=0.6):
         return None
     from .dem import SIZE_FACTOR, Protocol
 
-    protocol = Protocol(step=0.01, size_factor=SIZE_FACTOR)
+    geometry = geometry or {}
+    # the 3 x 3 corner runs with 8 (docs/corner-blocks.md, "The DEM on the corner")
+    factor = SIZE_FACTOR if not _suffix(geometry) else 8
+    protocol = Protocol(step=0.01, size_factor=factor)
     protocol = replace(protocol, start=dem_start(protocol, lam_lp, fraction))
-    return cached(out, f"dem_{key}_mu{mu:g}_{i}",
-                  lambda: dem_case({"specimen": {"mu": mu, **fields}}, ORIENTATIONS[i][0], protocol))
+    return cached(out, f"dem_{key}_mu{mu:g}_{i}{_suffix(geometry)}",
+                  lambda: dem_case({"specimen": {"mu": mu, **fields, **geometry}}, ORIENTATIONS[i][0], protocol))
 
 
 def run_boundaries(out, methods=("lp",), keys=None, cases=BOUNDARY_CASES, study="data/corner-blocks",
-                   nonassoc_iter=40, log=print):
+                   nonassoc_iter=40, log=print, courses=9, blocks=7, table_only=False):
     """Every boundary of BOUNDARIES (or keys) at the orientations `cases` with each method
     (lp, nonassoc, dem), cached in out; the DEM of the study's own end conditions is read
-    from the study's folder (not rerun). Writes out/table.md and out/table.json and returns
-    the rows (one per boundary and orientation)."""
+    from the study's folder (not rerun), and so is its non-associative case where
+    study/nonassoc has it. Writes out/table[_CxB].md and .json and returns the rows (one
+    per boundary and orientation); the experiments' and 3DEC's columns only for the
+    paper's 9 courses of 7 blocks. table_only: nonassoc and DEM cases not cached are
+    left out ("-"), none is computed."""
+    geometry = {} if (courses, blocks) == (9, 7) else {"courses": courses, "blocks": blocks}
+    suffix = _suffix(geometry)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     rows = []
@@ -321,27 +338,39 @@ def run_boundaries(out, methods=("lp",), keys=None, cases=BOUNDARY_CASES, study=
         fields = BOUNDARIES[key][1]
         for i in cases:
             row = {"key": key, "boundary": BOUNDARIES[key][0], "i": i, "alpha": ORIENTATIONS[i][1],
-                   "experiment": PAPER["experiment"][i], "3DEC": PAPER["3DEC"][i]}
+                   "experiment": None if geometry else PAPER["experiment"][i],
+                   "3DEC": None if geometry else PAPER["3DEC"][i]}
             if "lp" in methods or "dem" in methods:
-                row["lp"] = boundary_lp(out, key, i)["lam"]
+                row["lp"] = boundary_lp(out, key, i, geometry=geometry)["lam"]
                 log(f"{key} {ORIENTATIONS[i][1]}: LP {row['lp']:.4f}")
             if "nonassoc" in methods:
-                r = boundary_nonassoc(out, key, i, max_iter=nonassoc_iter)
-                row["nonassoc"], row["nonassoc_converged"] = r["lam"], r["converged"]
-                row["nonassoc_iterations"] = r["iterations"]
-                log(f"{key} {ORIENTATIONS[i][1]}: non-associative {r['lam']:.4f} ({r['status']})")
+                committed = Path(study) / "nonassoc" / f"nonassoc_{key}_mu0.66_{i}{suffix}.json"
+                mine = out / f"nonassoc_{key}_mu0.66_{i}{suffix}.json"
+                if committed.is_file() and not mine.is_file():
+                    r = json.loads(committed.read_text())
+                    row["nonassoc_source"] = str(committed)
+                elif table_only and not mine.is_file():
+                    r = None
+                else:
+                    r = boundary_nonassoc(out, key, i, max_iter=nonassoc_iter, geometry=geometry)
+                if r is not None:
+                    row["nonassoc"], row["nonassoc_converged"] = r["lam"], r["converged"]
+                    row["nonassoc_iterations"] = r["iterations"]
+                    log(f"{key} {ORIENTATIONS[i][1]}: non-associative {r['lam']:.4f} ({r['status']})")
             if "dem" in methods:
-                committed = Path(study) / f"dem_{fields['ends']}_mu0.66_{i}.json"
+                committed = Path(study) / f"dem_{fields['ends']}_mu0.66_{i}{suffix}.json"
                 if key in ("fixed", "free", "outOfPlane") and committed.is_file():
                     r = json.loads(committed.read_text())
                     row["dem_source"] = str(committed)
+                elif table_only and not (out / f"dem_{key}_mu0.66_{i}{suffix}.json").is_file():
+                    r = None
                 else:
-                    r = boundary_dem(out, key, i, row["lp"])
+                    r = boundary_dem(out, key, i, row["lp"], geometry=geometry)
                 row["dem"] = r["lam"] if r and r.get("collapsed") else None
                 log(f"{key} {ORIENTATIONS[i][1]}: DEM {row['dem']}")
             rows.append(row)
-    (out / "table.json").write_text(json.dumps(rows, indent=1))
-    (out / "table.md").write_text(boundary_table(rows))
+    (out / f"table{suffix}.json").write_text(json.dumps(rows, indent=1))
+    (out / f"table{suffix}.md").write_text(boundary_table(rows))
     return rows
 
 
@@ -351,17 +380,24 @@ def boundary_table(rows):
         return "-" if v is None or (isinstance(v, float) and math.isnan(v)) else f"{v:.{digits}f}"
 
     def ratio(a, b):
-        return "-" if a is None or (isinstance(a, float) and math.isnan(a)) else f"{a / b:.2f}"
+        return "-" if a is None or b is None or (isinstance(a, float) and math.isnan(a)) else f"{a / b:.2f}"
 
-    lines = ["| boundary | alpha | experiment | 3DEC | LP | LP / exp. | LP / 3DEC | non-assoc. | iterations "
-             "| non-assoc. / exp. | DEM | DEM / exp. | DEM / 3DEC |", "|---" * 13 + "|"]
+    paper = any(r["experiment"] is not None for r in rows)
+    head = (["boundary", "alpha", "experiment", "3DEC", "LP", "LP / exp.", "LP / 3DEC", "non-assoc.", "iterations",
+             "non-assoc. / exp.", "DEM", "DEM / exp.", "DEM / 3DEC"] if paper else
+            ["boundary", "alpha", "LP", "non-assoc.", "iterations", "DEM"])
+    lines = ["| " + " | ".join(head) + " |", "|---" * len(head) + "|"]
     for r in rows:
         na = r.get("nonassoc")
         its = "-" if na is None else f"{r['nonassoc_iterations']}" + ("" if r["nonassoc_converged"] else " (not conv.)")
-        lines.append(f"| {r['boundary']} | {r['alpha']} | {r['experiment']:.3f} | {r['3DEC']:.3f} | {cell(r.get('lp'))} "
-                     f"| {ratio(r.get('lp'), r['experiment'])} | {ratio(r.get('lp'), r['3DEC'])} | {cell(na)} | {its} "
-                     f"| {ratio(na, r['experiment'])} | {cell(r.get('dem'), 2)} | {ratio(r.get('dem'), r['experiment'])} "
-                     f"| {ratio(r.get('dem'), r['3DEC'])} |")
+        if paper:
+            cells = [r["boundary"], r["alpha"], cell(r["experiment"]), cell(r["3DEC"]), cell(r.get("lp")),
+                     ratio(r.get("lp"), r["experiment"]), ratio(r.get("lp"), r["3DEC"]), cell(na), its,
+                     ratio(na, r["experiment"]), cell(r.get("dem"), 2), ratio(r.get("dem"), r["experiment"]),
+                     ratio(r.get("dem"), r["3DEC"])]
+        else:
+            cells = [r["boundary"], r["alpha"], cell(r.get("lp")), cell(na), its, cell(r.get("dem"), 2)]
+        lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
 
 
