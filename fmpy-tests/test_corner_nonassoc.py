@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from rocking.corner_blocks import lp, nonassoc
-from rocking.corner_blocks.assembly import box, on_table
+from rocking.corner_blocks.assembly import Assembly, box, on_table
 
 B, D, H = 0.1, 0.2, 0.3  # a block's x, y, z sizes (m)
 
@@ -178,3 +178,17 @@ def test_committed_cases_lie_at_or_below_their_lp():
             assert r["lam_associative"] == pytest.approx(json.loads(lp_path.read_text())["lam"], rel=1e-6)
         cases += 1
     assert cases >= 4
+
+
+def test_a_clamp_of_zero_is_the_free_end():
+    """The bounded roller (Specimen.clamp, in end-block weights) enters the non-associative
+    LPs as it does the associative one: at 0 the 3-course corner converges to the free
+    end's collapse state, and lies at or below its own associative LP."""
+    from rocking.corner_blocks.specimen import Specimen
+
+    def lam(**kw):
+        r = nonassoc.solve(Assembly.from_specimen(Specimen(courses=3, blocks=3, **kw)), math.pi / 2, tol=1e-4)
+        assert r.converged and r.lam <= r.lam_associative + 1e-9
+        return r.lam
+
+    assert lam(ends="outOfPlane", clamp=0.0) == pytest.approx(lam(ends="free"), rel=1e-4)
