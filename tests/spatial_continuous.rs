@@ -379,3 +379,81 @@ fn in_space_model_exchange_follows_co_simulation() {
         assert!(psi <= psi_max, "{name}: psi {psi:e}");
     }
 }
+
+/// `advance_to_event` stops at each uplift, impact and overturning and,
+/// called again from there, continues the run `advance` makes: the same
+/// impacts and overturning, the same motion to 1e-12 rad, and as many
+/// stops as events (uplift, impacts, overturning).
+#[test]
+fn advance_to_event_stops_at_each_event_and_continues_the_run() {
+    let p = drum(Restitution::Housner, false);
+    let body = Spatial::new(&p, None, RTOL).unwrap();
+    let pulse = |t: f64| ([pulse_train(t), 0.0], 0.0);
+    let still = |_: f64| ([0.0, 0.0], 0.0);
+    let strong = |t: f64| ([2.2 * pulse_train(t), 1.2 * pulse_train(t + 0.1)], 0.0);
+    let cases: [(&str, &Input, SpatialState); 3] = [
+        ("pulse along x", &pulse, SpatialState::at_rest()),
+        (
+            "free rocking",
+            &still,
+            SpatialState::tilted(&body, 0.1, 0.7, [0.0; 3]),
+        ),
+        ("overturning", &strong, SpatialState::at_rest()),
+    ];
+    for (name, f, st0) in cases {
+        let whole = cs_run(&body, st0, f, 4.0);
+        let mut st = st0;
+        let (mut stops, mut events, mut worst) = (0, 0, 0.0f64);
+        for (k, want) in whole.iter().enumerate() {
+            let (t0, t1) = (k as f64 * DT, (k + 1) as f64 * DT);
+            let ((a0, v0), (a1, v1)) = (f(t0), f(t1));
+            let da = [(a1[0] - a0[0]) / DT, (a1[1] - a0[1]) / DT];
+            while st.t < t1 && !st.overturned {
+                // the input's line from the call's start, as a host sets it
+                let (a, v) = (
+                    sampled(f, st.t),
+                    VerticalInput {
+                        av: v0,
+                        dav: (v1 - v0) / DT,
+                    },
+                );
+                let h = PlanInput { a: a.0, da };
+                let (impacts, rest) = (st.impacts, st.at_rest);
+                let ev = body.advance_to_event(&mut st, t1, h, v);
+                if ev.stopped_at_event {
+                    stops += 1;
+                    // one event per stop
+                    assert!(
+                        ev.impacts + ev.uplift as u32 + ev.overturned_at.is_some() as u32 == 1,
+                        "{name}: {ev:?}"
+                    );
+                }
+                events +=
+                    ev.impacts + (rest && !st.at_rest) as u32 + ev.overturned_at.is_some() as u32;
+                assert!(st.impacts >= impacts);
+            }
+            assert_eq!(
+                (st.impacts, st.overturned),
+                (want.impacts, want.overturned),
+                "{name} at {t1}"
+            );
+            worst = worst.max((st.theta() - want.theta()).abs());
+            if st.overturned {
+                assert!(
+                    (st.t - want.t).abs() <= 1e-12,
+                    "{name}: overturned at {} / {}",
+                    st.t,
+                    want.t
+                );
+                break;
+            }
+        }
+        eprintln!(
+            "{name}: {stops} stops, {events} events, {} impacts; |dtheta| {worst:.2e} rad",
+            st.impacts
+        );
+        assert_eq!(stops, events, "{name}");
+        assert!(stops >= 2, "{name}");
+        assert!(worst <= 1e-12, "{name}: {worst:e}");
+    }
+}

@@ -352,6 +352,13 @@ fn at(me: &dyn Me, t: f64, x: &[f64; NX]) -> [f64; NZ] {
 /// and the number of events.
 fn run(me: &dyn Me, t_end: f64, h: f64) -> (Vec<[u64; NX + 1]>, u32) {
     me.set_inputs(ground(0.0));
+    assert!(!me.event_iteration());
+    me.enter_continuous();
+    run_on(me, 0, t_end, h)
+}
+
+/// The host from step `k0` (time `k0 h`) in continuous-time mode, as [`run`].
+fn run_on(me: &dyn Me, k0: usize, t_end: f64, h: f64) -> (Vec<[u64; NX + 1]>, u32) {
     let record = |x: &[f64; NX]| -> [u64; NX + 1] {
         std::array::from_fn(|i| {
             if i < NX {
@@ -361,12 +368,10 @@ fn run(me: &dyn Me, t_end: f64, h: f64) -> (Vec<[u64; NX + 1]>, u32) {
             }
         })
     };
-    assert!(!me.event_iteration());
-    me.enter_continuous();
-    let (mut t, mut x) = (0.0, me.x());
+    let (mut t, mut x) = (k0 as f64 * h, me.x());
     let mut z0 = at(me, t, &x);
     let per = (0.01 / h).round() as usize;
-    let (mut k, mut events) = (0, 0);
+    let (mut k, mut events) = (k0, 0);
     let mut out = vec![];
     while t < t_end - 1e-12 {
         let t1 = (k + 1) as f64 * h;
@@ -433,6 +438,26 @@ fn model_exchange_in_fmi2_and_fmi3_gives_the_same_bits() {
     assert_eq!(a, b);
 }
 
+/// An FMU state of a Model Exchange instance in continuous-time mode,
+/// serialized and set again, repeats the run bit for bit: the discrete
+/// state (the contact side, rest) is in it.
+#[test]
+fn model_exchange_fmu_state_repeats_the_run_bit_for_bit() {
+    let me = Me2::new();
+    me.0.init();
+    let h = 1e-3;
+    let (first, _) = run(&me, 1.0, h);
+    let s = me.0.get_state();
+    let bytes = me.0.serialize(s);
+    let (a, events) = run_on(&me, 1000, 2.0, h);
+    assert!(events >= 1 && first.len() == 100);
+    let back = me.0.deserialize(&bytes);
+    me.0.check("fmi2SetFMUstate", me.0.set_state(back));
+    assert_eq!(run_on(&me, 1000, 2.0, h).0, a);
+    me.0.check("fmi2SetFMUstate", me.0.set_state(s));
+    assert_eq!(run_on(&me, 1000, 2.0, h).0, a);
+}
+
 /// Bad Model Exchange input is an error naming it (the number of states,
 /// a NaN state, a tilt past upright's sine 1); the instance, reset, runs
 /// again as a new one.
@@ -468,7 +493,10 @@ fn bad_model_exchange_input_is_an_error_naming_it() {
     assert!(me.0.logged("ex = 0.8, ey = 0.7"), "{}", me.error());
     again();
     let mut d = [0.0; NX];
-    assert_eq!(unsafe { fmi2GetDerivatives(me.0.c, d.as_mut_ptr(), 3) }, fmi2Error);
+    assert_eq!(
+        unsafe { fmi2GetDerivatives(me.0.c, d.as_mut_ptr(), 3) },
+        fmi2Error
+    );
     assert!(me.0.logged("nx = 3: this model has 7"), "{}", me.error());
     again();
     // a NaN input is refused where it is set
@@ -500,7 +528,11 @@ fn changes(set: &dyn Fn(&Host), k: f64, small: f64, n: usize) -> Vec<f64> {
         cs.check("set", cs.set_real_vr(vr::AGX, k * t));
         cs.check("der", cs.set_input_derivative_vr(vr::AGX, 1, k));
         let s = cs.do_step(t, small);
-        let now = (cs.integer("regime"), cs.integer("impacts"), cs.boolean("overturned"));
+        let now = (
+            cs.integer("regime"),
+            cs.integer("impacts"),
+            cs.boolean("overturned"),
+        );
         if now != was {
             out.push(t + small);
             was = now;
@@ -546,7 +578,10 @@ fn early_return_stops_at_uplift_impacts_and_overturning() {
                 "{name}, event {i}: early return at {last:.9} s, co-simulation's change in ({:.4}, {w:.4}] s",
                 w - small
             );
-            assert!(early && last > w - small && last <= w, "{name}, event {i} at {last}");
+            assert!(
+                early && last > w - small && last <= w,
+                "{name}, event {i} at {last}"
+            );
             if terminate {
                 assert_eq!(i, n - 1);
                 assert!((three.get(vr::THETA_OVER_ALPHA) - 1.0).abs() < 1e-9);
