@@ -188,6 +188,7 @@ class _Problem:
         self.bounds[self.lam_col] = (0.0, LAMBDA_CAP)
         self.c = np.zeros(n_var)
         self.c[self.lam_col] = -1.0
+        self.proximity = PROXIMITY
 
     def solve(self, mu_n):
         """(x, scipy's result): the associative LP if mu_n is None, else the one with the
@@ -220,7 +221,7 @@ class _Problem:
         bounds[self.lam_col] = (max(0.0, lam - slack), LAMBDA_CAP)
         c = np.zeros(n_var + m)
         c[self.n_cols] = 1.0
-        c[n_var:] = PROXIMITY
+        c[n_var:] = self.proximity
         res = linprog(c, A_ub=a_ub, b_ub=b_ub, A_eq=a_eq, b_eq=-self.dead, bounds=bounds, method="highs")
         return res.x[:n_var] if res.status == 0 else None
 
@@ -298,6 +299,40 @@ def case(specimen, alpha, **options):
             "mu": specimen.mu}
 
 
+def diagnose(assembly, alpha, relaxation=0.5, iterations=40, proximity=PROXIMITY, facets=8, tol=1e-4, log=None):
+    """solve's iteration with what moves in it (docs/corner-nonassociative.md, section 4):
+    per iteration a dict of lambda, the largest change of a corner's normal force and of an
+    interface's resultant normal force (sum of its 4 corners) against n_hat, the largest
+    change against the iterate before last (0 for a two-state cycle), all / W_max, and the
+    labels of the interface where the corner change is largest. proximity replaces
+    PROXIMITY in the choice among optima. Stops when the corner change is below tol, or
+    after `iterations`."""
+    p = _Problem(assembly, alpha, facets)
+    p.proximity = proximity
+    w_max = max(assembly.weight(i) for i in assembly.free())
+    x, _ = p.solve(mu_n=None)
+    n_hat = x[p.n_cols].copy()
+    found, rows = [n_hat.copy()], []  # the LPs' normal forces, iteration 0 on
+    for k in range(1, iterations + 1):
+        x, _ = p.solve(mu_n=assembly.mu * n_hat)
+        lam = float(x[p.lam_col])
+        n = p.least_normal(assembly.mu * n_hat, n_hat, lam, tol * max(1.0, lam))[p.n_cols]
+        where = int(np.argmax(np.abs(n - n_hat))) // 4
+        face = p.faces[where]
+        row = {"iteration": k, "lam": lam, "corner": float(np.abs(n - n_hat).max()) / w_max,
+               "interface": float(np.abs((n - n_hat).reshape(-1, 4).sum(axis=1)).max()) / w_max,
+               "against_k_minus_2": float(np.abs(n - found[-2]).max()) / w_max if len(found) > 1 else math.nan,
+               "at": f"{assembly.blocks[face.i].label()}/{assembly.blocks[face.j].label()}"}
+        rows.append(row)
+        if log:
+            log(" ".join(f"{key} {v:.4g}" if isinstance(v, float) else f"{key} {v}" for key, v in row.items()))
+        if row["corner"] < tol:
+            break
+        found.append(n.copy())
+        n_hat = n_hat + relaxation * (n - n_hat)
+    return rows
+
+
 def main(argv=None):
     """python -m rocking.corner_blocks.nonassoc --ends free --out DIR: the paper's corner (or
     --courses, --blocks) at its five orientations (or --cases), one JSON per case
@@ -321,9 +356,22 @@ def main(argv=None):
     p.add_argument("--courses", type=int, default=9)
     p.add_argument("--blocks", type=int, default=7)
     p.add_argument("--out", required=True)
+    p.add_argument("--diagnose", action="store_true",
+                   help="run diagnose() instead (--max-iter iterations, --proximity): diagnose_*.json in --out")
+    p.add_argument("--proximity", type=float, default=PROXIMITY)
     args = p.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    if args.diagnose:
+        for i in (int(k) for k in args.cases.split(",")):
+            alpha, label = ORIENTATIONS[i]
+            spec = Specimen(ends=args.ends, mu=args.mu, courses=args.courses, blocks=args.blocks)
+            rows = diagnose(Assembly.from_specimen(spec), alpha, args.relaxation, args.max_iter, args.proximity,
+                            tol=args.tol, log=lambda s: print(f"{args.ends} {label}: {s}", file=sys.stderr, flush=True))
+            name = (f"diagnose_{args.ends}_{i}_{args.courses}x{args.blocks}_r{args.relaxation:g}"
+                    f"_p{args.proximity:g}.json")
+            (out / name).write_text(json.dumps(rows))
+        return
     for i in (int(k) for k in args.cases.split(",")):
         suffix = "" if (args.courses, args.blocks) == (9, 7) else f"_{args.courses}x{args.blocks}"
         path = out / f"nonassoc_{args.ends}_mu{args.mu:g}_{i}{suffix}.json"
