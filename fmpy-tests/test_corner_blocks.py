@@ -400,3 +400,28 @@ def test_dem_refuses_what_it_cannot_hold():
         dem.build(a, dem.Protocol(), math.pi / 2)
     with pytest.raises(ValueError, match="nlgs_tol"):
         dem.nlgs(tol=-1e-4)
+
+
+def test_the_numerics_cases_change_one_thing_each():
+    """data/corner-blocks/numerics (examples/corner_dem_sensitivity.py --numerics): every
+    variant's protocol differs from its case's base in the fields its name says and no
+    other, and every run collapsed above a level that stood; the rest threshold of the
+    3 x 3 runs sits at least 300 times above the speed of any level that stood there."""
+    folder = Path(__file__).resolve().parents[1] / "data" / "corner-blocks" / "numerics"
+    changes = {"dt0.5ms": {"dt"}, "dt2ms": {"dt"}, "dt0.25ms": {"dt"}, "tol1e-5": {"nlgs_tol"},
+               "tol1e-3": {"nlgs_tol"}, "relax0.5": {"nlgs_relax"}, "hold0.1": {"hold"}, "hold1": {"hold"},
+               "disp5mm": {"v_tol"}, "disp20mm": {"v_tol", "collapse"}, "speed10": {"v_tol"}}
+    runs = 0
+    for case in ("small_free_pi4", "small_fixed_pi2"):
+        base = json.loads((folder / f"{case}_base.json").read_text())
+        for path in sorted(folder.glob(f"{case}_*.json")):
+            r = json.loads(path.read_text())
+            name = path.stem[len(case) + 1:]
+            differ = {k for k in base["protocol"] if r["protocol"][k] != base["protocol"][k]}
+            assert differ == changes.get(name, set()), (path.name, differ)
+            assert r["collapsed"] and len(r["history"]) > 1 and r["history"][0][1], path.name
+            if r["protocol"]["v_tol"] == 1e-3:
+                stood = [speed for lam, _, speed, _, _ in r["history"] if lam < r["lam"] - 1e-9]
+                assert max(stood) * 300 < r["protocol"]["v_tol"], path.name
+            runs += 1
+    assert runs >= 14
