@@ -154,28 +154,30 @@ def run(assembly, alpha, time_s, acc, scale, track, protocol: Protocol, log=None
         if np.abs(rot[free]).max() > FALL or (drop > half[free]).any():
             fallen, t_fall = True, k * protocol.dt
             break
+    side, t_collapse = collapse(times, max_rot, min_rot, protocol.theta_ov) if fallen else (0, math.nan)
     if log:
         log(f"scale {scale:.4f}: {'collapses' if fallen else 'stands'}, peak mean rotation "
             f"{max(mean_rot):.4f} rad, {k + steps} steps, {time.process_time() - t0:.1f} s CPU")
     return {"scale": scale, "alpha": alpha, "collapsed": fallen, "t_fall": t_fall,
-            "t_collapse": last_crossing(times, mean_rot, protocol.theta_ov) if fallen else math.nan,
-            "fall_side": int(math.copysign(1, mean_rot[-1])) if fallen else 0,
+            "fall_side": side, "t_collapse": t_collapse,
             "peak_rotation": float(max(mean_rot)), "least_rotation": float(min(min_rot)),
             "track": list(track), "time": times, "rotation": mean_rot, "rotation_max": max_rot,
             "rotation_min": min_rot, "protocol": asdict(protocol), "steps": k + steps,
             "cpu_s": time.process_time() - t0}
 
 
-def last_crossing(times, values, level):
-    """The last time (linear between samples) at which `values` rose through `level`, or
-    (when the last value is negative: a fall inwards) fell through -level."""
-    if values and values[-1] < 0:
-        values, level = [-v for v in values], level
+def collapse(times, rotation_max, rotation_min, theta_ov):
+    """(side, time) of a fall: side +1 (outwards) when the tracked blocks' largest
+    outward rotation at the end exceeds their largest inward one, else -1; time: the last
+    time (linear between samples) at which that extreme passed theta_ov (rad) on that
+    side, nan if it never did (the block that fell was not tracked)."""
+    side = 1 if rotation_max[-1] >= -rotation_min[-1] else -1
+    values = rotation_max if side > 0 else [-v for v in rotation_min]
     out = math.nan
     for k in range(1, len(values)):
-        if values[k - 1] < level <= values[k]:
-            out = times[k - 1] + (level - values[k - 1]) / (values[k] - values[k - 1]) * (times[k] - times[k - 1])
-    return out
+        if values[k - 1] < theta_ov <= values[k]:
+            out = times[k - 1] + (theta_ov - values[k - 1]) / (values[k] - values[k - 1]) * (times[k] - times[k - 1])
+    return side, out
 
 
 def assembly_of(spec):
