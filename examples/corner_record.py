@@ -84,7 +84,7 @@ def body(kind):
                               "--blocks-y", "3", "--alpha", "1.570796", "--body", str(path), "--body-kind", kind],
                              check=True, capture_output=True, text=True)
         info = [x for x in out.stderr.splitlines() if x.startswith("rocking-corner:")]
-        return json.loads(path.read_text()), (info[-1] if info else "")
+        return json.loads(path.read_text()), (info[-1].split(" -> ")[0] if info else "")
 
 
 def cases():
