@@ -45,13 +45,13 @@ from rocking.corner_blocks import dem, dynamics  # noqa: E402
 G = 9.81
 RECORD = ("csmip-coalinga-1983/ce36456p_CE36456.V2", "90")
 WINDOW = 6.0  # s of record from the start of its 5-95 % Arias window
-REL_WIDTH = 0.03
-#: The DEM's first scale per case (then up or down by 15 % until the outcome changes):
-#: near the FMU bodies' overturning scales, fixed so that the cached runs stay valid
+REL_WIDTH = 0.03  # the DEM's scale bracket is narrowed to this relative width
 #: The FMU bodies each case is set against, the first drawn in the figure at both scales
 CASE_BODIES = {"block": ["block"], "free": ["geometric", "geometric-twoSided"],
                "free-restrained": ["geometric", "geometric-e0"], "fixed": ["threshold", "geometric"]}
-GUESS = {"block": 1.1, "free": 2.0, "free-restrained": 2.1, "fixed": 2.4}  # the DEM's scale bracket is narrowed to this relative width
+#: The DEM's first scale per case (then up or down by 15 % until the outcome changes):
+#: near the FMU bodies' overturning scales, fixed so that the cached runs stay valid
+GUESS = {"block": 1.1, "free": 2.0, "free-restrained": 2.1, "fixed": 2.4}
 SMALL = {"courses": 3, "blocks": 3}
 BLOCK = (0.1, 0.2, 0.4)  # m: along the motion, across, height
 BLOCK_PARAMS = dict(shape="solidRectangle", B=BLOCK[0], L=BLOCK[1], H=BLOCK[2], rho=1876.0, interface="rigid",
@@ -107,15 +107,17 @@ def dem_run(out, name, spec, alpha, track, theta_ov, t, a, scale):
         note = "cached"
         if r["collapsed"]:  # the definition of dynamics.collapse, also for runs made before it
             side, when = dynamics.collapse(r["time"], r["rotation_max"], r["rotation_min"], theta_ov)
-            if (side, json.dumps(when)) != (r["fall_side"], json.dumps(r["t_collapse"])):
+            if (side, json.dumps(when)) != (r["fall_side"], json.dumps(r["t_collapse"])):  # keep the file current
                 r["fall_side"], r["t_collapse"] = side, when
                 path.write_text(json.dumps(r) + "\n")
     else:
-        r = dynamics.run_isolated(spec, alpha, t, a, scale, track, dynamics.Protocol(theta_ov=theta_ov), timeout=3600)
+        protocol = dynamics.Protocol(theta_ov=theta_ov)
+        r = dynamics.run_isolated(spec, alpha, t, a, scale, track, protocol, timeout=3600)
         for key in ("time", "rotation", "rotation_max", "rotation_min"):
             r[key] = [round(x, 6) for x in r[key]]
         if r["collapsed"]:  # on the rounded series, as a reader of the file finds it
-            r["fall_side"], r["t_collapse"] = dynamics.collapse(r["time"], r["rotation_max"], r["rotation_min"], theta_ov)
+            r["fall_side"], r["t_collapse"] = dynamics.collapse(r["time"], r["rotation_max"], r["rotation_min"],
+                                                                theta_ov)
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(json.dumps(r) + "\n")
         note = f"{r['cpu_s']:.0f} s CPU"
@@ -197,11 +199,13 @@ def main():
     with RockingFMU() as fmu:
         fmu_rows = {}
         variants = {"block": BLOCK_PARAMS, "geometric": geo, "threshold": bodies["threshold"][0],
-                    "geometric-twoSided": {k: v for k, v in geo.items() if k not in ("restraint", "side", "eRestraint")},
+                    "geometric-twoSided": {k: v for k, v in geo.items()
+                                           if k not in ("restraint", "side", "eRestraint")},
                     "geometric-e0": dict(geo, eRestraint=0.0)}
         for name, params in variants.items():
             lo, hi = fmu_scale(fmu, params, t, a, pga)
-            fmu_rows[name] = {"params": params, "stands": lo, "collapses": hi, "at_stands": summary(fmu_run(fmu, params, t, a, lo)),
+            fmu_rows[name] = {"params": params, "stands": lo, "collapses": hi,
+                              "at_stands": summary(fmu_run(fmu, params, t, a, lo)),
                               "at_collapses": summary(fmu_run(fmu, params, t, a, hi))}
             print(f"[FMU {name}] stands at {lo:.4f}, overturns at {hi:.4f} "
                   f"(t = {fmu_rows[name]['at_collapses']['t_overturn']:.3f} s)", flush=True)
@@ -251,8 +255,8 @@ def table(results):
     for name, c in results["cases"].items():
         for s, r in c["runs"].items():
             dem_cell = f"{r['t_collapse']:.3f} s" if r["collapsed"] else f"stands, {r['peak_rotation']:.4f} rad"
-            cells = [f"{b}: " + (f"{x['t_overturn']:.3f} s" if x["overturned"] else f"stands, {x['peak_rotation']:.4f} rad")
-                     for b, x in r["bodies"].items()]
+            cells = [f"{b}: " + (f"{x['t_overturn']:.3f} s" if x["overturned"]
+                                 else f"stands, {x['peak_rotation']:.4f} rad") for b, x in r["bodies"].items()]
             print(f"| {name} | {s} | {dem_cell} | " + " | ".join(cells) + " |")
 
 
