@@ -39,6 +39,9 @@ const D_THETA_ALPHA: &[&str] = &["shape", "Ro", "massModel", "H", "hG", "theta0"
 const D_LEAN: &[&str] = &["theta0", "psi0"];
 const D_POSITION: &[&str] = &["shape", "Ro", "massModel", "H", "hG", "theta0", "psi0"];
 const D_REGIME: &[&str] = &["theta0", "omegaX0", "omegaY0", "omegaZ0"];
+const D_AREA: &[&str] = &[
+    "shape", "Ro", "Ri", "theta0", "omegaX0", "omegaY0", "omegaZ0",
+];
 /// Number of Model Exchange event indicators (`rocking::spatial::continuous`:
 /// the quarter turn or crossing, overturning, uplift, lift-off).
 pub const EVENT_INDICATORS: u32 = 4;
@@ -375,6 +378,13 @@ variables! {
         derivative: Some("yG"),
         run_depends_on: &["ex", "ey", "omegaX", "omegaY", "omegaZ"],
     }
+    CONTACT_AREA = 53 => {
+        name: "contactArea",
+        description: "Area of the base in contact with the bed: the whole section at rest, 0 on a point of the rim (rocking, wobbling, rolling; and after overturning)",
+        causality: Output, variability: Discrete, initial: Some(Calculated),
+        ty: real(Some("m2"), None, None),
+        depends_on: D_AREA,
+    }
 }
 
 /// Standard gravity for the display unit `g` (not the parameter `g`).
@@ -390,6 +400,12 @@ pub static UNITS: &[Unit] = &[
     units::M_PER_S2,
     units::RAD,
     units::RAD_PER_S,
+    // contactArea
+    Unit {
+        name: "m2",
+        base: base(0, 2, 0, 0),
+        display: &[],
+    },
     // Model Exchange's state derivatives
     Unit {
         name: "1/s",
@@ -556,10 +572,11 @@ mod tests {
             "der(omegaZ)",
             "der(xG)",
             "der(yG)",
+            "contactArea",
         ] {
             assert!(ROUND_BODY.variable(n).is_some(), "{n}");
         }
-        assert_eq!(VARIABLES.len(), 53);
+        assert_eq!(VARIABLES.len(), 54);
     }
 
     /// docs/round-body.md has one row per variable, with its causality and

@@ -347,6 +347,9 @@ impl Slave for RoundBodySlave {
             vr::ETA_HOUSNER => b.eta_housner(),
             vr::THETA_OV => self.body.model.theta_ov,
             vr::DER_EX..=vr::DER_YG => self.rates(&inputs)?[(r - vr::DER_EX) as usize],
+            // the rigid bed touches a rocking body at one point of its rim
+            vr::CONTACT_AREA if s.at_rest => self.body.model.interface.shape().area(),
+            vr::CONTACT_AREA => 0.0,
             _ => return Err(format!("no computed Real with value reference {r}")),
         };
         if !x.is_finite() {

@@ -133,6 +133,19 @@ fn at_rest_the_forces_are_the_inertia_forces() {
     assert_eq!(h.real("frictionDemand"), 1e60);
 }
 
+/// The bed touches the whole base at rest (pi Ro² of the drum's solid
+/// circle) and one rim point once the body rocks.
+#[test]
+fn the_contact_area_is_the_base_at_rest_and_nil_rocking() {
+    let h = started();
+    let area = std::f64::consts::PI * 0.5 * 0.5;
+    assert!((h.real("contactArea") - area).abs() <= 1e-15 * area);
+    h.check("set", h.set_real_vr(vr::AGX, 2.0 * UPLIFT));
+    assert_eq!(h.do_step(0.0, 0.05), fmi2OK);
+    assert_eq!(h.integer("regime"), enums::ROCKING);
+    assert_eq!(h.real("contactArea"), 0.0);
+}
+
 /// FMI 2.0 and 3.0 of one binary on the same inputs (with their
 /// derivatives): the same outputs, bit for bit, at every step.
 #[test]
