@@ -3,38 +3,14 @@
 //! the closed form of steady wobbling, and the energy.
 
 use rocking::dynamics::{GroundInput, Simulator, VerticalInput};
-use rocking::model::{LawKind, MassKind, Restitution, ShapeKind};
+use rocking::model::Restitution;
 use rocking::spatial::{PlanInput, Spatial, SpatialState};
 use rocking::Params;
 
+mod support;
+use support::drum::{drum, pulse_train};
+
 const RTOL: f64 = 1e-12;
-
-/// A masonry drum of radius 0.5 m and height 3 m (tan alpha = 1/3) on the rigid bed.
-fn drum(restitution: Restitution, hollow: bool) -> Params {
-    Params {
-        shape: if hollow {
-            ShapeKind::HollowCircle
-        } else {
-            ShapeKind::SolidCircle
-        },
-        ro: 0.5,
-        ri: 0.35,
-        mass_model: MassKind::Prism,
-        h: 3.0,
-        rho: 2000.0,
-        interface: LawKind::Rigid,
-        restitution,
-        eta: 0.8,
-        ..Params::default()
-    }
-}
-
-/// A ground motion that rocks the drum hard without overturning it:
-/// m/s², at t s.
-fn pulse_train(t: f64) -> f64 {
-    let g_tan_alpha = 9.81 / 3.0;
-    1.6 * g_tan_alpha * (2.0 * std::f64::consts::PI * 1.3 * t).sin() * (-0.25 * t).exp()
-}
 
 fn vertical(t: f64) -> f64 {
     2.0 * (2.0 * std::f64::consts::PI * 3.1 * t).sin()

@@ -6,39 +6,16 @@
 //! location), on the drums and the motions of tests/spatial.rs.
 
 use rocking::dynamics::VerticalInput;
-use rocking::model::{LawKind, MassKind, Restitution, ShapeKind};
+use rocking::model::Restitution;
 use rocking::spatial::continuous::{EVENT_INDICATORS, STATES};
 use rocking::spatial::{PlanInput, Spatial, SpatialState};
-use rocking::Params;
+
+mod support;
+use support::drum::{drum, pulse_train};
 
 const RTOL: f64 = 1e-12;
 /// The input's sampling, s: linear in between (both runs see the same input).
 const DT: f64 = 0.01;
-
-fn drum(restitution: Restitution, hollow: bool) -> Params {
-    Params {
-        shape: if hollow {
-            ShapeKind::HollowCircle
-        } else {
-            ShapeKind::SolidCircle
-        },
-        ro: 0.5,
-        ri: 0.35,
-        mass_model: MassKind::Prism,
-        h: 3.0,
-        rho: 2000.0,
-        interface: LawKind::Rigid,
-        restitution,
-        eta: 0.8,
-        ..Params::default()
-    }
-}
-
-/// tests/spatial.rs's pulse train, m/s² at t s.
-fn pulse_train(t: f64) -> f64 {
-    let g_tan_alpha = 9.81 / 3.0;
-    1.6 * g_tan_alpha * (2.0 * std::f64::consts::PI * 1.3 * t).sin() * (-0.25 * t).exp()
-}
 
 type Input = dyn Fn(f64) -> ([f64; 2], f64);
 

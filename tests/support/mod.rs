@@ -5,10 +5,12 @@
 //! exact rigid rocking ([`exact`]), a plain RK4 ([`rk4`]), a seeded
 //! generator for the random sweeps ([`lcg`]), a sampled ground pulse
 //! ([`pulse`]), a body under a constant `av` against reduced gravity
-//! ([`reduced_gravity`]).
+//! ([`reduced_gravity`]), the drum of the spatial tests and its ground
+//! motion ([`drum`]).
 #![allow(dead_code)]
 
 pub mod base;
+pub mod drum;
 pub mod exact;
 pub mod lcg;
 pub mod pulse;
