@@ -327,12 +327,16 @@ proptest! {
 /// The bad parameters docs/round-body.md lists, one at a time: each is
 /// refused at fmi2ExitInitializationMode naming a parameter (the driver
 /// checks the message), and a valid neighbour of each is accepted.
+/// The Integer settings a case needs first (value references, values).
+type Settings = (Vec<u32>, Vec<i32>);
+
 #[test]
 fn each_documented_bad_parameter_is_refused_naming_it() {
     let lumped = (vec![vr::MASS_MODEL], vec![enums::LUMPED]);
     let hollow = (vec![vr::SHAPE], vec![enums::HOLLOW_CIRCLE]);
     let none = (vec![], vec![]);
-    let cases: Vec<(u32, f64, f64, (Vec<u32>, Vec<i32>))> = vec![
+    // (the parameter, a bad value, a good one, the settings it needs)
+    let cases: Vec<(u32, f64, f64, Settings)> = vec![
         (vr::RO, -0.5, 0.4, none.clone()),
         (vr::RO, f64::NAN, 0.6, none.clone()),
         (vr::RI, 0.5, 0.3, hollow.clone()),
