@@ -226,7 +226,8 @@ def _specimen_parser():
                    help="load orientations (rad), docs/corner.md's convention (default pi/4 pi/2)")
     p.add_argument("--ends", choices=ENDS, default="fixed", help="the walls' free ends (default fixed)")
     p.add_argument("--closers", choices=CLOSERS, default="held",
-                   help="the closing pieces (the butting courses' end blocks): as the other ends, or free (default held)")
+                   help="the closing pieces (the butting courses' end blocks): as the other ends, or free "
+                        "(default held)")
     p.add_argument("--clamp", type=_non_negative("block weights"), default=math.inf,
                    help="LP, --ends outOfPlane: the largest out-of-plane reaction of an end block, in units of its "
                         "weight (default inf: a rigid roller)")
