@@ -6,13 +6,13 @@ tangential forces (t1, t2) along the face's axes; the multiplier lambda; for a r
 end, its reaction (bounded by the assembly's clamp, if finite). Each free block is in
 equilibrium (3 forces, 3 moments about its centroid) under its weight W, the lateral
 load lambda W d (d = load_direction(alpha)), and the contact forces. Friction: the cone
-|t| <= mu n replaced by the pyramid of `facets` planes t . (cos phi_k, sin phi_k) <= mu n, which contains the cone (exact along
-the face's axes, at most 1/cos(pi/facets) - 1 wider in between), so its lambda is at least
-the cone's and cannot rise as the planes double; the same pyramid with mu cos(pi/facets)
-lies inside the cone and bounds the cone's lambda from below. No second-order cone
-solver is among the project's packages, hence the pyramid; FACETS planes by default.
-With associative flow, lambda is an upper bound of the answer of a frictional
-(non-associative) assembly.
+|t| <= mu n replaced by the pyramid of `facets` planes t . (cos phi_k, sin phi_k) <= mu
+n, which contains the cone (exact along the face's axes, at most 1/cos(pi/facets) - 1
+wider in between), so its lambda is at least the cone's and cannot rise as the planes
+double; the same pyramid with mu cos(pi/facets) lies inside the cone and bounds the
+cone's lambda from below. No second-order cone solver is among the project's packages,
+hence the pyramid; FACETS planes by default. With associative flow, lambda is an upper
+bound of the answer of a frictional (non-associative) assembly.
 
 The dual variables of the equilibrium rows are the blocks' virtual velocities (3
 translations, 3 rotations per block): the collapse mechanism."""
