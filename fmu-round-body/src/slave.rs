@@ -178,8 +178,13 @@ impl RoundBodySlave {
                 .chain(&s.xg)
                 .all(|x| x.is_finite());
         if !finite {
+            // the inputs named: past a bound of the model's arithmetic, a
+            // huge input is what overflows a body already rocking
             return Err(format!(
-                "the integration produced a non-finite state (e = {:?}, omega = {:?} rad/s) at t = {}",
+                "the integration produced a non-finite state (e = {:?}, omega = {:?} rad/s) at t = {} \
+                 under agx = {agx}, agy = {agy}, av = {av} m/s2 (slopes {dagx}, {dagy}, {dav} m/s3 \
+                 over the step from t = {t}): an input or a parameter beyond what the model's \
+                 arithmetic holds",
                 s.e, s.omega, s.t
             ));
         }

@@ -313,6 +313,34 @@ fn a_nan_input_is_an_error_naming_it_and_the_instance_resets() {
     }
 }
 
+/// A huge input on a rocking body (within the 1e100 m/s2 bound, past what
+/// the arithmetic holds) either overturns it or is refused naming the
+/// inputs; the state is kept and the instance resets (the fuzz driver's
+/// finding: agx = -3.64e31 m/s2 after a first step of 1 s).
+#[test]
+fn a_huge_input_on_a_rocking_body_overturns_it_or_is_refused_naming_it() {
+    for (r, x) in [(vr::AGX, -3.64e31), (vr::AGY, 3.64e63)] {
+        let h = started();
+        h.set_real_vr(vr::AGX, 2.0 * UPLIFT);
+        assert_eq!(h.do_step(0.0, 0.1), fmi2OK);
+        let before = fmi2_outputs(&h);
+        h.set_real_vr(vr::AGX, 0.0);
+        h.set_real_vr(r, x);
+        match h.do_step(0.1, 1e-3) {
+            s if s == fmi2Discard => assert!(h.boolean("overturned")),
+            s => {
+                assert_eq!(s, fmi2Error);
+                assert!(h.logged(&format!("agx = {}", if r == vr::AGX { x } else { 0.0 })));
+                assert!(h.logged("agy = "), "{:?}", h.errors());
+                assert_eq!(h.get_reals_vr(&[vr::THETA]).1[0].to_bits(), before[0]);
+            }
+        }
+        h.check("fmi2Reset", h.reset());
+        h.init_with(None);
+        fmi2_run(&h, 0, 10);
+    }
+}
+
 /// Past maxSteps a step returns fmi2Discard at the time reached, the state
 /// consistent there: going on with smaller steps from it works.
 #[test]
