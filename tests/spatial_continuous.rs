@@ -434,3 +434,41 @@ fn advance_to_event_stops_at_each_event_and_continues_the_run() {
         assert!(worst <= 1e-12, "{name}: {worst:e}");
     }
 }
+
+/// A host that locates the uplift indicator's zero to the last float and
+/// enters event mode there (z <= 0, FMI's event) lifts the body at once,
+/// whatever round-off says of the tilting moment at the threshold: ramps
+/// `ag = k t` along several azimuths, with and without `av`.
+#[test]
+fn the_uplift_indicators_located_zero_lifts_the_body() {
+    let body = Spatial::new(&drum(Restitution::Housner, false), None, RTOL).unwrap();
+    let mut late = Vec::new();
+    for (i, k) in [6.54, 1.0, 13.3, 0.37].into_iter().enumerate() {
+        for j in 0..12 {
+            let psi = 0.53 * j as f64;
+            let av = if i % 2 == 0 { 0.0 } else { 1.7 };
+            let ag = |t: f64| [k * t * psi.cos(), k * t * psi.sin()];
+            let rest = SpatialState::at_rest();
+            let z = |t: f64| body.event_indicators(&SpatialState { t, ..rest }, ag(t), av)[2];
+            // bisection to the first float at which the indicator is <= 0
+            let (mut lo, mut hi) = (0.0, 100.0);
+            assert!(z(lo) > 0.0 && z(hi) <= 0.0);
+            loop {
+                let mid = 0.5 * (lo + hi);
+                if mid <= lo || mid >= hi {
+                    break;
+                }
+                if z(mid) <= 0.0 {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            let mut st = SpatialState { t: hi, ..rest };
+            if !body.event_update(&mut st, ag(hi), av).uplift {
+                late.push((k, psi, av, hi));
+            }
+        }
+    }
+    assert!(late.is_empty(), "not lifted at the located zero: {late:?}");
+}

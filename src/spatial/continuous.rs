@@ -20,7 +20,7 @@
 //! |---|---|---|
 //! | 0 | `e . pivot` while the body moves, else 1 | the tilt turned a right angle from the contact side: an impact if `|e x pivot| <= UPRIGHT` (it crossed upright in a plane), else the contact runs on round the rim (`pivot = e/|e|`) |
 //! | 1 | `sin²(alpha) - |e|²` | overturning: the run ends |
-//! | 2 | `(g + av) tan(alpha) - |ag|` at rest, else 1 | uplift: the body tips toward `-ag/|ag|` |
+//! | 2 | `(g + av) tan(alpha) (1 + 1e-12) - |ag|` at rest, else 1 | uplift: the body tips toward `-ag/|ag|` |
 //! | 3 | `(g + av)/g` | lift-off (`g + av <= 0`, docs/model.md §6.5): the run ends |
 //!
 //! After overturning or lift-off every indicator is 1 and the derivatives
@@ -42,6 +42,16 @@ pub const EVENT_INDICATORS: usize = 4;
 /// effect on the motion is below any tolerance (the rates at `|e| <=
 /// UPRIGHT` are the upright ones).
 const OFF_ZERO: f64 = 1e-300;
+
+/// How far past the uplift threshold, relative, indicator 2 reaches zero:
+/// at the threshold itself the tilting moment is zero to round-off, so an
+/// event update where a host located the zero exactly would find the body
+/// not yet tilting and leave it at rest, with the indicator then negative
+/// and no sign change to come. A relative `1e-12` puts the moment at some
+/// `1e4` times its round-off; uplift moves by `1e-12` of the threshold over
+/// the rate of `|ag|` (co-simulation lifts at the first float at which the
+/// equation tilts the body, docs/model.md §10.4).
+const UPLIFT_MARGIN: f64 = 1e-12;
 
 /// What an event update did.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -118,7 +128,7 @@ impl Spatial {
         z[1] = b.sin_alpha * b.sin_alpha - (ex * ex + ey * ey);
         z[3] = (b.g + av) / b.g;
         if st.at_rest {
-            z[2] = (b.g + av) * (b.b / b.hg) - ag[0].hypot(ag[1]);
+            z[2] = (b.g + av) * (b.b / b.hg) * (1.0 + UPLIFT_MARGIN) - ag[0].hypot(ag[1]);
         } else {
             z[0] = ex * st.pivot[0] + ey * st.pivot[1];
         }
