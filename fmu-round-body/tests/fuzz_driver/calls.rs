@@ -537,9 +537,11 @@ impl Driver {
     }
 
     /// Whether the body is one of the known finding's absurd ones
-    /// ([`Driver::tolerate_known_overflow`]): mass, R0 or IO outside
-    /// 1e-30..1e30, or an inertia about the centre of mass (Ic, or the
-    /// axial one) beyond 1e-12..1e12 times m R0^2.
+    /// ([`Driver::tolerate_known_overflow`]): mass, R0, IO or g outside
+    /// 1e-30..1e30, an initial angular velocity of 1e15 rad/s or more
+    /// (g = 5e-324 m/s2 with omegaZ0 = 1e300 rad/s and av = 2 m/s2 gives
+    /// the non-finite state), or an inertia about the centre of mass (Ic,
+    /// or the axial one) beyond 1e-12..1e12 times m R0^2.
     pub(crate) fn extreme_body(&mut self, k: u8) -> bool {
         let Some(x) = self.get_real(k, &[vr::MASS, vr::R0, vr::IO]) else {
             return true;
@@ -561,7 +563,10 @@ impl Driver {
             m * (r(vr::RO).powi(2) + ri * ri) / 2.0
         };
         let out = |x: f64, lo: f64, hi: f64| !(lo..=hi).contains(&x);
-        [m, r0, io].iter().any(|&x| out(x, 1e-30, 1e30))
+        let spin = [vr::OMEGA_X0, vr::OMEGA_Y0, vr::OMEGA_Z0]
+            .iter()
+            .any(|&q| r(q).abs() >= 1e15);
+        spin || [m, r0, io, r(vr::G)].iter().any(|&x| out(x, 1e-30, 1e30))
             || out((io - m_r0) / m_r0, 1e-12, 1e12)
             || out(axial / m_r0, 1e-12, 1e12)
     }
