@@ -3,7 +3,7 @@
 # (default 600 s, target c_api). Not part of tools/test.sh; the same
 # interpreters run as proptests in `cargo test`.
 #
-# Targets: c_api (FMI 2.0, fmu-rocking/tests/fuzz_driver, proptests in
+# Targets: c_api (FMI 2.0, fmi2-fuzz-driver with fmu-rocking/tests/fuzz_driver, proptests in
 # fmu-rocking/tests/c_api_fuzz.rs) and c_api3 (FMI 3.0: co-simulation with
 # and without event mode and early return, Model Exchange, der(ag)/der(av),
 # bad sizes, NULL arrays, unknown value references, non-finite values;
@@ -12,14 +12,14 @@
 # RoundBody.fmu, round_body (FMI 2.0 on up to three instances, co-simulation
 # and Model Exchange: agx, agy, av and their derivatives incl. non-finite and
 # huge values, steps of every size, FMU states incl. corrupted buffers,
-# resets; fmu-round-body/tests/fuzz_driver, proptests and a replay of the
+# resets; fmi2-fuzz-driver with fmu-round-body/tests/fuzz_driver, proptests and a replay of the
 # seeds in fmu-round-body/tests/fmi2_fuzz.rs) and round_body3 (FMI 3.0:
 # co-simulation with and without event mode and early return, Model
 # Exchange; fmu-round-body/tests/fmi3_driver, fmi3_fuzz.rs):
 # `tools/fuzz.sh 600 round_body`, `tools/fuzz.sh 600 round_body3`.
 #
 # The target, fuzz/fuzz_targets/c_api.rs, decodes its input into up to 160
-# FMI calls on up to four instances (fmu-rocking/tests/fuzz_driver/mod.rs)
+# FMI calls on up to four instances (fmi2-fuzz-driver/src/ops.rs)
 # and checks every status, value, logger message and FMU state; any panic
 # (even one the FMU catches), AddressSanitizer or LeakSanitizer report is a
 # finding, written to fuzz/artifacts/TARGET/ (the same for the others).

@@ -1,7 +1,7 @@
 //! Random sequences of FMI 2.0 calls through the exported C functions, with
 //! the same interpreter as the libFuzzer target `fuzz/fuzz_targets/c_api.rs`
-//! (`tests/fuzz_driver/mod.rs`: the operations, the invariants it checks
-//! after every call, and why).
+//! (`fmi2-fuzz-driver`: the operations, the invariants it checks after every
+//! call, and why; `tests/fuzz_driver/mod.rs`: what is RockingBlock's).
 //!
 //! - `random_call_sequences`: arbitrary bytes decoded into up to 160
 //!   operations on up to 4 instances (the fuzz target's input format);
@@ -365,7 +365,7 @@ fn regression_stepping_a_weightless_body_returns() {
                 ops.push(Op::GetAll(0));
             }
             let mut d = Driver::new();
-            d.skip_extreme_stiffness = false;
+            d.tolerate_known = false;
             for op in &ops {
                 d.apply(op);
             }
@@ -440,7 +440,7 @@ fn extreme_stiffness_stops_at_the_work_limit() {
     let (tx, rx) = std::sync::mpsc::channel();
     std::thread::spawn(move || {
         let mut d = Driver::new();
-        d.skip_extreme_stiffness = false;
+        d.tolerate_known = false;
         for op in [
             plain_instance(0),
             Op::SetReal(0, vec![vr::KN], vec![1e18]),
@@ -539,7 +539,7 @@ fn model_exchange_sequence() {
     let me = |which: u8, n: usize| Op::Me {
         slot: 0,
         which,
-        x: [0.05, 0.0],
+        x: vec![0.05, 0.0],
         n,
     };
     let mut ops = vec![me_instance(0)];
@@ -549,4 +549,17 @@ fn model_exchange_sequence() {
     }
     let stats = run_bounded(ops);
     assert_eq!(stats.model_exchange_ok, 15, "{stats:?}");
+}
+
+/// Writes, for every committed seed of `fuzz/corpus/c_api`, its decoded
+/// operations and the driver's final statistics to the file `DUMP_OUT`
+/// ([`fmi2_fuzz_driver::dump_corpus`]): `DUMP_OUT=/tmp/a cargo test
+/// --profile ci -p PACKAGE --test TEST -- --ignored dump_corpus`.
+#[test]
+#[ignore = "by hand, with DUMP_OUT"]
+fn dump_corpus() {
+    let out = std::env::var("DUMP_OUT").expect("DUMP_OUT=path of the dump");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../fuzz/corpus/c_api");
+    std::fs::write(&out, fmi2_fuzz_driver::dump_corpus::<RockingBlock>(&dir))
+        .expect("write DUMP_OUT");
 }

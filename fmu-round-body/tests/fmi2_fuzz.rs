@@ -1,7 +1,8 @@
 //! Random sequences of FMI 2.0 calls on RoundBody.fmu through the exported C
 //! functions, with the same interpreter as the libFuzzer target
-//! `fuzz/fuzz_targets/round_body.rs` (`tests/fuzz_driver/mod.rs`: the
-//! operations, the checks after every call, and why).
+//! `fuzz/fuzz_targets/round_body.rs` (`fmi2-fuzz-driver`: the operations,
+//! the checks after every call, and why; `tests/fuzz_driver/mod.rs`: what is
+//! RoundBody's).
 //!
 //! - `random_call_sequences`: arbitrary bytes decoded into up to 160
 //!   operations on up to 3 instances (the fuzz target's input format);
@@ -510,7 +511,7 @@ fn model_exchange_sequence() {
     let me = |slot: u8, which: u8, n: usize| Op::Me {
         slot,
         which,
-        x: [0.05, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.0],
+        x: vec![0.05, 0.0, 0.0, 0.1, 0.0, 0.0, 0.0, 0.0],
         n,
     };
     let mut ops = vec![me_instance(0), Op::Init(0), plain_instance(1), Op::Init(1)];
@@ -530,7 +531,7 @@ fn model_exchange_sequence() {
 /// [`Driver::run`] without letting the known findings pass.
 fn run_strict(ops: &[Op]) -> Stats {
     let mut d = Driver::new();
-    d.tolerate_known_overflow = false;
+    d.tolerate_known = false;
     for op in ops {
         d.apply(op);
     }
@@ -619,4 +620,16 @@ fn finding_an_absurd_inertia_is_refused_or_steps() {
             "vr {r} = {x}: {stats:?}"
         );
     }
+}
+
+/// Writes, for every committed seed of `fuzz/corpus/round_body`, its decoded
+/// operations and the driver's final statistics to the file `DUMP_OUT`
+/// ([`fmi2_fuzz_driver::dump_corpus`]): `DUMP_OUT=/tmp/a cargo test
+/// --profile ci -p PACKAGE --test TEST -- --ignored dump_corpus`.
+#[test]
+#[ignore = "by hand, with DUMP_OUT"]
+fn dump_corpus() {
+    let out = std::env::var("DUMP_OUT").expect("DUMP_OUT=path of the dump");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../fuzz/corpus/round_body");
+    std::fs::write(&out, fmi2_fuzz_driver::dump_corpus::<RoundBody>(&dir)).expect("write DUMP_OUT");
 }

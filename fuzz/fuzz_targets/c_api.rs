@@ -1,7 +1,7 @@
 //! Random sequences of FMI 2.0 calls on up to four RockingBlock instances,
 //! through the exported C functions. The interpreter and its invariants are
-//! `fmu-rocking/tests/fuzz_driver/mod.rs`, shared with the proptest suite
-//! `fmu-rocking/tests/c_api_fuzz.rs`. Any panic (even one the FMU catches),
+//! `fmi2-fuzz-driver`, RockingBlock's part `fmu-rocking/tests/fuzz_driver/mod.rs`,
+//! shared with the proptest suite `fmu-rocking/tests/c_api_fuzz.rs`. Any panic (even one the FMU catches),
 //! a failed invariant, an out-of-bounds access or a leak (AddressSanitizer,
 //! LeakSanitizer) is a finding.
 

@@ -1,7 +1,7 @@
 //! Random sequences of FMI 2.0 calls on up to three RoundBody instances,
 //! through the exported C functions. The interpreter and its checks are
-//! `fmu-round-body/tests/fuzz_driver/mod.rs`, shared with the proptest suite
-//! `fmu-round-body/tests/fmi2_fuzz.rs`. Any panic (even one the FMU
+//! `fmi2-fuzz-driver`, RoundBody's part `fmu-round-body/tests/fuzz_driver/mod.rs`,
+//! shared with the proptest suite `fmu-round-body/tests/fmi2_fuzz.rs`. Any panic (even one the FMU
 //! catches), a failed check, an out-of-bounds access or a leak
 //! (AddressSanitizer, LeakSanitizer) is a finding.
 

@@ -1,105 +1,215 @@
-//! The interpreter of random FMI 2.0 call sequences, shared by the proptest
-//! suite (`tests/c_api_fuzz.rs`) and the libFuzzer target
-//! (`fuzz/fuzz_targets/c_api.rs`, which includes this file with `#[path]`).
+//! RockingBlock.fmu for the FMI 2.0 fuzz driver (`fmi2-fuzz-driver`,
+//! shared with RoundBody): its C API, its inputs `ag`, `av`, its parameters
+//! and what they must make, its outputs' ranges, and the steps the driver
+//! skips. Used by the proptest suite (`tests/c_api_fuzz.rs`) and the
+//! libFuzzer target (`fuzz/fuzz_targets/c_api.rs`, which includes this file
+//! with `#[path]`).
 //!
-//! [`decode`] turns arbitrary bytes into a list of [`Op`]s on up to
-//! [`SLOTS`] instances; [`Driver::apply`] performs each one through the
-//! exported `fmi2*` functions, the way a C host would, and checks after every
-//! call:
-//!
-//! - the status is one of `fmi2OK`, `fmi2Warning`, `fmi2Discard`, `fmi2Error`
-//!   (never `fmi2Fatal`, which only a panic in the layer gives, and never
-//!   `fmi2Pending`: this FMU has no asynchronous steps);
-//! - no panic happened inside the FMU, not even a caught one (a panic hook
-//!   counts them per thread);
-//! - a call outside the states where FMI 2.0 allows it returns `fmi2Error`
-//!   (the driver follows the state machine while it knows the state);
-//! - `fmi2ExitInitializationMode` succeeds exactly when the parameters the
-//!   driver set build a valid model (`rocking::Params::build`, fed from the
-//!   driver's own copy of the values) and fails with `fmi2Error` otherwise;
-//! - after `fmi2OK` from a getter every value was written; Real outputs,
-//!   their derivatives, locals and calculated parameters are finite
-//!   (`thetaC` without crushing and `frictionDemand` at `Fz <= 0` stand at
-//!   1e60), `regime` is 0..=4, `impacts` >= 0, `zeroCrossings` >= 0
-//!   and not below `impacts` (every impact is a crossing) when both are
-//!   read in one call, Booleans are 0 or 1;
-//! - every non-OK status comes with a logger message of that status; every
-//!   message is non-empty UTF-8, names the instance, has a declared category
-//!   and no `%` conversion left; OK messages only with debug logging on;
-//! - FMU states: a state taken from this instance restores (`fmi2OK`) and
-//!   gives back the same outputs bit for bit; serialization of a live state
-//!   succeeds with the size the FMU gave; an unmodified buffer deserializes;
-//!   serializing the deserialized state gives the same bytes; a shorter
-//!   buffer is refused.
-//!
-//! Only what the standard allows a caller to do is done: pointers passed
-//! back are the ones the FMU gave out (instances until they are freed, FMU
-//! states until they are freed or their instance is), NULL only where the
-//! standard allows it (and NULL instance names, which the brief asks for), and
-//! arrays always have the length passed.
+//! Beyond the shared checks ([`fmi2_fuzz_driver`]):
+//! `fmi2ExitInitializationMode` succeeds exactly when the parameters the
+//! driver set build a valid model (`rocking::Params::build`, fed from the
+//! driver's own copy of the values, `maxSteps >= 1`, `mu >= 0`); Real
+//! outputs, their derivatives, locals and calculated parameters are finite
+//! (`thetaC` without crushing and `frictionDemand` at `Fz <= 0` stand at
+//! 1e60), `regime` is 0..=5, `impacts` >= 0, `zeroCrossings` >= 0 and not
+//! below `impacts` (every impact is a crossing) when both are read in one
+//! call.
 
-#![allow(dead_code, non_upper_case_globals)]
+#![allow(dead_code)]
 
-use std::cell::Cell;
-use std::ffi::{c_int, CStr, CString};
-use std::ptr;
-use std::sync::Once;
+use std::ffi::c_int;
 
-use fmi2_export::bytes;
-use fmi2_export::model_description::{BaseType, Causality, Type, Variable};
-use fmi2_export::test_host::{Keep, Log, Message};
-use fmi2_export::types::*;
-use fmu_rocking as fmu;
+use fmi2_export::model_description::{LogCategory, Variable};
 use fmu_rocking::description::{enums, vr, LOG_CATEGORIES, VARIABLES};
 use rocking::model::{LawKind, MassKind, ShapeKind};
 use rocking::{Formulation, Params, Restitution, RestraintKind};
 
-mod calls;
-mod driver;
-mod messages;
-mod ops;
-mod states;
+pub use fmi2_fuzz_driver::*;
 
-pub use driver::*;
-pub(crate) use messages::*;
-pub use ops::*;
+/// The FMU under test.
+pub struct RockingBlock;
+
+/// The driver on RockingBlock.fmu.
+pub type Driver = fmi2_fuzz_driver::Driver<RockingBlock>;
 
 /// Instances the driver juggles at once.
 pub const SLOTS: usize = 4;
-/// Operations decoded from one input at most.
-pub const MAX_OPS: usize = 160;
-/// Serialized buffers kept for later deserialization.
-pub(crate) const POOL: usize = 6;
-/// FMU states kept per instance (the oldest is freed beyond).
-pub(crate) const MAX_STATES: usize = 6;
-/// Written into output arrays before a getter: still there after fmi2OK
-/// means a value was not written.
-pub(crate) const SENTINEL: u64 = 0x7ff8_dead_beef_f00d;
 
-// ----- panic counting ------------------------------------------------------
+/// Event indicators the FMU declares.
+const NZ: usize = fmu_rocking::description::EVENT_INDICATORS as usize;
 
-thread_local! {
-    static PANICS: Cell<u64> = const { Cell::new(0) };
-}
+/// thetaJo / thetaOv below which a step is skipped
+/// ([`RockingBlock::skip_step`]).
+pub const EXTREME_STIFFNESS: f64 = 1e-8;
 
-/// Counts every panic of this thread (caught or not), then calls the hook
-/// installed before (libFuzzer's aborts; the default one prints).
-pub fn install_panic_counter() {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        let previous = std::panic::take_hook();
-        std::panic::set_hook(Box::new(move |info| {
-            PANICS.with(|p| p.set(p.get() + 1));
-            previous(info);
-        }));
-    });
-}
+/// Finite communication steps longer than this are not taken (counted in
+/// [`Stats::steps_skipped`]): the FMU integrates whatever it is asked to, and
+/// a body rocking or held by ag below uplift for 1e300 s is 1e300 s of work
+/// (there is no work limit per step: reported, not what this driver looks
+/// for). Non-finite, zero and negative steps are always passed.
+pub const MAX_STEP: f64 = 10.0;
 
-pub(crate) fn panics() -> u64 {
-    PANICS.with(|p| p.get())
+/// Decodes `data` into operations on RockingBlock instances.
+pub fn decode(data: &[u8]) -> Vec<Op> {
+    fmi2_fuzz_driver::decode::<RockingBlock>(data)
 }
 
 /// Decodes `data` and runs it: the fuzz target's and the proptests' entry.
 pub fn run_bytes(data: &[u8]) -> Stats {
-    Driver::run(&decode(data))
+    fmi2_fuzz_driver::run_bytes::<RockingBlock>(data)
+}
+
+impl Model for RockingBlock {
+    const API: Fmi2Api = fmi2_fuzz_driver::fmi2_api!(fmu_rocking);
+    const GUID: &'static str = fmu_rocking::GUID;
+    const VARIABLES: &'static [Variable] = VARIABLES;
+    const LOG_CATEGORIES: &'static [LogCategory] = LOG_CATEGORIES;
+    const SLOTS: usize = SLOTS;
+    const MODEL_EXCHANGE: bool = true;
+    const STATES: usize = 2;
+    const EVENT_INDICATORS: usize = NZ;
+    const ME_LENGTH: usize = 2;
+    const INPUTS: &'static [u32] = &[vr::AG, vr::AV];
+    type Params = Params;
+
+    /// The physics parameters, mapped independently of the FMU's binding.
+    fn params(stored: &Stored) -> Option<Params> {
+        use enums::*;
+        let r = |k: u32| stored.real[k as usize];
+        let i = |k: u32| stored.int[k as usize];
+        Some(Params {
+            shape: match i(vr::SHAPE) {
+                SOLID_RECTANGLE => ShapeKind::SolidRectangle,
+                HOLLOW_RECTANGLE => ShapeKind::HollowRectangle,
+                SOLID_CIRCLE => ShapeKind::SolidCircle,
+                HOLLOW_CIRCLE => ShapeKind::HollowCircle,
+                _ => return None,
+            },
+            b: r(vr::B),
+            l: r(vr::L),
+            t: r(vr::T),
+            ro: r(vr::RO),
+            ri: r(vr::RI),
+            mass_model: match i(vr::MASS_MODEL) {
+                PRISM => MassKind::Prism,
+                LUMPED => MassKind::Lumped,
+                _ => return None,
+            },
+            h: r(vr::H),
+            rho: r(vr::RHO),
+            w: r(vr::W),
+            hg: r(vr::HG),
+            ic: r(vr::IC),
+            interface: match i(vr::INTERFACE) {
+                RIGID => LawKind::Rigid,
+                ELASTIC => LawKind::Elastic,
+                ELASTO_PLASTIC => LawKind::ElastoPlastic,
+                _ => return None,
+            },
+            kn: r(vr::KN),
+            fm: r(vr::FM),
+            formulation: match i(vr::FORMULATION) {
+                COSTA => Formulation::Costa,
+                SHIFTING_PIVOT => Formulation::ShiftingPivot,
+                _ => return None,
+            },
+            restitution: match i(vr::RESTITUTION) {
+                HOUSNER => Restitution::Housner,
+                GIVEN => Restitution::Given,
+                _ => return None,
+            },
+            eta: r(vr::ETA),
+            g: r(vr::G),
+            theta0: r(vr::THETA),
+            omega0: r(vr::OMEGA),
+            restraint: match i(vr::RESTRAINT) {
+                NONE => RestraintKind::None,
+                ONE_SIDED => RestraintKind::OneSided,
+                _ => return None,
+            },
+            side: i(vr::SIDE),
+            e_restraint: r(vr::E_RESTRAINT),
+        })
+    }
+
+    fn valid(stored: &Stored) -> bool {
+        // maxSteps >= 1, mu >= 0 and not NaN (docs/model.md §5)
+        let mu = stored.real[vr::MU as usize];
+        stored.int[vr::MAX_STEPS as usize] >= 1
+            && mu >= 0.0
+            && Self::params(stored).is_some_and(|p| p.build().is_ok())
+    }
+
+    fn set_input(b: &mut Bytes, s: u8) -> Op {
+        Op::SetReal(s, vec![vr::AG], vec![b.int() as f64 * 2.5])
+    }
+
+    fn set_input_derivative(b: &mut Bytes, s: u8) -> Op {
+        let input = if b.chance(1) { vr::AV } else { vr::AG };
+        Op::SetInputDerivatives(s, vec![input], vec![1], vec![b.int() as f64 * 10.0])
+    }
+
+    fn integer_in_range(r: u32, x: c_int) -> Option<bool> {
+        match r {
+            vr::REGIME => Some((0..=5).contains(&x)),
+            vr::IMPACTS | vr::ZERO_CROSSINGS => Some(x >= 0),
+            _ => None,
+        }
+    }
+
+    fn check_integers(r: &[u32], out: &[c_int]) {
+        let of = |v: u32| r.iter().position(|&q| q == v).map(|i| out[i]);
+        if let (Some(i), Some(z)) = (of(vr::IMPACTS), of(vr::ZERO_CROSSINGS)) {
+            assert!(i <= z, "impacts = {i} > zeroCrossings = {z}");
+        }
+    }
+
+    /// Skips fmi2DoStep (with [`Driver::tolerate_known`]) for a flexible
+    /// interface with thetaJo < 1e-8 thetaOv (kn above about 1e14 Pa/m for
+    /// the default block, or a body of next to no weight), where the
+    /// integrator resolves the contact's time scale and a step can take
+    /// minutes to hours, and for a body whose weight, mass, R0 or IO is
+    /// outside 1e-30..1e30, where moments overflow and the step loop may
+    /// never end, and after restoring a state from a mutated buffer, whose
+    /// engine fields (step size, contact hint, stiff flag) can stall the
+    /// integrator (known, reported; not what this driver looks for); and
+    /// always a step longer than [`MAX_STEP`].
+    fn skip_step(d: &mut Driver, k: u8, h: f64, machine: Option<Machine>, forged: bool) -> bool {
+        let skip = h.is_finite() && h > MAX_STEP
+            || (d.tolerate_known && forged)
+            || (d.tolerate_known && machine == Some(Machine::StepComplete) && extreme(d, k));
+        if skip {
+            d.stats.steps_skipped += 1;
+        }
+        skip
+    }
+}
+
+/// A model out of the integrator's working range (see
+/// [`RockingBlock::skip_step`]), read from the FMU itself: a flexible
+/// interface far stiffer than the body's weight, or a body whose weight,
+/// mass, lever or inertia is beyond 1e-30..1e30 (W = 1.8e308 N on a rigid
+/// interface: the moments overflow and the step loop never ends).
+fn extreme(d: &mut Driver, k: u8) -> bool {
+    let mut law: c_int = 0;
+    let Some(fmi2_export::types::fmi2OK) = d.call(k, "fmi2GetInteger", GET, |c| unsafe {
+        fmu_rocking::fmi2GetInteger(c, &vr::INTERFACE, 1, &mut law)
+    }) else {
+        return false;
+    };
+    let Some(x) = d.get_real(
+        k,
+        &[
+            vr::THETA_JO,
+            vr::THETA_OV,
+            vr::WEIGHT,
+            vr::MASS,
+            vr::R0,
+            vr::IO,
+        ],
+    ) else {
+        return false;
+    };
+    let body = x[2..].iter().any(|&v| !(1e-30..=1e30).contains(&v));
+    body || (law != enums::RIGID && x[0] < EXTREME_STIFFNESS * x[1])
 }

@@ -1,15 +1,14 @@
 //! The driver's FMU-state calls: get, set, free, serialize, deserialize.
 
-use super::*;
-use Machine as M;
+use crate::*;
 
-impl Driver {
+impl<M: Model> Driver<M> {
     /// The state `r` names, if it exists: (pointer, owner slot, index).
     pub(crate) fn lookup_state(&self, r: StateRef) -> Option<(fmi2FMUstate, usize, usize)> {
         match r {
             StateRef::Null => Some((ptr::null_mut(), usize::MAX, usize::MAX)),
             StateRef::Of { slot, k } => {
-                let owner = slot as usize % SLOTS;
+                let owner = slot as usize % M::SLOTS;
                 let s = self.slots[owner].as_ref()?;
                 if s.states.is_empty() {
                     return None;
@@ -24,9 +23,9 @@ impl Driver {
     /// owner slot, index) and whether slot `k` owns it; `None` if the slot is
     /// empty or the state does not exist.
     fn state_for(&self, k: u8, r: StateRef) -> Option<(fmi2FMUstate, usize, usize, bool)> {
-        self.slots[k as usize % SLOTS].as_ref()?;
+        self.slots[k as usize % M::SLOTS].as_ref()?;
         let (p, owner, i) = self.lookup_state(r)?;
-        Some((p, owner, i, owner == k as usize % SLOTS))
+        Some((p, owner, i, owner == k as usize % M::SLOTS))
     }
 
     /// What the driver knows of slot `k` now, with its outputs read if that
@@ -37,9 +36,9 @@ impl Driver {
         };
         let outputs = if matches!(
             s.machine,
-            Some(M::StepComplete | M::StepFailed | M::Terminated)
+            Some(Machine::StepComplete | Machine::StepFailed | Machine::Terminated)
         ) {
-            self.get_real(k, &real_outputs())
+            self.get_real(k, &real_outputs::<M>())
                 .map(|v| v.iter().map(|x| x.to_bits()).collect())
         } else {
             None
@@ -68,7 +67,7 @@ impl Driver {
         };
         let known = self.know(k);
         let Some(st) = self.call(k, "fmi2GetFMUstate", ANY, |c| unsafe {
-            fmu::fmi2GetFMUstate(c, &mut p)
+            (M::API.fmi2GetFMUstate)(c, &mut p)
         }) else {
             return;
         };
@@ -98,7 +97,7 @@ impl Driver {
             (s.genuine, s.known.clone())
         });
         let Some(st) = self.call(k, "fmi2SetFMUstate", ANY, |c| unsafe {
-            fmu::fmi2SetFMUstate(c, p)
+            (M::API.fmi2SetFMUstate)(c, p)
         }) else {
             return;
         };
@@ -123,7 +122,7 @@ impl Driver {
         s.derivatives = None;
         if let Some(before) = known.outputs {
             let now = self
-                .get_real(k, &real_outputs())
+                .get_real(k, &real_outputs::<M>())
                 .expect("outputs after restoring a state where they were read");
             let now: Vec<u64> = now.iter().map(|x| x.to_bits()).collect();
             assert_eq!(
@@ -140,7 +139,7 @@ impl Driver {
         };
         let mut q = p;
         let Some(st) = self.call(k, "fmi2FreeFMUstate", ANY, |c| unsafe {
-            fmu::fmi2FreeFMUstate(c, &mut q)
+            (M::API.fmi2FreeFMUstate)(c, &mut q)
         }) else {
             return;
         };
@@ -166,7 +165,7 @@ impl Driver {
         let own = own && !p.is_null();
         let mut size: usize = usize::MAX;
         let Some(st) = self.call(k, "fmi2SerializedFMUstateSize", ANY, |c| unsafe {
-            fmu::fmi2SerializedFMUstateSize(c, p, &mut size)
+            (M::API.fmi2SerializedFMUstateSize)(c, p, &mut size)
         }) else {
             return;
         };
@@ -186,7 +185,7 @@ impl Driver {
         };
         let mut buf = vec![0xa5u8; len];
         let Some(st) = self.call(k, "fmi2SerializeFMUstate", ANY, |c| unsafe {
-            fmu::fmi2SerializeFMUstate(c, p, buf.as_mut_ptr() as *mut fmi2Byte, len)
+            (M::API.fmi2SerializeFMUstate)(c, p, buf.as_mut_ptr() as *mut fmi2Byte, len)
         }) else {
             return;
         };
@@ -228,8 +227,8 @@ impl Driver {
         // instance of the other (fmu_state.rs)
         let target_me = self.slot(k).is_some_and(|s| s.me);
         let fits = known.as_ref().is_some_and(|kn| match kn.machine {
-            Some(M::EventMode | M::ContinuousTime) => target_me,
-            Some(M::StepComplete | M::StepFailed) => !target_me,
+            Some(Machine::EventMode | Machine::ContinuousTime) => target_me,
+            Some(Machine::StepComplete | Machine::StepFailed) => !target_me,
             Some(_) => true,
             None => source_me == target_me,
         });
@@ -248,8 +247,7 @@ impl Driver {
             }
             Mutation::Append(extra) => bytes.extend_from_slice(extra),
             Mutation::Reseal { edits, cut, extend } => {
-                let mut payload = match trim(&bytes).and_then(|t| bytes::unseal(fmu::GUID, t).ok())
-                {
+                let mut payload = match trim(&bytes).and_then(|t| bytes::unseal(M::GUID, t).ok()) {
                     Some(p) => p.to_vec(),
                     None => bytes.clone(),
                 };
@@ -262,12 +260,17 @@ impl Driver {
                 let keep = payload.len().saturating_sub(*cut as usize);
                 payload.truncate(keep);
                 payload.extend_from_slice(extend);
-                bytes = bytes::seal(fmu::GUID, &payload);
+                bytes = bytes::seal(M::GUID, &payload);
             }
         }
         let mut p: fmi2FMUstate = ptr::null_mut();
         let Some(st) = self.call(k, "fmi2DeSerializeFMUstate", ANY, |c| unsafe {
-            fmu::fmi2DeSerializeFMUstate(c, bytes.as_ptr() as *const fmi2Byte, bytes.len(), &mut p)
+            (M::API.fmi2DeSerializeFMUstate)(
+                c,
+                bytes.as_ptr() as *const fmi2Byte,
+                bytes.len(),
+                &mut p,
+            )
         }) else {
             return;
         };
@@ -295,7 +298,7 @@ impl Driver {
         // Serializing it again gives the same bytes (up to zero padding).
         let mut size = 0usize;
         let st = self.call(k, "fmi2SerializedFMUstateSize", ANY, |c| unsafe {
-            fmu::fmi2SerializedFMUstateSize(c, p, &mut size)
+            (M::API.fmi2SerializedFMUstateSize)(c, p, &mut size)
         });
         assert_eq!(
             st,
@@ -304,7 +307,7 @@ impl Driver {
         );
         let mut again = vec![0u8; size];
         let st = self.call(k, "fmi2SerializeFMUstate", ANY, |c| unsafe {
-            fmu::fmi2SerializeFMUstate(c, p, again.as_mut_ptr() as *mut fmi2Byte, size)
+            (M::API.fmi2SerializeFMUstate)(c, p, again.as_mut_ptr() as *mut fmi2Byte, size)
         });
         assert_eq!(
             st,

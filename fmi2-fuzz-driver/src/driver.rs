@@ -1,7 +1,7 @@
 //! The driver: what it knows of each instance, and `apply`, which performs
 //! one operation.
 
-use super::*;
+use crate::*;
 
 /// The FMI 2.0 co-simulation states the driver follows (fatal never occurs:
 /// it is checked).
@@ -18,75 +18,81 @@ pub enum Machine {
     ContinuousTime,
 }
 
-use Machine as M;
-
-pub(crate) const ANY: &[M] = &[
-    M::Instantiated,
-    M::Init,
-    M::StepComplete,
-    M::StepFailed,
-    M::Terminated,
-    M::Error,
-    M::EventMode,
-    M::ContinuousTime,
+pub const ANY: &[Machine] = &[
+    Machine::Instantiated,
+    Machine::Init,
+    Machine::StepComplete,
+    Machine::StepFailed,
+    Machine::Terminated,
+    Machine::Error,
+    Machine::EventMode,
+    Machine::ContinuousTime,
 ];
-pub(crate) const NOWHERE: &[M] = &[];
-pub(crate) const INSTANTIATED: &[M] = &[M::Instantiated];
-pub(crate) const INIT: &[M] = &[M::Init];
-pub(crate) const TERMINATE: &[M] = &[
-    M::StepComplete,
-    M::StepFailed,
-    M::EventMode,
-    M::ContinuousTime,
+pub const NOWHERE: &[Machine] = &[];
+pub const INSTANTIATED: &[Machine] = &[Machine::Instantiated];
+pub const INIT: &[Machine] = &[Machine::Init];
+pub const TERMINATE: &[Machine] = &[
+    Machine::StepComplete,
+    Machine::StepFailed,
+    Machine::EventMode,
+    Machine::ContinuousTime,
 ];
-pub(crate) const GET: &[M] = &[
-    M::Init,
-    M::StepComplete,
-    M::StepFailed,
-    M::Terminated,
-    M::Error,
-    M::EventMode,
-    M::ContinuousTime,
+pub const GET: &[Machine] = &[
+    Machine::Init,
+    Machine::StepComplete,
+    Machine::StepFailed,
+    Machine::Terminated,
+    Machine::Error,
+    Machine::EventMode,
+    Machine::ContinuousTime,
 ];
-pub(crate) const SET: &[M] = &[
-    M::Instantiated,
-    M::Init,
-    M::StepComplete,
-    M::EventMode,
-    M::ContinuousTime,
+pub const SET: &[Machine] = &[
+    Machine::Instantiated,
+    Machine::Init,
+    Machine::StepComplete,
+    Machine::EventMode,
+    Machine::ContinuousTime,
 ];
 // Model Exchange (FMI 2.0 §3.2.3)
-pub(crate) const ME_SET_TIME: &[M] = &[M::EventMode, M::ContinuousTime];
-pub(crate) const ME_CONTINUOUS: &[M] = &[M::ContinuousTime];
-pub(crate) const ME_EVENT: &[M] = &[M::EventMode];
-pub(crate) const ME_EVALUATE: &[M] = &[
-    M::Init,
-    M::EventMode,
-    M::ContinuousTime,
-    M::Terminated,
-    M::Error,
+pub const ME_SET_TIME: &[Machine] = &[Machine::EventMode, Machine::ContinuousTime];
+pub const ME_CONTINUOUS: &[Machine] = &[Machine::ContinuousTime];
+pub const ME_EVENT: &[Machine] = &[Machine::EventMode];
+pub const ME_EVALUATE: &[Machine] = &[
+    Machine::Init,
+    Machine::EventMode,
+    Machine::ContinuousTime,
+    Machine::Terminated,
+    Machine::Error,
 ];
-pub(crate) const OUTPUT_DERIVATIVES: &[M] =
-    &[M::StepComplete, M::StepFailed, M::Terminated, M::Error];
-pub(crate) const DO_STEP: &[M] = &[M::StepComplete];
-pub(crate) const STATUS: &[M] = &[M::StepComplete, M::StepFailed, M::Terminated];
+pub const OUTPUT_DERIVATIVES: &[Machine] = &[
+    Machine::StepComplete,
+    Machine::StepFailed,
+    Machine::Terminated,
+    Machine::Error,
+];
+pub const DO_STEP: &[Machine] = &[Machine::StepComplete];
+pub const STATUS: &[Machine] = &[
+    Machine::StepComplete,
+    Machine::StepFailed,
+    Machine::Terminated,
+];
 
 /// The driver's copy of the stored parameters and start values (by value
 /// reference; Reals and Integers), or unknown.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Stored {
-    pub(crate) real: Vec<f64>,
-    pub(crate) int: Vec<i32>,
+    pub real: Vec<f64>,
+    pub int: Vec<i32>,
 }
 
 impl Stored {
-    pub(crate) fn start() -> Stored {
-        let n = VARIABLES.iter().map(|v| v.vr).max().unwrap_or(0) as usize + 1;
+    pub fn start<M: Model>() -> Stored {
+        let n = M::VARIABLES.iter().map(|v| v.vr).max().unwrap_or(0) as usize + 1;
         let mut s = Stored {
             real: vec![0.0; n],
             int: vec![0; n],
         };
-        for v in VARIABLES {
+        for v in M::VARIABLES {
             match v.ty {
                 Type::Real { start, .. } => s.real[v.vr as usize] = start.unwrap_or(0.0),
                 Type::Integer { start } | Type::Enumeration { start, .. } => {
@@ -96,74 +102,6 @@ impl Stored {
             }
         }
         s
-    }
-
-    /// The physics parameters, mapped independently of the FMU's binding.
-    pub fn params(&self) -> Option<Params> {
-        use enums::*;
-        let r = |k: u32| self.real[k as usize];
-        let i = |k: u32| self.int[k as usize];
-        Some(Params {
-            shape: match i(vr::SHAPE) {
-                SOLID_RECTANGLE => ShapeKind::SolidRectangle,
-                HOLLOW_RECTANGLE => ShapeKind::HollowRectangle,
-                SOLID_CIRCLE => ShapeKind::SolidCircle,
-                HOLLOW_CIRCLE => ShapeKind::HollowCircle,
-                _ => return None,
-            },
-            b: r(vr::B),
-            l: r(vr::L),
-            t: r(vr::T),
-            ro: r(vr::RO),
-            ri: r(vr::RI),
-            mass_model: match i(vr::MASS_MODEL) {
-                PRISM => MassKind::Prism,
-                LUMPED => MassKind::Lumped,
-                _ => return None,
-            },
-            h: r(vr::H),
-            rho: r(vr::RHO),
-            w: r(vr::W),
-            hg: r(vr::HG),
-            ic: r(vr::IC),
-            interface: match i(vr::INTERFACE) {
-                RIGID => LawKind::Rigid,
-                ELASTIC => LawKind::Elastic,
-                ELASTO_PLASTIC => LawKind::ElastoPlastic,
-                _ => return None,
-            },
-            kn: r(vr::KN),
-            fm: r(vr::FM),
-            formulation: match i(vr::FORMULATION) {
-                COSTA => Formulation::Costa,
-                SHIFTING_PIVOT => Formulation::ShiftingPivot,
-                _ => return None,
-            },
-            restitution: match i(vr::RESTITUTION) {
-                HOUSNER => Restitution::Housner,
-                GIVEN => Restitution::Given,
-                _ => return None,
-            },
-            eta: r(vr::ETA),
-            g: r(vr::G),
-            theta0: r(vr::THETA),
-            omega0: r(vr::OMEGA),
-            restraint: match i(vr::RESTRAINT) {
-                NONE => RestraintKind::None,
-                ONE_SIDED => RestraintKind::OneSided,
-                _ => return None,
-            },
-            side: i(vr::SIDE),
-            e_restraint: r(vr::E_RESTRAINT),
-        })
-    }
-
-    pub(crate) fn valid(&self) -> bool {
-        // maxSteps >= 1, mu >= 0 and not NaN (docs/model.md §5)
-        let mu = self.real[vr::MU as usize];
-        self.int[vr::MAX_STEPS as usize] >= 1
-            && mu >= 0.0
-            && self.params().is_some_and(|p| p.build().is_ok())
     }
 }
 
@@ -198,6 +136,8 @@ pub(crate) struct Slot {
     pub(crate) c: fmi2Component,
     /// What the logger recorded (the callbacks point at it).
     pub(crate) log: Box<Log>,
+    /// Kept alive: the FMU holds a pointer to them.
+    #[allow(dead_code)]
     pub(crate) callbacks: Box<fmi2CallbackFunctions>,
     pub(crate) logger: bool,
     /// The instance name the FMU must pass back to the logger.
@@ -214,6 +154,13 @@ pub(crate) struct Slot {
     pub(crate) states: Vec<FmuState>,
     /// Instantiated as fmi2ModelExchange.
     pub(crate) me: bool,
+    /// The logger keeps every message (else it counts them).
+    pub(crate) inspect: bool,
+    /// The messages of the last call (when `inspect`).
+    pub(crate) recent: Vec<Message>,
+    /// The derivatives of [`Model::INPUTS`] as the driver set them, or
+    /// unknown (after restoring an FMU state).
+    pub(crate) derivatives: Option<Vec<f64>>,
 }
 
 pub(crate) struct Blob {
@@ -232,7 +179,14 @@ pub struct Stats {
     pub instantiated: u64,
     pub steps_ok: u64,
     pub steps_discard: u64,
+    /// Steps the model let the driver skip ([`Model::skip_step`]).
     pub steps_skipped: u64,
+    /// Discarded steps that ended the run (overturning, liftOff).
+    pub steps_terminated: u64,
+    /// Steps refused with fmi2Error from a state that allows them.
+    pub steps_refused: u64,
+    /// Steps refused with a known finding ([`Driver::tolerate_known`]).
+    pub known_overflow: u64,
     pub exit_init_ok: u64,
     pub exit_init_error: u64,
     pub restores_checked: u64,
@@ -242,34 +196,19 @@ pub struct Stats {
     pub by_status: [u64; 5],
 }
 
-pub struct Driver {
+pub struct Driver<M: Model> {
     pub(crate) slots: Vec<Option<Slot>>,
     pub(crate) pool: Vec<Blob>,
     pub stats: Stats,
-    /// Skip fmi2DoStep for a flexible interface with thetaJo < 1e-8 thetaOv
-    /// (kn above about 1e14 Pa/m for the default block, or a body of next
-    /// to no weight), where the integrator resolves the contact's time
-    /// scale and a step can take minutes to hours, and for a body whose
-    /// weight, mass, R0 or IO is outside 1e-30..1e30, where moments overflow
-    /// and the step loop may never end, and after restoring a state from a
-    /// mutated buffer, whose engine fields (step size, contact hint, stiff
-    /// flag) can stall the integrator (known, reported; not what this
-    /// driver looks for).
-    pub skip_extreme_stiffness: bool,
+    /// Let pass what the model documents as known findings
+    /// ([`Model::skip_step`], [`Model::known_finding`]), so that the fuzzer
+    /// looks for other faults.
+    pub tolerate_known: bool,
+    model: std::marker::PhantomData<M>,
 }
 
-/// thetaJo / thetaOv below which [`Driver::skip_extreme_stiffness`] applies.
-pub const EXTREME_STIFFNESS: f64 = 1e-8;
-
-/// Finite communication steps longer than this are not taken (counted in
-/// [`Stats::steps_skipped`]): the FMU integrates whatever it is asked to, and
-/// a body rocking or held by ag below uplift for 1e300 s is 1e300 s of work
-/// (there is no work limit per step: reported, not what this driver looks
-/// for). Non-finite, zero and negative steps are always passed.
-pub const MAX_STEP: f64 = 10.0;
-
-pub(crate) fn real_outputs() -> Vec<u32> {
-    VARIABLES
+pub(crate) fn real_outputs<M: Model>() -> Vec<u32> {
+    M::VARIABLES
         .iter()
         .filter(|v| v.causality == Causality::Output && v.ty.base() == BaseType::Real)
         .map(|v| v.vr)
@@ -283,26 +222,27 @@ pub(crate) fn check_status(s: fmi2Status, what: &str) {
     );
 }
 
-impl Default for Driver {
+impl<M: Model> Default for Driver<M> {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl Driver {
-    pub fn new() -> Driver {
+impl<M: Model> Driver<M> {
+    pub fn new() -> Driver<M> {
         install_panic_counter();
         Driver {
-            slots: (0..SLOTS).map(|_| None).collect(),
+            slots: (0..M::SLOTS).map(|_| None).collect(),
             pool: Vec::new(),
             stats: Stats::default(),
-            skip_extreme_stiffness: true,
+            tolerate_known: true,
+            model: std::marker::PhantomData,
         }
     }
 
     /// Runs every operation, then frees what is left.
     pub fn run(ops: &[Op]) -> Stats {
-        let mut d = Driver::new();
+        let mut d = Driver::<M>::new();
         for op in ops {
             d.apply(op);
         }
@@ -311,27 +251,27 @@ impl Driver {
 
     /// Frees every instance (and with them their FMU states).
     pub fn finish(mut self) -> Stats {
-        for k in 0..SLOTS {
+        for k in 0..M::SLOTS {
             self.free(k as u8);
         }
         std::mem::take(&mut self.stats)
     }
 
     pub(crate) fn slot(&mut self, k: u8) -> Option<&mut Slot> {
-        self.slots[k as usize % SLOTS].as_mut()
+        self.slots[k as usize % M::SLOTS].as_mut()
     }
 
     /// Performs one FMI call on slot `k`: counts, checks the status, that no
     /// panic happened, the logger's findings, the state machine; returns the
     /// status (None when the slot is empty: nothing called).
-    pub(crate) fn call(
+    pub fn call(
         &mut self,
         k: u8,
         what: &str,
         allowed: &[Machine],
         f: impl FnOnce(fmi2Component) -> fmi2Status,
     ) -> Option<fmi2Status> {
-        let s = self.slots[k as usize % SLOTS].as_mut()?;
+        let s = self.slots[k as usize % M::SLOTS].as_mut()?;
         let before = s.log.counts();
         let p0 = panics();
         let status = f(s.c);
@@ -339,7 +279,12 @@ impl Driver {
         assert_eq!(panics(), p0, "{what}: the FMU panicked (caught or not)");
         check_status(status, what);
         self.stats.by_status[status as usize] += 1;
-        if let Some(p) = problem(&s.log, before, &s.name, s.debug) {
+        s.recent = s.log.take();
+        if std::env::var_os("FUZZ_DRIVER_TRACE").is_some() {
+            let texts: Vec<&str> = s.recent.iter().map(|m| m.text.as_str()).collect();
+            eprintln!("  {what} on slot {k}: status {status} {texts:?}");
+        }
+        if let Some(p) = problem::<M>(&s.log, before, &s.recent, &s.name, s.debug) {
             panic!("{what}: logger: {p}");
         }
         if status != fmi2OK && s.logger {
@@ -355,9 +300,53 @@ impl Driver {
             }
         }
         if status == fmi2Error {
-            s.machine = Some(M::Error);
+            s.machine = Some(Machine::Error);
         }
         Some(status)
+    }
+
+    /// The state the driver follows for slot `k` (None: unknown or empty).
+    pub fn machine(&mut self, k: u8) -> Option<Machine> {
+        self.slot(k).and_then(|s| s.machine)
+    }
+
+    /// A setter refused in a state that allows it (`m`, before the call)
+    /// names one of the variables `r` it was given.
+    pub(crate) fn refusal_names_a_target(
+        &mut self,
+        k: u8,
+        what: &str,
+        m: Option<Machine>,
+        st: Option<fmi2Status>,
+        r: &[u32],
+    ) {
+        let Some(s) = self.slot(k) else { return };
+        if M::STRICT
+            && st == Some(fmi2Error)
+            && m.is_some_and(|m| SET.contains(&m))
+            && s.inspect
+            && s.logger
+        {
+            assert!(
+                names_a_target(&s.recent, r, M::VARIABLES),
+                "{what} of {r:?} refused without naming one of them: {:?}",
+                s.recent
+            );
+        }
+    }
+
+    /// The driver's copy of slot `k`'s stored values, if it knows them.
+    pub fn stored(&self, k: u8) -> Option<&Stored> {
+        self.slots[k as usize % M::SLOTS].as_ref()?.stored.as_ref()
+    }
+
+    /// The derivatives of [`Model::INPUTS`] on slot `k`, if the driver
+    /// knows them.
+    pub fn derivatives(&self, k: u8) -> Option<&[f64]> {
+        self.slots[k as usize % M::SLOTS]
+            .as_ref()?
+            .derivatives
+            .as_deref()
     }
 
     pub(crate) fn set_machine(&mut self, k: u8, m: Option<Machine>) {
@@ -390,7 +379,7 @@ impl Driver {
             Op::Init(k) => {
                 if self
                     .slot(*k)
-                    .is_some_and(|s| s.machine == Some(M::Instantiated))
+                    .is_some_and(|s| s.machine == Some(Machine::Instantiated))
                 {
                     self.setup(*k, fmi2False, 0.0, 0.0, fmi2False, 0.0);
                     self.enter(*k);
@@ -399,30 +388,34 @@ impl Driver {
             }
             Op::Terminate(k) => {
                 if let Some(st) = self.call(*k, "fmi2Terminate", TERMINATE, |c| unsafe {
-                    fmu::fmi2Terminate(c)
+                    (M::API.fmi2Terminate)(c)
                 }) {
                     if st == fmi2OK {
-                        self.set_machine(*k, Some(M::Terminated));
+                        self.set_machine(*k, Some(Machine::Terminated));
                     }
                 }
             }
             Op::Reset(k) => {
-                if let Some(st) = self.call(*k, "fmi2Reset", ANY, |c| unsafe { fmu::fmi2Reset(c) })
+                if let Some(st) =
+                    self.call(*k, "fmi2Reset", ANY, |c| unsafe { (M::API.fmi2Reset)(c) })
                 {
                     assert_eq!(st, fmi2OK, "fmi2Reset must succeed outside fatal");
                     let s = self.slot(*k).expect("called");
-                    s.machine = Some(M::Instantiated);
-                    s.stored = Some(Stored::start());
+                    s.machine = Some(Machine::Instantiated);
+                    s.stored = Some(Stored::start::<M>());
                     s.time = Some(0.0);
                     s.forged = false;
+                    s.derivatives = Some(vec![0.0; M::INPUTS.len()]);
                 }
             }
             Op::SetReal(k, r, x) => self.set_real(*k, r, x),
             Op::SetInteger(k, r, x) => self.set_integer(*k, r, x),
             Op::SetBoolean(k, r, x) => {
-                self.call(*k, "fmi2SetBoolean", SET, |c| unsafe {
-                    fmu::fmi2SetBoolean(c, r.as_ptr(), r.len(), x.as_ptr())
+                let m = self.machine(*k);
+                let st = self.call(*k, "fmi2SetBoolean", SET, |c| unsafe {
+                    (M::API.fmi2SetBoolean)(c, r.as_ptr(), r.len(), x.as_ptr())
                 });
+                self.refusal_names_a_target(*k, "fmi2SetBoolean", m, st, r);
             }
             Op::SetString(k, r, x) => {
                 let strings: Vec<CString> = x
@@ -430,9 +423,11 @@ impl Driver {
                     .map(|b| CString::new(b.clone()).unwrap_or_default())
                     .collect();
                 let ptrs: Vec<fmi2String> = strings.iter().map(|s| s.as_ptr()).collect();
-                self.call(*k, "fmi2SetString", SET, |c| unsafe {
-                    fmu::fmi2SetString(c, r.as_ptr(), r.len(), ptrs.as_ptr())
+                let m = self.machine(*k);
+                let st = self.call(*k, "fmi2SetString", SET, |c| unsafe {
+                    (M::API.fmi2SetString)(c, r.as_ptr(), r.len(), ptrs.as_ptr())
                 });
+                self.refusal_names_a_target(*k, "fmi2SetString", m, st, r);
             }
             Op::GetReal(k, r) => {
                 self.get_real(*k, r);
@@ -442,7 +437,7 @@ impl Driver {
             Op::GetString(k, r) => {
                 let mut out: Vec<fmi2String> = vec![ptr::null(); r.len()];
                 if let Some(fmi2OK) = self.call(*k, "fmi2GetString", GET, |c| unsafe {
-                    fmu::fmi2GetString(c, r.as_ptr(), r.len(), out.as_mut_ptr())
+                    (M::API.fmi2GetString)(c, r.as_ptr(), r.len(), out.as_mut_ptr())
                 }) {
                     for p in out {
                         assert!(!p.is_null(), "fmi2GetString: fmi2OK with a NULL string");
@@ -453,9 +448,27 @@ impl Driver {
             }
             Op::GetAll(k) => self.get_all(*k),
             Op::SetInputDerivatives(k, r, o, x) => {
-                self.call(*k, "fmi2SetRealInputDerivatives", SET, |c| unsafe {
-                    fmu::fmi2SetRealInputDerivatives(c, r.as_ptr(), r.len(), o.as_ptr(), x.as_ptr())
+                let m = self.machine(*k);
+                let st = self.call(*k, "fmi2SetRealInputDerivatives", SET, |c| unsafe {
+                    (M::API.fmi2SetRealInputDerivatives)(
+                        c,
+                        r.as_ptr(),
+                        r.len(),
+                        o.as_ptr(),
+                        x.as_ptr(),
+                    )
                 });
+                self.refusal_names_a_target(*k, "fmi2SetRealInputDerivatives", m, st, r);
+                if st == Some(fmi2OK) {
+                    let s = self.slot(*k).expect("called");
+                    if let Some(d) = s.derivatives.as_mut() {
+                        for ((r, o), x) in r.iter().zip(o).zip(x) {
+                            if let (Some(i), 1) = (M::INPUTS.iter().position(|q| q == r), *o) {
+                                d[i] = *x;
+                            }
+                        }
+                    }
+                }
             }
             Op::GetOutputDerivatives(k, r, o) => {
                 let mut out = vec![f64::from_bits(SENTINEL); r.len()];
@@ -464,7 +477,7 @@ impl Driver {
                     "fmi2GetRealOutputDerivatives",
                     OUTPUT_DERIVATIVES,
                     |c| unsafe {
-                        fmu::fmi2GetRealOutputDerivatives(
+                        (M::API.fmi2GetRealOutputDerivatives)(
                             c,
                             r.as_ptr(),
                             r.len(),
@@ -489,7 +502,7 @@ impl Driver {
             } => self.do_step(slot, point, h, no_prior),
             Op::CancelStep(k) => {
                 self.call(*k, "fmi2CancelStep", NOWHERE, |c| unsafe {
-                    fmu::fmi2CancelStep(c)
+                    (M::API.fmi2CancelStep)(c)
                 });
             }
             &Op::Status(k, which, kind) => self.status(k, which, kind),
@@ -500,7 +513,7 @@ impl Driver {
                     .collect();
                 let ptrs: Vec<fmi2String> = strings.iter().map(|s| s.as_ptr()).collect();
                 if let Some(st) = self.call(*k, "fmi2SetDebugLogging", ANY, |c| unsafe {
-                    fmu::fmi2SetDebugLogging(c, *on, ptrs.len(), ptrs.as_ptr())
+                    (M::API.fmi2SetDebugLogging)(c, *on, ptrs.len(), ptrs.as_ptr())
                 }) {
                     if st == fmi2OK || st == fmi2Warning {
                         let s = self.slot(*k).expect("called");
@@ -518,13 +531,13 @@ impl Driver {
                     let (mut a, mut b) = (0u32, 0u32);
                     let (x, mut y) = (1.0f64, 0.0f64);
                     let _ = (&mut a, &mut b);
-                    fmu::fmi2GetDirectionalDerivative(c, &a, 1, &b, 1, &x, &mut y)
+                    (M::API.fmi2GetDirectionalDerivative)(c, &a, 1, &b, 1, &x, &mut y)
                 });
             }
-            Op::Me { slot, which, x, n } => self.model_exchange(*slot, *which, *x, *n),
+            Op::Me { slot, which, x, n } => self.model_exchange(*slot, *which, x, *n),
             Op::Platform => {
-                let p = fmu::fmi2GetTypesPlatform();
-                let v = fmu::fmi2GetVersion();
+                let p = (M::API.fmi2GetTypesPlatform)();
+                let v = (M::API.fmi2GetVersion)();
                 // SAFETY: static strings of the FMU.
                 unsafe {
                     assert_eq!(CStr::from_ptr(p).to_bytes(), b"default");

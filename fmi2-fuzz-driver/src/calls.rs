@@ -1,13 +1,12 @@
 //! The driver's FMI calls on one instance: life cycle, get/set, stepping,
 //! status.
 
-use super::*;
-use Machine as M;
+use crate::*;
 
-impl Driver {
+impl<M: Model> Driver<M> {
     /// One Model Exchange call; after `fmi2OK` every value written is finite
     /// (the nominals positive), and the driver follows the ME state machine.
-    pub(crate) fn model_exchange(&mut self, k: u8, which: u8, x: [f64; 2], n: usize) {
+    pub(crate) fn model_exchange(&mut self, k: u8, which: u8, x: &[f64], n: usize) {
         let mut out = [f64::from_bits(SENTINEL); 16];
         let n = n.min(out.len());
         let (mut enter, mut terminate) = (-1, -1);
@@ -21,7 +20,7 @@ impl Driver {
         };
         let p = out.as_mut_ptr();
         let op = which % 10;
-        let (what, allowed): (&str, &[M]) = match op {
+        let (what, allowed): (&str, &[Machine]) = match op {
             0 => ("fmi2SetTime", ME_SET_TIME),
             1 => ("fmi2SetContinuousStates", ME_CONTINUOUS),
             2 => ("fmi2GetContinuousStates", ME_EVALUATE),
@@ -36,16 +35,16 @@ impl Driver {
         // SAFETY (every arm): a live instance and arrays of at least `n` values.
         let st = self.call(k, what, allowed, |c| unsafe {
             match op {
-                0 => fmu::fmi2SetTime(c, x[0]),
-                1 => fmu::fmi2SetContinuousStates(c, x.as_ptr(), n.min(2)),
-                2 => fmu::fmi2GetContinuousStates(c, p, n),
-                3 => fmu::fmi2GetDerivatives(c, p, n),
-                4 => fmu::fmi2GetEventIndicators(c, p, n),
-                5 => fmu::fmi2GetNominalsOfContinuousStates(c, p, n),
-                6 => fmu::fmi2EnterEventMode(c),
-                7 => fmu::fmi2NewDiscreteStates(c, &mut info),
-                8 => fmu::fmi2EnterContinuousTimeMode(c),
-                _ => fmu::fmi2CompletedIntegratorStep(c, fmi2True, &mut enter, &mut terminate),
+                0 => (M::API.fmi2SetTime)(c, x[0]),
+                1 => (M::API.fmi2SetContinuousStates)(c, x.as_ptr(), n.min(x.len())),
+                2 => (M::API.fmi2GetContinuousStates)(c, p, n),
+                3 => (M::API.fmi2GetDerivatives)(c, p, n),
+                4 => (M::API.fmi2GetEventIndicators)(c, p, n),
+                5 => (M::API.fmi2GetNominalsOfContinuousStates)(c, p, n),
+                6 => (M::API.fmi2EnterEventMode)(c),
+                7 => (M::API.fmi2NewDiscreteStates)(c, &mut info),
+                8 => (M::API.fmi2EnterContinuousTimeMode)(c),
+                _ => (M::API.fmi2CompletedIntegratorStep)(c, fmi2True, &mut enter, &mut terminate),
             }
         });
         let Some(st) = st else { return };
@@ -67,7 +66,7 @@ impl Driver {
             }
         }
         match op {
-            6 => self.set_machine(k, Some(M::EventMode)),
+            6 => self.set_machine(k, Some(Machine::EventMode)),
             7 => {
                 for b in [
                     info.newDiscreteStatesNeeded,
@@ -77,7 +76,7 @@ impl Driver {
                     assert!(b == fmi2True || b == fmi2False, "{what}: fmi2Boolean {b}");
                 }
             }
-            8 => self.set_machine(k, Some(M::ContinuousTime)),
+            8 => self.set_machine(k, Some(Machine::ContinuousTime)),
             9 => assert!(
                 [enter, terminate]
                     .iter()
@@ -89,7 +88,7 @@ impl Driver {
     }
 
     pub(crate) fn instantiate(&mut self, k: u8, spec: &InstSpec) {
-        let k = k as usize % SLOTS;
+        let k = k as usize % M::SLOTS;
         if self.slots[k].is_some() {
             // Instantiating into a used slot would lose the pointer: free first.
             self.free(k as u8);
@@ -105,10 +104,10 @@ impl Driver {
             .as_ref()
             .map(|n| CString::new(n.clone()).expect("no NUL"));
         let guid = match spec.guid {
-            Guid::Right => Some(CString::new(fmu::GUID).expect("GUID")),
+            Guid::Right => Some(CString::new(M::GUID).expect("GUID")),
             Guid::Wrong => Some(c"{00000000-0000-0000-0000-000000000000}".to_owned()),
             Guid::Null => None,
-            Guid::Truncated => Some(CString::new(&fmu::GUID[..fmu::GUID.len() - 1]).expect("GUID")),
+            Guid::Truncated => Some(CString::new(&M::GUID[..M::GUID.len() - 1]).expect("GUID")),
         };
         let resource = spec
             .resource
@@ -121,7 +120,7 @@ impl Driver {
         let callbacks = Box::new(log.callbacks(spec.logger));
         let p0 = panics();
         let c = unsafe {
-            fmu::fmi2Instantiate(
+            (M::API.fmi2Instantiate)(
                 name_c.as_ref().map_or(ptr::null(), |s| s.as_ptr()),
                 spec.fmu_type,
                 guid.as_ref().map_or(ptr::null(), |s| s.as_ptr()),
@@ -133,11 +132,13 @@ impl Driver {
         };
         self.stats.calls += 1;
         assert_eq!(panics(), p0, "fmi2Instantiate: the FMU panicked");
-        if let Some(p) = problem(&log, [0; 5], &name_back, debug) {
+        let recent = log.take();
+        if let Some(p) = problem::<M>(&log, [0; 5], &recent, &name_back, debug) {
             panic!("fmi2Instantiate: logger: {p}");
         }
         let valid = name.as_ref().is_some_and(|n| !n.is_empty())
-            && (spec.fmu_type == fmi2CoSimulation || spec.fmu_type == fmi2ModelExchange)
+            && (spec.fmu_type == fmi2CoSimulation
+                || (spec.fmu_type == fmi2ModelExchange && M::MODEL_EXCHANGE))
             && matches!(spec.guid, Guid::Right);
         assert_eq!(
             !c.is_null(),
@@ -161,25 +162,29 @@ impl Driver {
             logger: spec.logger,
             name: name_back,
             debug,
-            machine: Some(M::Instantiated),
-            stored: Some(Stored::start()),
+            machine: Some(Machine::Instantiated),
+            stored: Some(Stored::start::<M>()),
             time: Some(0.0),
             forged: false,
             states: Vec::new(),
             me: spec.fmu_type == fmi2ModelExchange,
+            inspect: spec.inspect,
+            recent: Vec::new(),
+            derivatives: Some(vec![0.0; M::INPUTS.len()]),
         });
     }
 
     pub(crate) fn free(&mut self, k: u8) {
-        let k = k as usize % SLOTS;
+        let k = k as usize % M::SLOTS;
         if let Some(s) = self.slots[k].take() {
             let before = s.log.counts();
             let p0 = panics();
             // SAFETY: a live instance of ours; its FMU states go with it.
-            unsafe { fmu::fmi2FreeInstance(s.c) };
+            unsafe { (M::API.fmi2FreeInstance)(s.c) };
             self.stats.calls += 1;
             assert_eq!(panics(), p0, "fmi2FreeInstance: the FMU panicked");
-            if let Some(p) = problem(&s.log, before, &s.name, s.debug) {
+            let recent = s.log.take();
+            if let Some(p) = problem::<M>(&s.log, before, &recent, &s.name, s.debug) {
                 panic!("fmi2FreeInstance: logger: {p}");
             }
             drop(s);
@@ -197,12 +202,12 @@ impl Driver {
     ) {
         let before = self.slot(k).and_then(|s| s.machine);
         if let Some(st) = self.call(k, "fmi2SetupExperiment", INSTANTIATED, |c| unsafe {
-            fmu::fmi2SetupExperiment(c, tol_def, tol, start, stop_def, stop)
+            (M::API.fmi2SetupExperiment)(c, tol_def, tol, start, stop_def, stop)
         }) {
             let tol_ok = tol_def == fmi2False || (tol.is_finite() && tol > 0.0);
             let stop_ok = stop_def == fmi2False || (stop.is_finite() && stop >= start);
             let s = self.slot(k).expect("called");
-            if before == Some(M::Instantiated) || st == fmi2OK {
+            if before == Some(Machine::Instantiated) || st == fmi2OK {
                 assert_eq!(
                     st == fmi2OK,
                     tol_ok && start.is_finite() && stop_ok,
@@ -218,21 +223,21 @@ impl Driver {
     pub(crate) fn enter(&mut self, k: u8) {
         if let Some(fmi2OK) =
             self.call(k, "fmi2EnterInitializationMode", INSTANTIATED, |c| unsafe {
-                fmu::fmi2EnterInitializationMode(c)
+                (M::API.fmi2EnterInitializationMode)(c)
             })
         {
-            self.set_machine(k, Some(M::Init));
+            self.set_machine(k, Some(Machine::Init));
         }
     }
 
     pub(crate) fn exit(&mut self, k: u8) {
         let Some(s) = self.slot(k) else { return };
-        let expect = (s.machine == Some(M::Init))
-            .then(|| s.stored.as_ref().map(Stored::valid))
+        let expect = (s.machine == Some(Machine::Init))
+            .then(|| s.stored.as_ref().map(M::valid))
             .flatten();
         let stored = s.stored.clone();
         let Some(st) = self.call(k, "fmi2ExitInitializationMode", INIT, |c| unsafe {
-            fmu::fmi2ExitInitializationMode(c)
+            (M::API.fmi2ExitInitializationMode)(c)
         }) else {
             return;
         };
@@ -241,34 +246,64 @@ impl Driver {
                 st,
                 if valid { fmi2OK } else { fmi2Error },
                 "fmi2ExitInitializationMode with parameters {:?}",
-                stored.and_then(|s| s.params())
+                stored.as_ref().and_then(M::params)
             );
             if valid {
                 self.stats.exit_init_ok += 1;
             } else {
                 self.stats.exit_init_error += 1;
+                let s = self.slot(k).expect("called");
+                if M::STRICT && s.inspect && s.logger {
+                    assert!(
+                        names_one_of(&s.recent, &parameter_names::<M>()),
+                        "fmi2ExitInitializationMode refused without naming a parameter: {:?}",
+                        s.recent
+                    );
+                }
             }
         }
         if st == fmi2OK {
             let me = self.slot(k).is_some_and(|s| s.me);
-            self.set_machine(k, Some(if me { M::EventMode } else { M::StepComplete }));
+            self.set_machine(
+                k,
+                Some(if me {
+                    Machine::EventMode
+                } else {
+                    Machine::StepComplete
+                }),
+            );
         }
     }
 
     pub(crate) fn set_real(&mut self, k: u8, r: &[u32], x: &[f64]) {
-        if let Some(fmi2OK) = self.call(k, "fmi2SetReal", SET, |c| unsafe {
-            fmu::fmi2SetReal(c, r.as_ptr(), r.len(), x.as_ptr())
-        }) {
-            if let Some(st) = self.slot(k).expect("called").stored.as_mut() {
+        let m = self.machine(k);
+        let st = self.call(k, "fmi2SetReal", SET, |c| unsafe {
+            (M::API.fmi2SetReal)(c, r.as_ptr(), r.len(), x.as_ptr())
+        });
+        self.refusal_names_a_target(k, "fmi2SetReal", m, st, r);
+        if let Some(fmi2OK) = st {
+            let s = self.slot(k).expect("called");
+            if let Some(st) = s.stored.as_mut() {
                 accept(&mut st.real, r, x);
+            }
+            // setting an input resets its derivative to 0 (held)
+            if let Some(d) = s.derivatives.as_mut() {
+                for q in r {
+                    if let Some(i) = M::INPUTS.iter().position(|p| p == q) {
+                        d[i] = 0.0;
+                    }
+                }
             }
         }
     }
 
     pub(crate) fn set_integer(&mut self, k: u8, r: &[u32], x: &[c_int]) {
-        if let Some(fmi2OK) = self.call(k, "fmi2SetInteger", SET, |c| unsafe {
-            fmu::fmi2SetInteger(c, r.as_ptr(), r.len(), x.as_ptr())
-        }) {
+        let m = self.machine(k);
+        let st = self.call(k, "fmi2SetInteger", SET, |c| unsafe {
+            (M::API.fmi2SetInteger)(c, r.as_ptr(), r.len(), x.as_ptr())
+        });
+        self.refusal_names_a_target(k, "fmi2SetInteger", m, st, r);
+        if let Some(fmi2OK) = st {
             if let Some(st) = self.slot(k).expect("called").stored.as_mut() {
                 accept(&mut st.int, r, x);
             }
@@ -276,28 +311,27 @@ impl Driver {
     }
 
     /// fmi2GetReal with the value checks; the values after fmi2OK.
-    pub(crate) fn get_real(&mut self, k: u8, r: &[u32]) -> Option<Vec<f64>> {
+    pub fn get_real(&mut self, k: u8, r: &[u32]) -> Option<Vec<f64>> {
         let mut out = vec![f64::from_bits(SENTINEL); r.len()];
         let st = self.call(k, "fmi2GetReal", GET, |c| unsafe {
-            fmu::fmi2GetReal(c, r.as_ptr(), r.len(), out.as_mut_ptr())
+            (M::API.fmi2GetReal)(c, r.as_ptr(), r.len(), out.as_mut_ptr())
         })?;
         if st != fmi2OK && st != fmi2Warning {
             return None;
         }
         let params = || {
-            let s = self.slots[k as usize % SLOTS].as_ref();
+            let s = self.slots[k as usize % M::SLOTS].as_ref();
             format!(
                 "{:?}",
-                s.and_then(|s| s.stored.as_ref()).and_then(Stored::params)
+                s.and_then(|s| s.stored.as_ref()).and_then(M::params)
             )
         };
         for (&r, &x) in r.iter().zip(&out) {
             assert_ne!(x.to_bits(), SENTINEL, "fmi2GetReal: vr {r} not written");
-            let v = VARIABLES.iter().find(|v| v.vr == r).expect("a Real vr");
-            // no computed value crosses the boundary non-finite: thetaC
-            // without crushing and frictionDemand while Fz <= 0 stand at
-            // 1e60 (docs/model.md §5); parameters and inputs are the
-            // host's own values (fm = inf is allowed), echoed
+            let v = M::VARIABLES.iter().find(|v| v.vr == r).expect("a Real vr");
+            // no computed value crosses the boundary non-finite (a model
+            // stands for +inf with a large finite value); parameters and
+            // inputs are the host's own values, echoed
             let finite = match v.causality {
                 Causality::Output | Causality::CalculatedParameter | Causality::Local => {
                     x.is_finite()
@@ -305,34 +339,39 @@ impl Driver {
                 _ => true,
             };
             assert!(finite, "{} = {x} with parameters {}", v.name, params());
+            if let Some(p) = M::real_problem(r, x) {
+                panic!("{p} with parameters {}", params());
+            }
         }
+        M::check_reals(r, &out);
         Some(out)
     }
 
     pub(crate) fn get_integer(&mut self, k: u8, r: &[u32]) {
         let mut out: Vec<c_int> = vec![0x5eed_f00d; r.len()];
         if let Some(fmi2OK) = self.call(k, "fmi2GetInteger", GET, |c| unsafe {
-            fmu::fmi2GetInteger(c, r.as_ptr(), r.len(), out.as_mut_ptr())
+            (M::API.fmi2GetInteger)(c, r.as_ptr(), r.len(), out.as_mut_ptr())
         }) {
             for (&r, &x) in r.iter().zip(&out) {
-                match r {
-                    vr::REGIME => assert!((0..=5).contains(&x), "regime = {x}"),
-                    vr::IMPACTS => assert!(x >= 0, "impacts = {x}"),
-                    vr::ZERO_CROSSINGS => assert!(x >= 0, "zeroCrossings = {x}"),
-                    _ => assert_ne!(x, 0x5eed_f00d, "fmi2GetInteger: vr {r} not written"),
+                match M::integer_in_range(r, x) {
+                    Some(ok) => {
+                        let name = M::VARIABLES
+                            .iter()
+                            .find(|v| v.vr == r)
+                            .map_or("?", |v| v.name);
+                        assert!(ok, "{name} = {x}");
+                    }
+                    None => assert_ne!(x, 0x5eed_f00d, "fmi2GetInteger: vr {r} not written"),
                 }
             }
-            let of = |v: u32| r.iter().position(|&q| q == v).map(|i| out[i]);
-            if let (Some(i), Some(z)) = (of(vr::IMPACTS), of(vr::ZERO_CROSSINGS)) {
-                assert!(i <= z, "impacts = {i} > zeroCrossings = {z}");
-            }
+            M::check_integers(r, &out);
         }
     }
 
     pub(crate) fn get_boolean(&mut self, k: u8, r: &[u32]) {
         let mut out: Vec<c_int> = vec![-7; r.len()];
         if let Some(fmi2OK) = self.call(k, "fmi2GetBoolean", GET, |c| unsafe {
-            fmu::fmi2GetBoolean(c, r.as_ptr(), r.len(), out.as_mut_ptr())
+            (M::API.fmi2GetBoolean)(c, r.as_ptr(), r.len(), out.as_mut_ptr())
         }) {
             for (&r, &x) in r.iter().zip(&out) {
                 assert!(x == fmi2True || x == fmi2False, "Boolean vr {r} = {x}");
@@ -342,7 +381,7 @@ impl Driver {
 
     pub(crate) fn get_all(&mut self, k: u8) {
         let of = |base: BaseType| -> Vec<u32> {
-            VARIABLES
+            M::VARIABLES
                 .iter()
                 .filter(|v| {
                     v.ty.base() == base
@@ -367,11 +406,11 @@ impl Driver {
         let mut now = s.time;
         if matches!(
             machine,
-            Some(M::StepComplete | M::StepFailed | M::Terminated)
+            Some(Machine::StepComplete | Machine::StepFailed | Machine::Terminated)
         ) {
             let mut t = f64::NAN;
             if let Some(fmi2OK) = self.call(k, "fmi2GetRealStatus", STATUS, |c| unsafe {
-                fmu::fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &mut t)
+                (M::API.fmi2GetRealStatus)(c, fmi2LastSuccessfulTime, &mut t)
             }) {
                 assert!(t.is_finite(), "fmi2LastSuccessfulTime = {t}");
                 if let Some(d) = now {
@@ -380,12 +419,7 @@ impl Driver {
                 now = Some(t);
             }
         }
-        if h.is_finite() && h > MAX_STEP || (self.skip_extreme_stiffness && forged) {
-            self.stats.steps_skipped += 1;
-            return;
-        }
-        if self.skip_extreme_stiffness && machine == Some(M::StepComplete) && self.extreme(k) {
-            self.stats.steps_skipped += 1;
+        if M::skip_step(self, k, h, machine, forged) {
             return;
         }
         let base = now.unwrap_or(0.0);
@@ -394,14 +428,22 @@ impl Driver {
             Point::Offset(d) => base + d,
             Point::Raw(x) => x,
         };
+        // the state before: a refused step must leave it
+        let before = if M::STRICT && machine == Some(Machine::StepComplete) {
+            self.get_real(k, M::STATE_OUTPUTS)
+        } else {
+            None
+        };
+        let known = before.is_some() && M::known_finding(self, k, t, h);
+        let machine = self.slot(k).and_then(|s| s.machine);
+        let tolerate = self.tolerate_known;
         if std::env::var_os("FUZZ_DRIVER_TRACE").is_some() {
-            let s = self.slots[k as usize % SLOTS].as_ref();
-            let params = s.and_then(|s| s.stored.as_ref()).and_then(Stored::params);
-            let state = self.get_real(k, &[vr::AG, vr::THETA, vr::OMEGA]);
-            eprintln!("fmi2DoStep({t}, {h}) on slot {k}: ag, theta, omega {state:?}, parameters {params:?}");
+            let s = self.slots[k as usize % M::SLOTS].as_ref();
+            let params = s.and_then(|s| s.stored.as_ref()).and_then(M::params);
+            eprintln!("fmi2DoStep({t}, {h}) on slot {k}: state {before:?}, parameters {params:?}");
         }
         let Some(st) = self.call(k, "fmi2DoStep", DO_STEP, |c| unsafe {
-            fmu::fmi2DoStep(c, t, h, no_prior)
+            (M::API.fmi2DoStep)(c, t, h, no_prior)
         }) else {
             return;
         };
@@ -411,65 +453,74 @@ impl Driver {
         }
         match st {
             fmi2OK => {
-                s.machine = Some(M::StepComplete);
+                s.machine = Some(Machine::StepComplete);
                 s.time = Some(t + h);
                 self.stats.steps_ok += 1;
             }
             fmi2Discard => {
-                s.machine = Some(M::StepFailed);
+                s.machine = Some(Machine::StepFailed);
                 s.time = None;
                 self.stats.steps_discard += 1;
                 let mut term = fmi2False;
                 if let Some(fmi2OK) = self.call(k, "fmi2GetBooleanStatus", STATUS, |c| unsafe {
-                    fmu::fmi2GetBooleanStatus(c, fmi2Terminated, &mut term)
+                    (M::API.fmi2GetBooleanStatus)(c, fmi2Terminated, &mut term)
                 }) {
-                    if term == fmi2False {
-                        // the work limit (maxSteps): stopped inside the step
-                        let mut last = f64::NAN;
-                        if let Some(fmi2OK) =
-                            self.call(k, "fmi2GetRealStatus", STATUS, |c| unsafe {
-                                fmu::fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &mut last)
-                            })
-                        {
-                            assert!(
-                                last >= t && last < t + h,
-                                "fmi2Discard without fmi2Terminated: fmi2LastSuccessfulTime = {last} outside [{t}, {t} + {h})"
-                            );
-                        }
+                    let mut last = f64::NAN;
+                    if (M::STRICT || term == fmi2False)
+                        && self.call(k, "fmi2GetRealStatus", STATUS, |c| unsafe {
+                            (M::API.fmi2GetRealStatus)(c, fmi2LastSuccessfulTime, &mut last)
+                        }) == Some(fmi2OK)
+                    {
+                        // the work limit stops inside the step; overturning
+                        // and liftOff end the run in it or at its start
+                        // (a body that has already overturned)
+                        let inside = if term == fmi2False {
+                            last >= t && last < t + h
+                        } else {
+                            last >= t.min(base) && last <= t + h
+                        };
+                        assert!(
+                            inside,
+                            "fmi2Discard (fmi2Terminated {term}): fmi2LastSuccessfulTime = {last} outside the step [{t}, {t} + {h}]"
+                        );
                     }
+                    if M::STRICT && term != fmi2False {
+                        self.stats.steps_terminated += 1;
+                    }
+                }
+            }
+            fmi2Error
+                if M::STRICT
+                    && machine == Some(Machine::StepComplete)
+                    && tolerate
+                    && known
+                    && M::known_refusal(&s.recent) =>
+            {
+                self.stats.known_overflow += 1;
+            }
+            fmi2Error if M::STRICT && machine == Some(Machine::StepComplete) => {
+                if s.inspect && s.logger {
+                    assert!(
+                        names_one_of(&s.recent, M::STEP_REFUSAL_NAMES),
+                        "fmi2DoStep refused naming neither an input nor the communication point: {:?}",
+                        s.recent
+                    );
+                }
+                self.stats.steps_refused += 1;
+                if let Some(before) = before {
+                    let after = self
+                        .get_real(k, M::STATE_OUTPUTS)
+                        .expect("the state after a refused step");
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(
+                        bits(&after),
+                        bits(&before),
+                        "a refused fmi2DoStep changed the state (theta .. yG)"
+                    );
                 }
             }
             _ => {}
         }
-    }
-
-    /// A model out of the integrator's working range (see
-    /// [`Driver::skip_extreme_stiffness`]), read from the FMU itself: a
-    /// flexible interface far stiffer than the body's weight, or a body whose
-    /// weight, mass, lever or inertia is beyond 1e-30..1e30 (W = 1.8e308 N on
-    /// a rigid interface: the moments overflow and the step loop never ends).
-    pub(crate) fn extreme(&mut self, k: u8) -> bool {
-        let mut law: c_int = 0;
-        let Some(fmi2OK) = self.call(k, "fmi2GetInteger", GET, |c| unsafe {
-            fmu::fmi2GetInteger(c, &vr::INTERFACE, 1, &mut law)
-        }) else {
-            return false;
-        };
-        let Some(x) = self.get_real(
-            k,
-            &[
-                vr::THETA_JO,
-                vr::THETA_OV,
-                vr::WEIGHT,
-                vr::MASS,
-                vr::R0,
-                vr::IO,
-            ],
-        ) else {
-            return false;
-        };
-        let body = x[2..].iter().any(|&v| !(1e-30..=1e30).contains(&v));
-        body || (law != enums::RIGID && x[0] < EXTREME_STIFFNESS * x[1])
     }
 
     pub(crate) fn status(&mut self, k: u8, which: u8, kind: c_int) {
@@ -487,11 +538,11 @@ impl Driver {
         let mut s: fmi2String = ptr::null();
         let Some(st) = self.call(k, name, STATUS, |c| unsafe {
             match which % 5 {
-                0 => fmu::fmi2GetStatus(c, kind, &mut st_out),
-                1 => fmu::fmi2GetRealStatus(c, kind, &mut r),
-                2 => fmu::fmi2GetIntegerStatus(c, kind, &mut i),
-                3 => fmu::fmi2GetBooleanStatus(c, kind, &mut b),
-                _ => fmu::fmi2GetStringStatus(c, kind, &mut s),
+                0 => (M::API.fmi2GetStatus)(c, kind, &mut st_out),
+                1 => (M::API.fmi2GetRealStatus)(c, kind, &mut r),
+                2 => (M::API.fmi2GetIntegerStatus)(c, kind, &mut i),
+                3 => (M::API.fmi2GetBooleanStatus)(c, kind, &mut b),
+                _ => (M::API.fmi2GetStringStatus)(c, kind, &mut s),
             }
         }) else {
             return;
@@ -522,4 +573,20 @@ fn accept<T: Copy>(to: &mut [T], r: &[u32], x: &[T]) {
             *v = x;
         }
     }
+}
+
+/// The names of the parameters and calculated parameters (what a refused
+/// initialization must name: the physics names a derived one, `IO = inf`,
+/// where a huge `hG` overflows it).
+pub(crate) fn parameter_names<M: Model>() -> Vec<&'static str> {
+    M::VARIABLES
+        .iter()
+        .filter(|v| {
+            matches!(
+                v.causality,
+                Causality::Parameter | Causality::CalculatedParameter
+            )
+        })
+        .map(|v| v.name)
+        .collect()
 }

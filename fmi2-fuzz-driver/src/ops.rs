@@ -1,9 +1,6 @@
 //! Operations: decoded from the input bytes.
 
-/// Event indicators the FMU declares.
-const NZ: usize = fmu_rocking::description::EVENT_INDICATORS as usize;
-
-use super::*;
+use crate::*;
 
 /// Bytes consumed from the front; zeros once exhausted.
 pub struct Bytes<'a> {
@@ -23,28 +20,28 @@ impl<'a> Bytes<'a> {
         self.pos += 1;
         b
     }
-    pub(crate) fn u16(&mut self) -> u16 {
+    pub fn u16(&mut self) -> u16 {
         u16::from_le_bytes([self.u8(), self.u8()])
     }
-    pub(crate) fn u32(&mut self) -> u32 {
+    pub fn u32(&mut self) -> u32 {
         u32::from_le_bytes([self.u8(), self.u8(), self.u8(), self.u8()])
     }
-    pub(crate) fn u64(&mut self) -> u64 {
+    pub fn u64(&mut self) -> u64 {
         (self.u32() as u64) | ((self.u32() as u64) << 32)
     }
     /// 0..n (n <= 256).
-    pub(crate) fn below(&mut self, n: usize) -> usize {
+    pub fn below(&mut self, n: usize) -> usize {
         self.u8() as usize % n.max(1)
     }
     /// True with probability k/8.
-    pub(crate) fn chance(&mut self, k: u8) -> bool {
+    pub fn chance(&mut self, k: u8) -> bool {
         self.u8() % 8 < k
     }
-    pub(crate) fn take(&mut self, n: usize) -> Vec<u8> {
+    pub fn take(&mut self, n: usize) -> Vec<u8> {
         (0..n).map(|_| self.u8()).collect()
     }
     /// A float from a table of awkward values, or raw bits.
-    pub(crate) fn awkward(&mut self) -> f64 {
+    pub fn awkward(&mut self) -> f64 {
         const T: [f64; 24] = [
             0.0,
             -0.0,
@@ -77,7 +74,7 @@ impl<'a> Bytes<'a> {
         }
     }
     /// A value near `start` (a plausible setting) or an awkward one.
-    pub(crate) fn near(&mut self, start: f64) -> f64 {
+    pub fn near(&mut self, start: f64) -> f64 {
         const F: [f64; 12] = [
             1.0, 0.5, 2.0, 0.9, 1.1, 0.1, 10.0, 0.01, 100.0, -1.0, 0.0, 1e-3,
         ];
@@ -89,7 +86,7 @@ impl<'a> Bytes<'a> {
         }
     }
     /// A small integer around the valid range, or an awkward one.
-    pub(crate) fn int(&mut self) -> i32 {
+    pub fn int(&mut self) -> i32 {
         match self.u8() {
             k @ 0..=191 => (k % 8) as i32 - 1,
             192..=223 => [i32::MIN, i32::MAX, -1, 0, 5, 100, 1 << 16, -(1 << 20)][self.below(8)],
@@ -228,18 +225,21 @@ pub enum Op {
     Me {
         slot: u8,
         which: u8,
-        x: [f64; 2],
+        x: Vec<f64>,
         n: usize,
     },
 }
 
-pub(crate) fn slot(b: &mut Bytes) -> u8 {
-    b.below(SLOTS) as u8
+pub fn slot<M: Model>(b: &mut Bytes) -> u8 {
+    b.below(M::SLOTS) as u8
 }
 
-pub(crate) fn vr_of(b: &mut Bytes, base: BaseType) -> u32 {
+pub fn vr_of<M: Model>(b: &mut Bytes, base: BaseType) -> u32 {
     if b.chance(7) {
-        let own: Vec<&Variable> = VARIABLES.iter().filter(|v| v.ty.base() == base).collect();
+        let own: Vec<&Variable> = M::VARIABLES
+            .iter()
+            .filter(|v| v.ty.base() == base)
+            .collect();
         if own.is_empty() {
             return b.below(48) as u32;
         }
@@ -254,7 +254,7 @@ pub(crate) fn vr_of(b: &mut Bytes, base: BaseType) -> u32 {
     }
 }
 
-pub(crate) fn count(b: &mut Bytes) -> usize {
+pub fn count(b: &mut Bytes) -> usize {
     match b.u8() {
         0..=39 => 0,
         40..=159 => 1,
@@ -263,19 +263,19 @@ pub(crate) fn count(b: &mut Bytes) -> usize {
     }
 }
 
-pub(crate) fn vrs(b: &mut Bytes, base: BaseType) -> Vec<u32> {
+pub fn vrs<M: Model>(b: &mut Bytes, base: BaseType) -> Vec<u32> {
     let n = count(b);
-    (0..n).map(|_| vr_of(b, base)).collect()
+    (0..n).map(|_| vr_of::<M>(b, base)).collect()
 }
 
-pub(crate) fn start_real(r: u32) -> f64 {
-    match VARIABLES.iter().find(|v| v.vr == r).map(|v| v.ty) {
+pub fn start_real<M: Model>(r: u32) -> f64 {
+    match M::VARIABLES.iter().find(|v| v.vr == r).map(|v| v.ty) {
         Some(Type::Real { start, .. }) => start.unwrap_or(0.0),
         _ => 0.0,
     }
 }
 
-pub(crate) fn spec(b: &mut Bytes) -> InstSpec {
+pub fn spec(b: &mut Bytes) -> InstSpec {
     let name = match b.below(16) {
         0 => Name::Null,
         1 => Name::Empty,
@@ -320,7 +320,7 @@ pub(crate) fn spec(b: &mut Bytes) -> InstSpec {
     }
 }
 
-pub(crate) fn mutation(b: &mut Bytes) -> Mutation {
+pub fn mutation(b: &mut Bytes) -> Mutation {
     match b.below(8) {
         0 | 1 => Mutation::None,
         2 => Mutation::Flip {
@@ -350,11 +350,11 @@ pub(crate) fn mutation(b: &mut Bytes) -> Mutation {
     }
 }
 
-pub(crate) fn state_ref(b: &mut Bytes, own: u8) -> StateRef {
+pub fn state_ref<M: Model>(b: &mut Bytes, own: u8) -> StateRef {
     match b.below(16) {
         0 => StateRef::Null,
         1 => StateRef::Of {
-            slot: slot(b),
+            slot: slot::<M>(b),
             k: b.u8() % MAX_STATES as u8,
         },
         _ => StateRef::Of {
@@ -374,24 +374,34 @@ pub(crate) const OP_TABLE: [u8; 64] = [
     33, 33, 34, 35, 42, 42, 42, 42, 37, 38, 38, 39, 39, 42,
 ];
 
-pub fn decode_op(b: &mut Bytes) -> Op {
-    let s = slot(b);
+pub fn decode_op<M: Model>(b: &mut Bytes) -> Op {
+    let s = slot::<M>(b);
     match OP_TABLE[b.below(64)] {
-        40 => Op::SetReal(s, vec![vr::AG], vec![b.int() as f64 * 2.5]),
+        40 => M::set_input(b, s),
         42 => Op::Me {
             slot: s,
             which: b.u8(),
-            x: [b.near(0.05), b.near(0.0)],
+            x: (0..M::STATES)
+                .map(|i| if i == 0 { b.near(0.05) } else { b.near(0.0) })
+                .collect(),
             n: if b.chance(1) {
-                [0, 1, 3, NZ - 1, NZ + 1][b.below(5)]
+                [
+                    0,
+                    1,
+                    3,
+                    M::EVENT_INDICATORS.saturating_sub(1),
+                    M::EVENT_INDICATORS + 1,
+                ][b.below(5)]
             } else {
-                [2, 2, NZ, NZ][b.below(4)]
+                [
+                    M::ME_LENGTH,
+                    M::ME_LENGTH,
+                    M::EVENT_INDICATORS,
+                    M::EVENT_INDICATORS,
+                ][b.below(4)]
             },
         },
-        41 => {
-            let input = if b.chance(1) { vr::AV } else { vr::AG };
-            Op::SetInputDerivatives(s, vec![input], vec![1], vec![b.int() as f64 * 10.0])
-        }
+        41 => M::set_input_derivative(b, s),
         0..=2 => Op::Instantiate(s, spec(b)),
         3 => Op::Free(s),
         4 => {
@@ -417,22 +427,22 @@ pub fn decode_op(b: &mut Bytes) -> Op {
         10 => Op::Terminate(s),
         11 => Op::Reset(s),
         12..=14 => {
-            let r = vrs(b, BaseType::Real);
-            let x = r.iter().map(|&r| b.near(start_real(r))).collect();
+            let r = vrs::<M>(b, BaseType::Real);
+            let x = r.iter().map(|&r| b.near(start_real::<M>(r))).collect();
             Op::SetReal(s, r, x)
         }
         15 | 16 => {
-            let r = vrs(b, BaseType::Integer);
+            let r = vrs::<M>(b, BaseType::Integer);
             let x = r.iter().map(|_| b.int()).collect();
             Op::SetInteger(s, r, x)
         }
         17 => {
-            let r = vrs(b, BaseType::Boolean);
+            let r = vrs::<M>(b, BaseType::Boolean);
             let x = r.iter().map(|_| b.int()).collect();
             Op::SetBoolean(s, r, x)
         }
         18 => {
-            let r = vrs(b, BaseType::String);
+            let r = vrs::<M>(b, BaseType::String);
             let x = r
                 .iter()
                 .map(|_| {
@@ -442,13 +452,13 @@ pub fn decode_op(b: &mut Bytes) -> Op {
                 .collect();
             Op::SetString(s, r, x)
         }
-        19 | 20 => Op::GetReal(s, vrs(b, BaseType::Real)),
-        21 => Op::GetInteger(s, vrs(b, BaseType::Integer)),
-        22 => Op::GetBoolean(s, vrs(b, BaseType::Boolean)),
-        23 => Op::GetString(s, vrs(b, BaseType::String)),
+        19 | 20 => Op::GetReal(s, vrs::<M>(b, BaseType::Real)),
+        21 => Op::GetInteger(s, vrs::<M>(b, BaseType::Integer)),
+        22 => Op::GetBoolean(s, vrs::<M>(b, BaseType::Boolean)),
+        23 => Op::GetString(s, vrs::<M>(b, BaseType::String)),
         24 | 25 => Op::GetAll(s),
         26 => {
-            let r = vrs(b, BaseType::Real);
+            let r = vrs::<M>(b, BaseType::Real);
             let o = r
                 .iter()
                 .map(|_| if b.chance(5) { 1 } else { b.int() })
@@ -457,7 +467,7 @@ pub fn decode_op(b: &mut Bytes) -> Op {
             Op::SetInputDerivatives(s, r, o, x)
         }
         27 => {
-            let r = vrs(b, BaseType::Real);
+            let r = vrs::<M>(b, BaseType::Real);
             let o = r.iter().map(|_| b.int()).collect();
             Op::GetOutputDerivatives(s, r, o)
         }
@@ -495,7 +505,7 @@ pub fn decode_op(b: &mut Bytes) -> Op {
             let cats = (0..n)
                 .map(|_| {
                     if b.chance(6) {
-                        LOG_CATEGORIES[b.below(LOG_CATEGORIES.len())]
+                        M::LOG_CATEGORIES[b.below(M::LOG_CATEGORIES.len())]
                             .name
                             .as_bytes()
                             .to_vec()
@@ -508,16 +518,16 @@ pub fn decode_op(b: &mut Bytes) -> Op {
             Op::SetDebugLogging(s, [fmi2True, fmi2False, 3][b.below(3)], cats)
         }
         35 => Op::GetState(s, b.chance(2).then(|| b.u8() % MAX_STATES as u8)),
-        36 => Op::SetState(s, state_ref(b, s)),
+        36 => Op::SetState(s, state_ref::<M>(b, s)),
         37 => {
             if b.chance(1) {
-                Op::FreeState(s, state_ref(b, s))
+                Op::FreeState(s, state_ref::<M>(b, s))
             } else {
                 Op::DirectionalDerivative(s)
             }
         }
         38 => {
-            let r = state_ref(b, s);
+            let r = state_ref::<M>(b, s);
             Op::Serialize(s, r, b.below(3) as u8)
         }
         _ => {
@@ -560,7 +570,7 @@ pub fn step(slot: u8, h: f64) -> Op {
 }
 
 /// The operations encoded by `data` (at most [`MAX_OPS`]).
-pub fn decode(data: &[u8]) -> Vec<Op> {
+pub fn decode<M: Model>(data: &[u8]) -> Vec<Op> {
     let mut b = Bytes::new(data);
     let mut ops = Vec::new();
     // The first byte: how many instances start instantiated (0, 1) or
@@ -579,7 +589,7 @@ pub fn decode(data: &[u8]) -> Vec<Op> {
         }
     }
     while !b.is_empty() && ops.len() < MAX_OPS {
-        ops.push(decode_op(&mut b));
+        ops.push(decode_op::<M>(&mut b));
     }
     ops
 }

@@ -12,7 +12,7 @@ pub(crate) fn new_log(inspect: bool) -> Box<Log> {
 /// The first broken rule among the messages logged since the counts were
 /// `before` (`recent`: those the log recorded): statuses known, OK messages
 /// only with debug logging on, and each recorded message's own rules.
-pub(crate) fn problem(
+pub(crate) fn problem<M: Model>(
     log: &Log,
     before: [u64; 5],
     recent: &[Message],
@@ -25,14 +25,14 @@ pub(crate) fn problem(
     if !debug && log.counts()[fmi2OK as usize] > before[fmi2OK as usize] {
         return Some("an fmi2OK message with debug logging off".into());
     }
-    recent.iter().find_map(|m| message_problem(m, name))
+    recent.iter().find_map(|m| message_problem::<M>(m, name))
 }
 
 /// What is wrong with one message: NULL strings, another instance name
 /// (`name` as the FMU must pass it back: lossy UTF-8 of ours), a category
 /// not declared or not matching the status, an empty or non-UTF-8 text, a
 /// `%` conversion left in the format.
-fn message_problem(m: &Message, name: &[u8]) -> Option<String> {
+fn message_problem<M: Model>(m: &Message, name: &[u8]) -> Option<String> {
     let [Some(instance), Some(category), Some(format)] = &m.raw else {
         return Some("logger called with a NULL string".into());
     };
@@ -46,7 +46,7 @@ fn message_problem(m: &Message, name: &[u8]) -> Option<String> {
     let Ok(category) = std::str::from_utf8(category) else {
         return Some("category is not UTF-8".into());
     };
-    if !LOG_CATEGORIES.iter().any(|c| c.name == category) {
+    if !M::LOG_CATEGORIES.iter().any(|c| c.name == category) {
         return Some(format!("undeclared category {category:?}"));
     }
     let expected = match m.status {
@@ -83,7 +83,7 @@ fn lone_percent(text: &str) -> bool {
 
 /// Whether one of the `fmi2Error` messages among `recent` names one of
 /// `names` as `name = ` (the FMU's way of naming a variable with its value).
-pub(crate) fn names_one_of(recent: &[Message], names: &[&str]) -> bool {
+pub fn names_one_of(recent: &[Message], names: &[&str]) -> bool {
     recent
         .iter()
         .filter(|m| m.status == fmi2Error)
@@ -104,11 +104,11 @@ fn names_variable(text: &str, name: &str) -> bool {
 
 /// Whether one of the `fmi2Error` messages among `recent` names one of the
 /// variables `vrs` (by name, as a whole word) or its value reference.
-pub(crate) fn names_a_target(recent: &[Message], vrs: &[u32]) -> bool {
+pub fn names_a_target(recent: &[Message], vrs: &[u32], variables: &[Variable]) -> bool {
     recent.iter().filter(|m| m.status == fmi2Error).any(|m| {
         vrs.iter().any(|&r| {
             m.text.contains(&format!("value reference {r}"))
-                || VARIABLES
+                || variables
                     .iter()
                     .find(|v| v.vr == r)
                     .is_some_and(|v| has_word(&m.text, v.name))
