@@ -65,6 +65,7 @@ mod calls;
 mod driver;
 mod messages;
 mod ops;
+pub mod rigid_body;
 mod states;
 
 pub use api::Fmi2Api;

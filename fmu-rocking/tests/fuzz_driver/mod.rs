@@ -20,9 +20,10 @@
 use std::ffi::c_int;
 
 use fmi2_export::model_description::{LogCategory, Variable};
+use fmi2_fuzz_driver::rigid_body::{rigid_body_params, SHAPES};
 use fmu_rocking::description::{enums, vr, LOG_CATEGORIES, VARIABLES};
-use rocking::model::{LawKind, MassKind, ShapeKind};
-use rocking::{Formulation, Params, Restitution, RestraintKind};
+use rocking::model::LawKind;
+use rocking::{Formulation, Params, RestraintKind};
 
 pub use fmi2_fuzz_driver::*;
 
@@ -77,29 +78,10 @@ impl Model for RockingBlock {
         use enums::*;
         let r = |k: u32| stored.real[k as usize];
         let i = |k: u32| stored.int[k as usize];
-        Some(Params {
-            shape: match i(vr::SHAPE) {
-                SOLID_RECTANGLE => ShapeKind::SolidRectangle,
-                HOLLOW_RECTANGLE => ShapeKind::HollowRectangle,
-                SOLID_CIRCLE => ShapeKind::SolidCircle,
-                HOLLOW_CIRCLE => ShapeKind::HollowCircle,
-                _ => return None,
-            },
+        let own = Params {
             b: r(vr::B),
             l: r(vr::L),
             t: r(vr::T),
-            ro: r(vr::RO),
-            ri: r(vr::RI),
-            mass_model: match i(vr::MASS_MODEL) {
-                PRISM => MassKind::Prism,
-                LUMPED => MassKind::Lumped,
-                _ => return None,
-            },
-            h: r(vr::H),
-            rho: r(vr::RHO),
-            w: r(vr::W),
-            hg: r(vr::HG),
-            ic: r(vr::IC),
             interface: match i(vr::INTERFACE) {
                 RIGID => LawKind::Rigid,
                 ELASTIC => LawKind::Elastic,
@@ -113,13 +95,6 @@ impl Model for RockingBlock {
                 SHIFTING_PIVOT => Formulation::ShiftingPivot,
                 _ => return None,
             },
-            restitution: match i(vr::RESTITUTION) {
-                HOUSNER => Restitution::Housner,
-                GIVEN => Restitution::Given,
-                _ => return None,
-            },
-            eta: r(vr::ETA),
-            g: r(vr::G),
             theta0: r(vr::THETA),
             omega0: r(vr::OMEGA),
             restraint: match i(vr::RESTRAINT) {
@@ -129,7 +104,9 @@ impl Model for RockingBlock {
             },
             side: i(vr::SIDE),
             e_restraint: r(vr::E_RESTRAINT),
-        })
+            ..Params::default()
+        };
+        rigid_body_params::<Self>(stored, &SHAPES, own)
     }
 
     fn valid(stored: &Stored) -> bool {

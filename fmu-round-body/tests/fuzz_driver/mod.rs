@@ -25,9 +25,10 @@ use std::ffi::c_int;
 
 use fmi2_export::model_description::{LogCategory, Variable};
 use fmi2_export::test_host::Message;
+use fmi2_fuzz_driver::rigid_body::{rigid_body_params, SHAPES};
 use fmu_round_body::description::{enums, vr, LOG_CATEGORIES, ROUND_BODY, VARIABLES};
-use rocking::model::{LawKind, MassKind, ShapeKind};
-use rocking::{Params, Restitution};
+use rocking::model::LawKind;
+use rocking::Params;
 
 pub use fmi2_fuzz_driver::*;
 
@@ -111,38 +112,12 @@ impl Model for RoundBody {
     /// initial tilt); `None` for a code that is no item of its enumeration
     /// or a rectangle.
     fn params(stored: &Stored) -> Option<Params> {
-        use enums::*;
-        let r = |k: u32| stored.real[k as usize];
-        let i = |k: u32| stored.int[k as usize];
-        Some(Params {
-            shape: match i(vr::SHAPE) {
-                SOLID_CIRCLE => ShapeKind::SolidCircle,
-                HOLLOW_CIRCLE => ShapeKind::HollowCircle,
-                _ => return None,
-            },
-            ro: r(vr::RO),
-            ri: r(vr::RI),
-            mass_model: match i(vr::MASS_MODEL) {
-                PRISM => MassKind::Prism,
-                LUMPED => MassKind::Lumped,
-                _ => return None,
-            },
-            h: r(vr::H),
-            rho: r(vr::RHO),
-            w: r(vr::W),
-            hg: r(vr::HG),
-            ic: r(vr::IC),
+        let own = Params {
             interface: LawKind::Rigid,
-            restitution: match i(vr::RESTITUTION) {
-                HOUSNER => Restitution::Housner,
-                GIVEN => Restitution::Given,
-                _ => return None,
-            },
-            eta: r(vr::ETA),
-            g: r(vr::G),
-            theta0: r(vr::THETA0),
+            theta0: stored.real[vr::THETA0 as usize],
             ..Params::default()
-        })
+        };
+        rigid_body_params::<Self>(stored, &SHAPES[2..], own)
     }
 
     /// docs/round-body.md, "Bad input".
