@@ -19,7 +19,7 @@
 #   tools/memcheck.sh --suites
 #       every test binary of fmu-rocking (fmu_import among them, which dlopens
 #       the packaged FMU) and fmi2-export, under memcheck
-#       (release profile, each in its package's directory; PROPTEST_CASES=16;
+#       (ci profile, each in its package's directory; PROPTEST_CASES=16;
 #       at most SUITE_TIMEOUT=1800 s each; about 6 minutes).
 #   tools/memcheck.sh --fmpy
 #       the fmpy tests that load the FMU under memcheck with PYTHONMALLOC=malloc;
@@ -45,9 +45,13 @@ summary() { # the leak and error summary lines of a valgrind log
     | sed 's/^==[0-9]*== */   /'
 }
 
-# Test executables (JSON messages of cargo test --no-run) of the given packages.
+# Test executables (JSON messages of cargo test --no-run) of the given packages,
+# in the ci profile (Cargo.toml: the release profile's optimisation without
+# LTO, one codegen unit or line tables): tools/test.sh's Rust stage has built
+# them, where a release build of the same tests took minutes more. The FMU's
+# own library (c_api_loop, free_rocking3) stays the release build it ships as.
 test_binaries() {
-  cargo test --release --no-run --message-format=json "$@" 2>/dev/null | python3 -c '
+  cargo test --profile ci --no-run --message-format=json "$@" 2>/dev/null | python3 -c '
 import json, sys
 for line in sys.stdin:
     try:
@@ -120,7 +124,7 @@ case "${1:-}" in
   root=$PWD
   while read -r name exe dir; do
     log="$out/model_exchange.log"
-    echo "-- memcheck: the Model Exchange tests (release profile)"
+    echo "-- memcheck: the Model Exchange tests (ci profile)"
     (cd "$dir" && "${vg[@]}" --suppressions="$root/$supp" --log-file="$log" "$exe" -q) | tail -n 2 || status=1
     summary "$log"
   done < <(test_binaries -p fmu-rocking --test model_exchange)
@@ -147,7 +151,7 @@ case "${1:-}" in
   done
   while read -r name exe dir; do
     log="$out/fmi3_c_api.log"
-    echo "-- memcheck: the FMI 3.0 call sequences (release profile, PROPTEST_CASES=64)"
+    echo "-- memcheck: the FMI 3.0 call sequences (ci profile, PROPTEST_CASES=64)"
     (cd "$dir" && PROPTEST_CASES=64 "${vg[@]}" --suppressions="$root/$supp" --log-file="$log" "$exe" -q) | tail -n 2 || status=1
     summary "$log"
   done < <(test_binaries -p fmu-rocking --test fmi3_c_api)
@@ -157,7 +161,7 @@ case "${1:-}" in
   # with PROPTEST_CASES=32 (8 s under memcheck, 24 s at their defaults)
   while read -r name exe dir; do
     log="$out/round_body_$name.log"
-    echo "-- memcheck: fmu-round-body's $name tests (release profile)"
+    echo "-- memcheck: fmu-round-body's $name tests (ci profile)"
     (cd "$dir" && PROPTEST_CASES=32 "${vg[@]}" --suppressions="$root/$supp" --log-file="$log" "$exe" -q) | tail -n 2 || status=1
     summary "$log"
   done < <(test_binaries -p fmu-round-body)
