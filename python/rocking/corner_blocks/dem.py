@@ -274,14 +274,21 @@ def _displacements(assembly, rot, c0, f0, c, f):
 def run_isolated(spec, alpha, protocol: Protocol, timeout=None):
     """`run` in a fresh Python process. spec: a dict, {"specimen": {Specimen fields}} or
     {"boxes": [[lo, hi], ...], "mu": ...} (free boxes on a fixed table)."""
-    job = json.dumps({"spec": spec, "alpha": alpha, "protocol": asdict(protocol)})
-    out = subprocess.run([sys.executable, "-m", "rocking.corner_blocks.dem"], input=job, capture_output=True,
+    job = {"spec": spec, "alpha": alpha, "protocol": asdict(protocol)}
+    return run_module("rocking.corner_blocks.dem", job, "the LMGC90 run", timeout)
+
+
+def run_module(module, job, what, timeout=None):
+    """`python -m module` in a fresh process (LMGC90 keeps one simulation a process) with the
+    dict `job` as JSON on its standard input; the JSON of its last output line. A failure raises
+    RuntimeError "`what` failed: " with the engine's last ERROR line and the last line it printed."""
+    out = subprocess.run([sys.executable, "-m", module], input=json.dumps(job), capture_output=True,
                          text=True, timeout=timeout)
     if out.returncode != 0:
         lines = [" ".join(x.split()) for x in out.stderr.replace("\0", "").splitlines() if x.strip()]
         errors = [x for x in lines if x.startswith("ERROR")]
         tail = "; ".join(errors[-1:] + lines[-1:]) or f"exit status {out.returncode}"
-        raise RuntimeError(f"the LMGC90 run failed: {tail}")
+        raise RuntimeError(f"{what} failed: {tail}")
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 

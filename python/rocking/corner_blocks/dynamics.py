@@ -27,7 +27,6 @@ from dataclasses import asdict, dataclass
 import json
 import math
 import os
-import subprocess
 import sys
 import time
 
@@ -201,16 +200,9 @@ def assembly_of(spec):
 
 def run_isolated(spec, alpha, time_s, acc, scale, track, protocol: Protocol, timeout=None):
     """`run` in a fresh Python process. spec: as dem.run_isolated's."""
-    job = json.dumps({"spec": spec, "alpha": alpha, "time": list(map(float, time_s)), "acc": list(map(float, acc)),
-                      "scale": scale, "track": list(track), "protocol": asdict(protocol)})
-    out = subprocess.run([sys.executable, "-m", "rocking.corner_blocks.dynamics"], input=job, capture_output=True,
-                         text=True, timeout=timeout)
-    if out.returncode != 0:
-        lines = [" ".join(x.split()) for x in out.stderr.replace("\0", "").splitlines() if x.strip()]
-        errors = [x for x in lines if x.startswith("ERROR")]
-        tail = "; ".join(errors[-1:] + lines[-1:]) or f"exit status {out.returncode}"
-        raise RuntimeError(f"the LMGC90 record run failed: {tail}")
-    return json.loads(out.stdout.strip().splitlines()[-1])
+    job = {"spec": spec, "alpha": alpha, "time": list(map(float, time_s)), "acc": list(map(float, acc)),
+           "scale": scale, "track": list(track), "protocol": asdict(protocol)}
+    return dem.run_module("rocking.corner_blocks.dynamics", job, "the LMGC90 record run", timeout)
 
 
 def main():
