@@ -192,3 +192,26 @@ def test_a_clamp_of_zero_is_the_free_end():
         return r.lam
 
     assert lam(ends="outOfPlane", clamp=0.0) == pytest.approx(lam(ends="free"), rel=1e-4)
+
+
+@pytest.mark.parametrize("relaxation", [0.5, 0.25])
+def test_diagnose_follows_the_wall_case_by_hand(relaxation):
+    """nonassoc.diagnose on the block against a wall (test above), by hand: iteration 1
+    keeps the associative capacity mu n0 at the heel (n0 / W = (mu - b/h) / (1 - mu^2 +
+    2 mu b/h)), so lambda_1 is the associative 0.4359, and the least-normal-force choice
+    takes the wall's normal force to 0: the wall interface changes by n0. Relaxed, the
+    heel's capacity is mu n0 (1 - r)^(k-1) at iteration k, and the moment about the toe,
+    lambda W h/2 = W b/2 + mu n_hat b, gives lambda_k - b/h = (lambda_1 - b/h)(1 - r)^(k-1);
+    at iteration 2 the wall interface changes by (1 - r) n0, more than the table's
+    (mu r n0)."""
+    mu, bh = 0.6, B / H
+    n0 = (mu - bh) / (1 - mu ** 2 + 2 * mu * bh)
+    lam1 = bh * (1 + 2 * mu * n0)
+    rows = nonassoc.diagnose(block_against_a_wall(mu), 0.0, relaxation=relaxation, iterations=6, tol=1e-9)
+    assert [r["iteration"] for r in rows] == list(range(1, 7))
+    for r in rows:
+        assert r["lam"] == pytest.approx(bh + (lam1 - bh) * (1 - relaxation) ** (r["iteration"] - 1), rel=1e-6)
+    assert rows[0]["interface"] == pytest.approx(n0, rel=1e-6)
+    assert rows[1]["interface"] == pytest.approx((1 - relaxation) * n0, rel=1e-6)
+    assert math.isnan(rows[0]["against_k_minus_2"])
+    assert rows[1]["against_k_minus_2"] == pytest.approx(rows[0]["corner"], rel=1e-6)  # n_2 = 0 at the heel, as n_1
