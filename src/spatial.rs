@@ -1,6 +1,6 @@
-//! Round bodies in space on a rigid bed (docs/model.md §10): rocking,
-//! wobbling and rolling under both horizontal components of the ground
-//! motion and the vertical one.
+//! Round bodies in space on a rigid bed (docs/model.md §10) and on the
+//! flexible and crushing bed (§11): rocking, wobbling and rolling under both
+//! horizontal components of the ground motion and the vertical one.
 //!
 //! An axisymmetric body (a solid or hollow circle's base, the planar
 //! model's mass models) touches the bed at one point of its rim, rolls
@@ -12,19 +12,27 @@
 //! and the loop are its own (`y` has seven components, see `eom`).
 //!
 //! - `frame`: the tilted body's geometry and the contact on the rim;
-//! - `eom`: the balance of angular momentum about the contact;
-//! - `impact`: the return of the base to the bed;
+//! - `pivot`: on a flexible bed, where the bed's resultant acts and how it
+//!   moves (docs/model.md §11.2);
+//! - `eom`: the balance of angular momentum about the contact (or the
+//!   resultant);
+//! - `impact`: the return of the base to the rigid bed;
+//! - `bed`: a flexible bed's events (the tilt's minimum, the contact's
+//!   kinks, overturning, rest; docs/model.md §11.3);
 //! - `run`: the stepping loop, its events (the tilt crossing upright,
 //!   overturning) and rest;
 //! - [`continuous`]: Model Exchange, the same motion as a host's solver
-//!   integrates it (derivatives, event indicators, the event update).
+//!   integrates it (derivatives, event indicators, the event update); the
+//!   rigid bed only ([`Spatial::check_model_exchange`]).
 //!
 //! [`Body`]: crate::body::Body
 
+mod bed;
 pub mod continuous;
 mod eom;
 mod frame;
 mod impact;
+mod pivot;
 mod run;
 mod step;
 
@@ -46,7 +54,7 @@ pub struct PlanInput {
     pub da: [f64; 2],
 }
 
-/// A round body on a rigid bed, ready to run.
+/// A round body on its bed (rigid, elastic or elastoPlastic), ready to run.
 #[derive(Clone, Debug)]
 pub struct Spatial {
     /// The planar model of the same parameters (its body, `eta`, `alpha`).
@@ -65,8 +73,8 @@ pub struct Spatial {
 }
 
 impl Spatial {
-    /// The body of `params` (a solid or hollow circle on the rigid bed,
-    /// rocking both ways) with the relative tolerance `rtol` (as
+    /// The body of `params` (a solid or hollow circle on any of the three
+    /// beds, rocking both ways) with the relative tolerance `rtol` (as
     /// [`Simulator::new`]). `ic_axial` (kg m²) is the inertia about the
     /// axis, required for the lumped mass model; a prism's is
     /// `m (Is_polar / A)` of its section.
@@ -82,13 +90,6 @@ impl Spatial {
                 ))
             }
         };
-        if params.interface != crate::model::LawKind::Rigid {
-            return Err(error(
-                "interface",
-                params.interface as i32 as f64,
-                "a body in space runs on the rigid bed for now (flexible beds: issue 37)",
-            ));
-        }
         if params.restraint != RestraintKind::None {
             return Err(error("restraint", 1.0, "a body in space rocks every way"));
         }
@@ -123,14 +124,25 @@ impl Spatial {
         })
     }
 
+    /// Whether the bed is flexible (`elastic` or `elastoPlastic`,
+    /// docs/model.md §11): the body turns about the bed's resultant.
+    pub fn flexible(&self) -> bool {
+        self.model.interface.law() != crate::interface::Law::Rigid
+    }
+
     /// Mass, kg.
     pub fn mass(&self) -> f64 {
         self.model.body.mass
     }
 
     /// Kinetic plus potential energy in a still ground frame, J:
-    /// `omega^T J omega / 2 + W zG` with `zG` the centre of mass's height.
+    /// `omega^T J omega / 2 + W zG` with `zG` the centre of mass's height
+    /// (on a flexible bed, its rise from upright rest, `J` about the bed's
+    /// resultant).
     pub fn energy(&self, st: &SpatialState) -> f64 {
+        if self.flexible() {
+            return self.energy_on_bed(st);
+        }
         let f = frame::Frame::at(
             st.e,
             st.contact_direction(),
@@ -142,6 +154,20 @@ impl Spatial {
         let j = impact::inertia_about(&ig, self.mass(), &f.r);
         let w = Vector3::from(st.omega);
         0.5 * w.dot(&(j * w)) + self.model.body.weight * f.height()
+    }
+
+    /// [`energy`](Self::energy) on a flexible bed: the inertia about the
+    /// resultant, and the centre of mass's rise from upright rest
+    /// `∫ hW dtheta` at the weight (docs/model.md §11.2), J.
+    fn energy_on_bed(&self, st: &SpatialState) -> f64 {
+        let w = Vector3::from(st.omega);
+        let n = self.model.body.weight;
+        let l = self.lever(st.e, &w, (n, 0.0), st.contact_direction());
+        let (a, c) = (self.model.body.ic, self.c_axial);
+        let ig = nalgebra::Matrix3::identity() * a + (c - a) * l.e3 * l.e3.transpose();
+        let j = impact::inertia_about(&ig, self.mass(), &l.r);
+        let rise = self.lean(st.theta()).1;
+        0.5 * w.dot(&(j * w)) + n * rise
     }
 
     /// The bed's force on the body at the state (N, ground axes), under
@@ -187,7 +213,9 @@ pub struct SpatialState {
     /// Direction of the contact (unit): kept when the body is upright, where
     /// the tilt does not tell it.
     pub pivot: [f64; 2],
-    /// Impacts so far: returns of the base to the bed.
+    /// Impacts so far: returns of the base to the bed. On a flexible bed,
+    /// each application of the restitution rule at the tilt's minimum
+    /// (docs/model.md §11.3): the planar model's `zeroCrossings`.
     pub impacts: u64,
     pub at_rest: bool,
     /// The tilt reached the overturning limit; the run is over.
@@ -223,7 +251,11 @@ impl SpatialState {
         let (s, c) = theta.sin_cos();
         let (sp, cp) = psi.sin_cos();
         let d = if theta >= 0.0 { [cp, sp] } else { [-cp, -sp] };
-        let lean = body.radius * (1.0 - c) + body.model.body.hg * s.abs();
+        let lean = if body.flexible() {
+            body.lean(theta.abs()).0
+        } else {
+            body.radius * (1.0 - c) + body.model.body.hg * s.abs()
+        };
         SpatialState {
             e: [s * cp, s * sp],
             omega,

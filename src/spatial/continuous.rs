@@ -87,6 +87,28 @@ impl SpatialState {
 }
 
 impl Spatial {
+    /// Whether this body can run under Model Exchange: the rigid bed only.
+    /// The indicators and the event update here are the rigid bed's; a
+    /// flexible bed's events (docs/model.md §11.3) run in co-simulation
+    /// ([`Spatial::advance`]) only, so a host must ask this first.
+    pub fn check_model_exchange(&self) -> Result<(), crate::model::ParamError> {
+        if self.flexible() {
+            return Err(crate::model::ParamError {
+                variable: "interface",
+                // the FMU's enumeration: rigid 1, elastic 2, elastoPlastic 3
+                value: match self.model.interface.law() {
+                    crate::interface::Law::Rigid => 1.0,
+                    crate::interface::Law::Elastic { .. } => 2.0,
+                    crate::interface::Law::ElastoPlastic { .. } => 3.0,
+                },
+                condition: "Model Exchange of a body in space runs on the rigid bed only \
+                            (interface = rigid); flexible beds run in co-simulation"
+                    .into(),
+            });
+        }
+        Ok(())
+    }
+
     /// The right-hand side under the inputs at `t` held (the host gives no
     /// input derivatives under Model Exchange).
     fn eom_at(&self, t: f64, ag: [f64; 2], av: f64) -> Eom<'_> {

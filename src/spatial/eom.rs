@@ -11,6 +11,10 @@
 //! `IG = A 1 + (C - A) e3 e3^T`, `g_eff = (-agx, -agy, -(g + av))` the
 //! gravity and the ground's inertia force per unit mass, and `Omega` the
 //! frame's rate (`dr/dt = Omega x r`, see [`Frame::frame_rate`]).
+//!
+//! On a flexible bed (docs/model.md §11.2) the same balance is taken about
+//! the bed's resultant `P`, which carries the whole reaction: `r` and
+//! `dr/dt` are `pivot`'s.
 
 use nalgebra::{Matrix3, Vector3};
 
@@ -61,6 +65,11 @@ impl<'a> Eom<'a> {
         ]
     }
 
+    /// No ground motion over the call, horizontal or vertical.
+    pub fn quiet(&self) -> bool {
+        self.input == PlanInput::default() && self.vertical == VerticalInput::default()
+    }
+
     /// Vertical ground acceleration at `t`, m/s².
     #[inline]
     pub fn av(&self, t: f64) -> f64 {
@@ -77,18 +86,26 @@ impl<'a> Eom<'a> {
     pub fn rates_and_force(&self, t: f64, y: &[f64; N], d0: [f64; 2]) -> Rates {
         let b = self.body;
         let (m, radius, hg) = (b.mass(), b.radius, b.model.body.hg);
-        let f = Frame::at([y[0], y[1]], d0, radius, hg);
         let omega = Vector3::new(y[2], y[3], y[4]);
-        let de3 = omega.cross(&f.e3);
-        let big_omega = f.frame_rate(&omega, [de3.x, de3.y]);
+        let (e3, r, rdot) = if b.flexible() {
+            // docs/model.md §11.2: about the bed's resultant
+            let n = b.model.body.weight + m * self.av(t);
+            let l = b.lever([y[0], y[1]], &omega, (n, m * self.vertical.dav), d0);
+            (l.e3, l.r, l.rdot)
+        } else {
+            let f = Frame::at([y[0], y[1]], d0, radius, hg);
+            let de3 = omega.cross(&f.e3);
+            let big_omega = f.frame_rate(&omega, [de3.x, de3.y]);
+            (f.e3, f.r, big_omega.cross(&f.r))
+        };
+        let de3 = omega.cross(&e3);
         let (a, c) = (b.model.body.ic, b.c_axial);
-        let ig = Matrix3::identity() * a + (c - a) * f.e3 * f.e3.transpose();
-        let r = f.r;
+        let ig = Matrix3::identity() * a + (c - a) * e3 * e3.transpose();
         let j = ig + m * (Matrix3::identity() * r.norm_squared() - r * r.transpose());
         let ag = self.ag(t);
         let g_eff = Vector3::new(-ag[0], -ag[1], -(b.model.body.g + self.av(t)));
         // the centripetal part of the centre of mass's acceleration, omega x dr/dt
-        let a_omega = omega.cross(&big_omega.cross(&r));
+        let a_omega = omega.cross(&rdot);
         let rhs = m * r.cross(&g_eff) - omega.cross(&(ig * omega)) - m * r.cross(&a_omega);
         let domega = match j.cholesky() {
             Some(ch) => ch.solve(&rhs),

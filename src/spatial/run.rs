@@ -66,6 +66,10 @@ pub(crate) enum Cut {
     /// The tilt turned a right angle from the step's contact side.
     Quarter,
     Overturning,
+    /// A flexible bed: the tilt's minimum (`bed`).
+    Minimum,
+    /// A flexible bed: a kink of the contact, where the step restarts.
+    Kink,
 }
 
 impl Spatial {
@@ -110,12 +114,33 @@ impl Spatial {
         if st.out_of_range {
             return ev;
         }
-        let lift_off = self.lift_off(&eom, st.t, t_end);
-        let t_end = lift_off.unwrap_or(t_end);
+        let range_end = self.range_end(&eom, vertical, st.t, t_end);
+        let t_end = range_end.map_or(t_end, |(t, _)| t);
         while st.t < t_end && !st.overturned {
             if self.max_steps.is_some_and(|m| ev.steps + ev.rejected >= m) {
                 ev.limited = true;
                 break;
+            }
+            if st.at_rest && self.flexible() {
+                // docs/model.md §3: any horizontal input moves a body on a
+                // flexible bed; the vertical alone keeps it upright
+                if input == PlanInput::default() {
+                    st.t = t_end;
+                } else {
+                    let a = eom.ag(st.t);
+                    let n = a[0].hypot(a[1]);
+                    if n > 0.0 {
+                        st.pivot = [-a[0] / n, -a[1] / n];
+                    }
+                    st.at_rest = false;
+                    st.h = 0.0;
+                    ev.uplift = true;
+                    if stop_at_event {
+                        ev.stopped_at_event = true;
+                        break;
+                    }
+                }
+                continue;
             }
             if st.at_rest {
                 match self.uplift(&eom, st.t, t_end) {
@@ -140,6 +165,7 @@ impl Spatial {
             let d0 = st.contact_direction();
             let y0 = st.to_y();
             let f0 = eom.rates(st.t, &y0, d0);
+            let armed = self.flexible().then(|| self.arm(&eom, st.t, &y0));
             if st.h <= 0.0 {
                 st.h = self.initial_step(&y0, &f0);
             }
@@ -155,17 +181,25 @@ impl Spatial {
             ev.steps += 1;
             let next_h = hh * grow(s.err, ERR_EXP, after_rejection);
             after_rejection = false;
-            match self.cut(&s.y, d0) {
+            let t1 = if hh == remaining { t_end } else { st.t + hh };
+            let cut = match &armed {
+                Some(a) => (self.margin(&eom, t1, &s.y, a).0 <= 0.0).then_some(Cut::Kink),
+                None => self.cut(&s.y, d0),
+            };
+            match cut {
                 None => {
                     st.set_y(&s.y);
-                    st.pivot = d0;
-                    st.t = if hh == remaining { t_end } else { st.t + hh };
+                    st.pivot = self.side_after(&s.y, d0);
+                    st.t = t1;
                     st.h = next_h;
                 }
                 Some(_) => {
-                    let (tau, cut, y) = self.locate(&eom, st.t, (&y0, &f0), hh, d0);
+                    let (tau, cut, y) = match &armed {
+                        Some(a) => self.locate_on_bed(&eom, st.t, (&y0, &f0), (hh, &s.y), d0, a),
+                        None => self.locate(&eom, st.t, (&y0, &f0), hh, d0),
+                    };
                     st.set_y(&y);
-                    st.pivot = d0;
+                    st.pivot = self.side_after(&y, d0);
                     st.t += tau;
                     st.h = next_h.min(hh);
                     let impacts = ev.impacts;
@@ -177,17 +211,51 @@ impl Spatial {
                 }
             }
         }
-        if let Some(t) = lift_off {
+        if let Some((t, condition)) = range_end {
             if st.t == t && !st.overturned && !ev.limited {
                 st.out_of_range = true;
                 ev.terminal = Some(Terminal {
                     t,
-                    condition: OutOfRange::LiftOff,
+                    condition,
                     av: eom.av(t),
                 });
             }
         }
         ev
+    }
+
+    /// The contact side kept after a step ending at `y` from the side `d0`:
+    /// `d0` on the rigid bed (a step's side, cut where it turns); on a
+    /// flexible bed, where nothing jumps at upright, the lean's direction
+    /// (`d0` at zero tilt).
+    fn side_after(&self, y: &[f64; N], d0: [f64; 2]) -> [f64; 2] {
+        let s = y[0].hypot(y[1]);
+        if self.flexible() && s > 0.0 {
+            [y[0] / s, y[1] / s]
+        } else {
+            d0
+        }
+    }
+
+    /// The first time in `[t, t_end]` at which the input leaves the model's
+    /// range (docs/model.md §6.5), and which limit: `liftOff` on the rigid
+    /// bed, also `baseCrushing` and `restUnstable` on a flexible one (the
+    /// planar model's limits, the same bed).
+    fn range_end(
+        &self,
+        eom: &Eom,
+        vertical: VerticalInput,
+        t: f64,
+        t_end: f64,
+    ) -> Option<(f64, OutOfRange)> {
+        if self.flexible() {
+            self.planar
+                .out_of_range(vertical, t_end - t)
+                .map(|(tau, c)| (if tau >= t_end - t { t_end } else { t + tau }, c))
+        } else {
+            self.lift_off(eom, t, t_end)
+                .map(|t| (t, OutOfRange::LiftOff))
+        }
     }
 
     /// The first time in `[t, t_end]` at which the apparent weight
@@ -316,6 +384,8 @@ impl Spatial {
                 st.overturned = true;
                 ev.overturned_at = Some(st.t);
             }
+            Cut::Minimum => self.upright_pass(st, eom, ev),
+            Cut::Kink => {}
             Cut::Quarter => {
                 if !strikes(st.e, st.pivot) {
                     // off a plane: the contact runs on round the rim
@@ -435,7 +505,7 @@ impl Spatial {
     /// the tilt relative to the amplitude `|e| + |omega_h|² / (2 g_eff)`,
     /// the angular velocity to `sqrt(|omega|² + 2 g_eff |e|)`, the centre of
     /// mass's position to `R0` times the tilt's weight.
-    fn scales(&self, y0: &[f64; N], y1: &[f64; N]) -> [f64; N] {
+    pub(crate) fn scales(&self, y0: &[f64; N], y1: &[f64; N]) -> [f64; N] {
         let b = &self.model.body;
         let rtol = self.planar.effective_rtol();
         let (th, om) = self.planar.scales();

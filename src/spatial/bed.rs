@@ -1,0 +1,218 @@
+//! The events of a run on a flexible bed (docs/model.md §11.3): overturning
+//! where the weight's lever about the resultant vanishes, the tilt's
+//! minimum with the heel closed (the planar restitution rule), the kinks of
+//! the contact (restarts), rest after the rule, and leaving rest.
+//!
+//! Each event is the first zero of a margin, positive before it, checked
+//! at a step's end and located on the step itself (as the rigid bed's
+//! events, `run`); a margin is armed at a step's start when it is clear of
+//! zero there, so that a step that starts on an event does not find it
+//! again.
+
+use nalgebra::Vector3;
+
+use super::eom::{Eom, N};
+use super::run::Cut;
+use super::step::dop853;
+use super::{Spatial, SpatialEvents, SpatialState};
+use crate::dynamics::controller::min_step;
+use crate::interface::{Interface, Threshold, THRESHOLDS};
+
+/// A kink's margin within this of zero at a step's start is the kink the
+/// step starts on (as the planar loop, docs/model.md §6.4).
+const KINK_ARMED: f64 = 1e-10;
+
+/// The margins armed at a step's start.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Armed {
+    /// The tilt is moving toward upright, `e . de/dt < 0`.
+    approach: bool,
+    /// Each threshold of the contact and the sign of its margin at the
+    /// start (0: not armed).
+    kinks: [(Option<Threshold>, f64); THRESHOLDS],
+}
+
+impl Spatial {
+    /// The apparent weight `N = m (g + av)` at `t` (docs/model.md §6.1), N.
+    fn weight_at(&self, eom: &Eom, t: f64) -> f64 {
+        self.model.body.weight + self.mass() * eom.av(t)
+    }
+
+    /// `hW / sin(theta)`, m: the lever of the weight about the resultant,
+    /// `rho cos(theta) - hG sin(theta)` (the planar `hW`, docs/model.md §3),
+    /// over `sin(theta)`; `kn Is/N - hG > 0` at upright, 0 at overturning.
+    fn overturn_margin(&self, y: &[f64; N], n: f64) -> f64 {
+        let s2 = y[0] * y[0] + y[1] * y[1];
+        let s = s2.sqrt();
+        let theta = s.asin();
+        let res = self.resultant(theta, n);
+        let q = if s > 0.0 {
+            res.secant * theta / s
+        } else {
+            res.secant
+        };
+        q * (1.0 - s2).sqrt() - self.model.body.hg
+    }
+
+    /// `e . de/dt`, 1/s: negative while the tilt moves toward upright.
+    fn approach(y: &[f64; N]) -> f64 {
+        let c = (1.0 - y[0] * y[0] - y[1] * y[1]).sqrt();
+        // de/dt = (omega x e3)_h, e3 = (ex, ey, c)
+        let dex = y[3] * c - y[4] * y[1];
+        let dey = y[4] * y[0] - y[2] * c;
+        y[0] * dex + y[1] * dey
+    }
+
+    /// The relative margin `1 - Nbed/N` of a threshold of the contact
+    /// (docs/model.md §6.4): positive while its edge is past its point. At
+    /// upright the heel is closed and nothing has crushed.
+    fn kink_margin(&self, y: &[f64; N], n: f64, t: Threshold) -> f64 {
+        let theta = (y[0] * y[0] + y[1] * y[1]).sqrt().asin();
+        if theta <= 0.0 {
+            return match t {
+                Threshold::Contact(_) => 1.0,
+                Threshold::Plastic(_) => -1.0,
+            };
+        }
+        let it = &self.model.interface;
+        Interface::threshold_margin(it.threshold_resultant(theta, t), n)
+    }
+
+    /// The margins armed at the state `y` at `t`.
+    pub(crate) fn arm(&self, eom: &Eom, t: f64, y: &[f64; N]) -> Armed {
+        let n = self.weight_at(eom, t);
+        let kinks = self.model.interface.moving_thresholds().map(|th| match th {
+            Some(k) => {
+                let m = self.kink_margin(y, n, k);
+                let sign = if m.abs() > KINK_ARMED {
+                    m.signum()
+                } else {
+                    0.0
+                };
+                (th, sign)
+            }
+            None => (None, 0.0),
+        });
+        Armed {
+            approach: Self::approach(y) < 0.0,
+            kinks,
+        }
+    }
+
+    /// The smallest armed margin at `(t, y)` and its event (overturning is
+    /// always armed).
+    pub(crate) fn margin(&self, eom: &Eom, t: f64, y: &[f64; N], armed: &Armed) -> (f64, Cut) {
+        let n = self.weight_at(eom, t);
+        let mut best = (self.overturn_margin(y, n), Cut::Overturning);
+        if armed.approach {
+            let m = -Self::approach(y);
+            if m < best.0 {
+                best = (m, Cut::Minimum);
+            }
+        }
+        for (th, sign) in armed.kinks {
+            if let (Some(k), true) = (th, sign != 0.0) {
+                let m = sign * self.kink_margin(y, n, k);
+                if m < best.0 {
+                    best = (m, Cut::Kink);
+                }
+            }
+        }
+        best
+    }
+
+    /// The first event of the step `hh` from `(t, y0)`, whose end is past
+    /// one: its offset from `t`, which, and the state just past it, by the
+    /// Illinois method on the step itself (each trial a step of DOP853 from
+    /// `y0`).
+    pub(crate) fn locate_on_bed(
+        &self,
+        eom: &Eom,
+        t: f64,
+        (y0, f0): (&[f64; N], &[f64; N]),
+        (hh, end): (f64, &[f64; N]),
+        d0: [f64; 2],
+        armed: &Armed,
+    ) -> (f64, Cut, [f64; N]) {
+        let trial = |h: f64| dop853(eom, t, (y0, f0), h, d0, |a, b| self.scales(a, b)).y;
+        let g = |h: f64, y: &[f64; N]| self.margin(eom, t + h, y, armed).0;
+        let (mut a, mut fa) = (0.0, g(0.0, y0).max(f64::MIN_POSITIVE));
+        let (mut b, mut fb, mut yb) = (hh, g(hh, end), *end);
+        let mut side = 0;
+        for _ in 0..200 {
+            if b - a <= min_step(t, b) * 0.25 {
+                break;
+            }
+            let mut c = b - fb * (b - a) / (fb - fa);
+            if !(c > a && c < b) {
+                c = 0.5 * (a + b);
+            }
+            let y = trial(c);
+            let fc = g(c, &y);
+            if fc <= 0.0 {
+                (b, fb, yb) = (c, fc, y);
+                if side == -1 {
+                    fa *= 0.5;
+                }
+                side = -1;
+            } else {
+                (a, fa) = (c, fc);
+                if side == 1 {
+                    fb *= 0.5;
+                }
+                side = 1;
+            }
+            if fc == 0.0 {
+                break;
+            }
+        }
+        let cut = self.margin(eom, t + b, &yb, armed).1;
+        (b, cut, yb)
+    }
+
+    /// The tilt's minimum at `st`: with the heel closed, the planar
+    /// restitution rule (docs/model.md §3, §11.3) on the angular velocity
+    /// across the axis, `omega_perp <- eta omega_perp` (the spin about the
+    /// axis kept), then rest if it settles; with the heel open, nothing (the
+    /// contact runs on round the rim).
+    pub(crate) fn upright_pass(&self, st: &mut SpatialState, eom: &Eom, ev: &mut SpatialEvents) {
+        let n = self.weight_at(eom, st.t);
+        let theta = st.e[0].hypot(st.e[1]).asin();
+        if !self.resultant(theta, n).heel_closed {
+            return;
+        }
+        let c = (1.0 - st.e[0] * st.e[0] - st.e[1] * st.e[1]).sqrt();
+        let e3 = Vector3::new(st.e[0], st.e[1], c);
+        let w = Vector3::from(st.omega);
+        let spin = w.dot(&e3) * e3;
+        st.omega = (self.model.eta * (w - spin) + spin).into();
+        st.impacts += 1;
+        ev.impacts += 1;
+        if eom.quiet() && self.settles(st) {
+            st.e = [0.0; 2];
+            st.omega = [0.0; 3];
+            st.at_rest = true;
+            ev.came_to_rest = true;
+        }
+    }
+
+    /// The planar flexible rest rule (docs/model.md §3, "Uplift and rest";
+    /// `dynamics::Simulator::settles`) without ground motion: the free
+    /// oscillation in full contact left after the rule, of amplitude
+    /// `|omega| sqrt(I0/K0)` (`K0 = kn Is - W hG`, `I0 = Ic + m hG²`), and the
+    /// tilt itself are below `rtol thetaOv`.
+    fn settles(&self, st: &SpatialState) -> bool {
+        let it = &self.model.interface;
+        let kn = match it.law() {
+            crate::interface::Law::Elastic { kn }
+            | crate::interface::Law::ElastoPlastic { kn, .. } => kn,
+            crate::interface::Law::Rigid => return false,
+        };
+        let b = &self.model.body;
+        let k0 = kn * it.shape().second_moment() - b.weight * b.hg;
+        let i0 = b.ic + b.mass * b.hg * b.hg;
+        let amp = Vector3::from(st.omega).norm() * (i0 / k0).sqrt();
+        let floor = self.planar.effective_rtol() * self.model.theta_ov;
+        amp <= floor && st.e[0].hypot(st.e[1]) <= floor
+    }
+}
