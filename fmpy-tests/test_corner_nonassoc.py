@@ -153,6 +153,12 @@ def test_small_corner_converges_below_the_lp_and_does_work_by_friction_alone(end
     assert dissipation > 0.01 * r.lam  # it slides somewhere
     assert r.lam + power_dead == pytest.approx(dissipation, rel=1e-6)
     assert r.opening_max_pressed <= 1e-9 * np.abs(v).max()
+    # the converged state is a collapse state, so complementarity.certify (an LP over all
+    # force fields complementary to the mechanism) must find its lambda among its own
+    from rocking.corner_blocks import complementarity
+
+    lo, hi = complementarity.certify(a, math.pi / 2, v)
+    assert lo - 1e-6 <= r.lam <= hi + 1e-6
 
 
 def test_committed_cases_lie_at_or_below_their_lp():
@@ -215,3 +221,60 @@ def test_diagnose_follows_the_wall_case_by_hand(relaxation):
     assert rows[1]["interface"] == pytest.approx((1 - relaxation) * n0, rel=1e-6)
     assert math.isnan(rows[0]["against_k_minus_2"])
     assert rows[1]["against_k_minus_2"] == pytest.approx(rows[0]["corner"], rel=1e-6)  # n_2 = 0 at the heel, as n_1
+
+
+def test_certify_gives_the_wall_cases_range_of_collapse_states():
+    """complementarity.certify on the rocking mechanism of the block against a wall (the
+    first fixed-capacity iteration's: about the toe, the heel sliding up the wall): with the
+    heel pressed by any n from 0 to the associative n0, friction mu n hanging on it
+    downwards, lambda = b/h (1 + 2 mu n / W) (test above); the table's friction allows
+    n0 at most, so the collapse states with this mechanism span b/h to the associative
+    0.4359. solve(certify=True) stops at iteration 1, whose lambda (0.4359) lies in its
+    mechanism's range: a collapse state, the prestressed one, where the default iteration
+    goes on to b/h, the least."""
+    from rocking.corner_blocks import complementarity
+
+    mu, bh = 0.6, B / H
+    n0 = (mu - bh) / (1 - mu ** 2 + 2 * mu * bh)
+    a = block_against_a_wall(mu)
+    r = nonassoc.solve(a, 0.0, certify=True)
+    assert r.converged and r.iterations == 1 and r.status.startswith("certified at iteration 1")
+    assert r.lam == pytest.approx(bh * (1 + 2 * mu * n0), rel=1e-6)
+    lo, hi = complementarity.certify(a, 0.0, r.velocity)
+    assert lo == pytest.approx(bh, rel=1e-6) and hi == pytest.approx(bh * (1 + 2 * mu * n0), rel=1e-6)
+    assert r.certified_range == pytest.approx((lo, hi), rel=1e-9)
+    default = nonassoc.solve(a, 0.0)
+    assert default.lam == pytest.approx(bh, rel=1e-6) and not default.certified
+
+
+def test_certify_refuses_a_mechanism_that_penetrates_or_is_not_normalised():
+    """A block on the table pushed into it (v_z < 0) is no mechanism: (nan, nan); sliding
+    along the load (mu = 0.2 < b/h) is one at lambda = mu only; one whose load power is not
+    1 is an error naming it."""
+    from rocking.corner_blocks import complementarity
+
+    a = on_table([box((0, 0, 0), (B, D, H))], mu=0.2)
+    w = a.weight(a.free()[0])
+    from rocking.corner_blocks.specimen import load_direction
+
+    v = np.zeros((len(a.blocks), 6))
+    i = a.free()[0]
+    v[i, :3] = load_direction(0.0) / w
+    v[i, 2] = -0.1 / w
+    assert all(math.isnan(x) for x in complementarity.certify(a, 0.0, v))
+    v[i, 2] = 0.0
+    lo, hi = complementarity.certify(a, 0.0, v)  # sliding along the load: only lambda = mu
+    assert lo == pytest.approx(0.2, rel=1e-9) and hi == pytest.approx(0.2, rel=1e-9)
+    with pytest.raises(ValueError, match="load power"):
+        complementarity.certify(a, 0.0, 2 * v)
+
+
+@pytest.mark.parametrize("mu, closed", [(0.2, 0.2), (0.6, B / H)])
+def test_least_by_milp_on_a_block_on_a_table(mu, closed):
+    """complementarity.least (the MILP) on a block that slides (mu) or rocks (b/h) first:
+    HiGHS proves the optimum, lower = upper = the closed form, within the big-M bounds."""
+    from rocking.corner_blocks import complementarity
+
+    r = complementarity.least(on_table([box((0, 0, 0), (B, D, H))], mu=mu), 0.0, time_limit=30)
+    assert r.lower == pytest.approx(closed, rel=1e-6) and r.upper == pytest.approx(closed, rel=1e-6)
+    assert not r.bound_active

@@ -66,6 +66,11 @@ class Result:
     moving: list = field(default_factory=list)
     opening_max_pressed: float = math.nan
     status: str = ""
+    #: with solve(certify=True): per iteration k >= 1 (k, lambda_k, lambda_min, lambda_max),
+    #: the range of collapse states with that iteration's mechanism (complementarity.certify;
+    #: nan, nan: none); certified_range: that of the iteration returned
+    certified: list = field(default_factory=list)
+    certified_range: tuple = (math.nan, math.nan)
 
 
 class NotConverged(RuntimeError):
@@ -77,11 +82,18 @@ class NotConverged(RuntimeError):
 
 
 def solve(assembly: Assembly, alpha, facets=8, relaxation=0.5, tol=1e-7, max_iter=200, move_tol=0.02,
-          raise_on_failure=True, log=None):
+          raise_on_failure=True, log=None, certify=False):
     """The non-associative multiplier at orientation alpha (rad); see the module's doc.
     relaxation in (0, 1]: the share of the new normal forces taken into n_hat; tol: on
     max |n - n_hat| / W_max and on lambda's relative change; log(str): one line per
-    iteration if given."""
+    iteration if given.
+
+    certify: also stop at the first iteration whose lambda_k is a collapse multiplier with
+    that iteration's own mechanism: complementarity.certify finds the range of lambda over
+    force fields in equilibrium, within Coulomb with their own n, with n = 0 where the
+    mechanism opens and friction at its limit where it slides; lambda_k inside it (to tol,
+    relative) is a collapse state by definition, whether or not the LP's normal forces have
+    repeated. Two more LPs an iteration; the ranges are kept in Result.certified."""
     if not 0 < relaxation <= 1:
         raise ValueError(f"invalid relaxation {relaxation}: must lie in (0, 1]")
     if not tol > 0:
@@ -95,6 +107,7 @@ def solve(assembly: Assembly, alpha, facets=8, relaxation=0.5, tol=1e-7, max_ite
     lam_assoc = x[p.lam_col]
     n_hat = x[p.n_cols].copy()
     history = [(lam_assoc, math.nan)]
+    certified = []
     lam_prev = lam_assoc
     if log:
         log(f"iteration 0 (associative): lambda {lam_assoc:.9f}")
@@ -115,6 +128,20 @@ def solve(assembly: Assembly, alpha, facets=8, relaxation=0.5, tol=1e-7, max_ite
         history.append((lam, change))
         if log:
             log(f"iteration {k}: lambda {lam:.9f}, max |n - n_hat| / W_max {change:.3e}")
+        if certify:
+            from .complementarity import _certify
+
+            lo, hi = _certify(p, p.velocity(res))
+            certified.append((k, lam, lo, hi))
+            if log:
+                log(f"iteration {k}: collapse states with its mechanism: lambda {lo:.9f} to {hi:.9f}")
+            slack = tol * max(1.0, abs(lam))
+            if lo - slack <= lam <= hi + slack and lam < LAMBDA_CAP * (1 - 1e-9):
+                velocity = p.velocity(res)
+                return Result(lam, lam_assoc, True, k, history, n, velocity, _moving(assembly, velocity, move_tol),
+                              math.nan, f"certified at iteration {k}: lambda_k is a collapse state with its mechanism "
+                              f"(collapse states {lo:.6g} to {hi:.6g}; relaxation {relaxation:g})",
+                              certified, (lo, hi))
         if change <= tol and abs(lam - lam_prev) <= tol * max(1.0, abs(lam)):
             if lam >= LAMBDA_CAP * (1 - 1e-9):
                 r = Result(lam, lam_assoc, False, k, history, n, status=f"lambda reached the cap {LAMBDA_CAP}: "
@@ -123,10 +150,11 @@ def solve(assembly: Assembly, alpha, facets=8, relaxation=0.5, tol=1e-7, max_ite
             velocity = p.velocity(res)
             return Result(lam, lam_assoc, True, k, history, n, velocity, _moving(assembly, velocity, move_tol),
                           p.opening_max_pressed(velocity, n, PRESSED * w_max),
-                          f"converged in {k} iterations (tol {tol:g}, relaxation {relaxation:g})")
+                          f"converged in {k} iterations (tol {tol:g}, relaxation {relaxation:g})",
+                          certified, certified[-1][2:] if certified else (math.nan, math.nan))
         n_hat = n_hat + relaxation * (n - n_hat)
         lam_prev = lam
-    r = Result(lam, lam_assoc, False, max_iter, history, n,
+    r = Result(lam, lam_assoc, False, max_iter, history, n, certified=certified,
                status=f"not converged in {max_iter} iterations: last max |n - n_hat| / W_max {change:.3e}, "
                       f"last lambda change {abs(lam - history[-2][0]):.3e} (tol {tol:g}, relaxation {relaxation:g})")
     return _fail(r, raise_on_failure)
@@ -296,7 +324,7 @@ def case(specimen, alpha, **options):
             "iterations": r.iterations, "history": r.history, "status": r.status,
             "moving": r.moving, "labels": [a.blocks[i].label() for i in r.moving],
             "opening_max_pressed": r.opening_max_pressed, "alpha": alpha, "ends": specimen.ends,
-            "mu": specimen.mu}
+            "mu": specimen.mu, "certified": r.certified, "certified_range": list(r.certified_range)}
 
 
 def diagnose(assembly, alpha, relaxation=0.5, iterations=40, proximity=PROXIMITY, facets=8, tol=1e-4, log=None):
@@ -359,6 +387,14 @@ def main(argv=None):
     p.add_argument("--diagnose", action="store_true",
                    help="run diagnose() instead (--max-iter iterations, --proximity): diagnose_*.json in --out")
     p.add_argument("--proximity", type=float, default=PROXIMITY)
+    p.add_argument("--certify", action="store_true",
+                   help="stop at the first iterate that is a collapse state with its own mechanism "
+                        "(solve(certify=True)): nonassoc_certify_*.json")
+    p.add_argument("--least", action="store_true",
+                   help="the least collapse multiplier by complementarity.least (MILP, --time-limit s): "
+                        "least_*.json")
+    p.add_argument("--time-limit", type=float, default=600.0)
+    p.add_argument("--y-scale", type=float, default=10.0)
     args = p.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -374,12 +410,29 @@ def main(argv=None):
         return
     for i in (int(k) for k in args.cases.split(",")):
         suffix = "" if (args.courses, args.blocks) == (9, 7) else f"_{args.courses}x{args.blocks}"
-        path = out / f"nonassoc_{args.ends}_mu{args.mu:g}_{i}{suffix}.json"
+        spec = Specimen(ends=args.ends, mu=args.mu, courses=args.courses, blocks=args.blocks)
+        alpha, label = ORIENTATIONS[i]
+        if args.least:
+            from . import complementarity
+
+            path = out / f"least_{args.ends}_mu{args.mu:g}_{i}{suffix}.json"
+            if path.is_file():
+                continue
+            r = complementarity.least(Assembly.from_specimen(spec), alpha, time_limit=args.time_limit,
+                                      y_scale=args.y_scale)
+            row = {"lower": r.lower, "upper": r.upper, "status": r.status, "cpu_s": r.cpu_s, "n_max": r.n_max,
+                   "y_scale": r.y_scale, "binaries": r.binaries, "bound_active": r.bound_active,
+                   "time_limit": args.time_limit, "alpha": alpha, "ends": args.ends, "mu": args.mu}
+            path.write_text(json.dumps(row))
+            print(f"{args.ends} alpha {label}: least collapse multiplier in [{r.lower:.4f}, {r.upper:.4f}], "
+                  f"{r.status}, {r.cpu_s:.0f} s CPU", flush=True)
+            continue
+        kind = "nonassoc_certify" if args.certify else "nonassoc"
+        path = out / f"{kind}_{args.ends}_mu{args.mu:g}_{i}{suffix}.json"
         if path.is_file():
             continue
-        alpha, label = ORIENTATIONS[i]
         t0 = time.process_time()
-        r = case(Specimen(ends=args.ends, mu=args.mu, courses=args.courses, blocks=args.blocks), alpha, relaxation=args.relaxation, tol=args.tol,
+        r = case(spec, alpha, relaxation=args.relaxation, tol=args.tol, certify=args.certify,
                  max_iter=args.max_iter, log=lambda s: print(f"{args.ends} {label}: {s}", file=sys.stderr, flush=True))
         r["cpu_s"] = time.process_time() - t0
         r["relaxation"], r["tol"] = args.relaxation, args.tol
