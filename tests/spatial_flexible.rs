@@ -367,3 +367,58 @@ fn model_exchange_refuses_a_flexible_bed_by_naming_interface() {
     let rigid = Spatial::new(&drum(Restitution::Housner, false), None, RTOL).unwrap();
     assert!(rigid.check_model_exchange().is_ok());
 }
+
+#[test]
+fn as_a_crushing_bed_stiffens_the_body_rolls_on_the_crushed_rim() {
+    // kn -> infinity at a fixed fm: beyond thetaC -> 0 the resultant sits
+    // at af_lim from the toe (the centroid of the crushed segment carrying
+    // N at fm), so the limit is the rigid bed's rolling on a rim of radius
+    // R - af_lim: a lumped body of the same mass, centre of mass and
+    // inertias on a base of that radius
+    let start = |s: &Spatial| SpatialState::tilted(s, 0.15, 0.4, [0.1, -0.2, 2.0]);
+    let weak = |t: f64| {
+        let a = two_components(t);
+        [0.3 * a[0], 0.3 * a[1]]
+    };
+    let crushing = |kn: f64| {
+        let p = Params {
+            kn,
+            fm: 1e6,
+            ..on_bed(true, Formulation::ShiftingPivot)
+        };
+        Spatial::new(&p, None, RTOL).unwrap()
+    };
+    let soft = crushing(1e9);
+    let b = soft.model.body;
+    let rim = soft.radius - soft.model.interface.af_limit();
+    let lumped = Params {
+        shape: rocking::model::ShapeKind::SolidCircle,
+        ro: rim,
+        mass_model: rocking::model::MassKind::Lumped,
+        w: b.weight,
+        hg: b.hg,
+        ic: b.ic,
+        interface: LawKind::Rigid,
+        ..drum(Restitution::Housner, false)
+    };
+    let rigid = Spatial::new(&lumped, Some(soft.c_axial), RTOL).unwrap();
+    let reference = run_rotated(&rigid, start(&rigid), (&weak, &no_av), 0.0, 1.5);
+    let mut gaps = vec![];
+    for kn in [1e9, 1e10, 1e11, 1e12] {
+        let s = crushing(kn);
+        let run = run_rotated(&s, start(&s), (&weak, &no_av), 0.0, 1.5);
+        let g = gap(&run, &reference);
+        eprintln!(
+            "kn {kn:.0e} (thetaC {:.1e}): gap to rolling on the rim of {rim:.4} m {g:.3e}",
+            s.model.interface.theta_c()
+        );
+        gaps.push(g);
+    }
+    let rates: Vec<f64> = gaps.windows(2).map(|w| (w[0] / w[1]).log10()).collect();
+    eprintln!("orders per decade of kn: {rates:.3?}");
+    // af - af_lim shrinks as the elastic zone's square, (fm/(kn theta))²
+    for r in &rates {
+        assert!((1.8..2.2).contains(r), "converges at {r} per decade");
+    }
+    assert!(gaps[3] < 1e-8, "{gaps:?}");
+}
