@@ -325,9 +325,10 @@ fn energy_is_conserved_on_an_elastic_bed_without_ground_motion() {
 #[test]
 fn a_motion_near_a_plane_takes_the_planar_loss_at_each_pass_near_upright() {
     // free rocking along x with a transverse tilt rate eps: the tilt passes
-    // upright at a distance of order eps, its minimum with the heel closed
-    // takes the restitution rule, and the motion tends to the planar one as
-    // eps -> 0 (the rule does not need an exact crossing)
+    // upright at a distance of order eps, where it turns a right angle from
+    // its side with the heel closed and takes the restitution rule, and the
+    // motion tends to the planar one as eps -> 0 (the rule does not need an
+    // exact crossing)
     let p = on_bed(false, Formulation::ShiftingPivot);
     let mut planar = Simulator::new(p.build().unwrap(), RTOL);
     planar.stiff_mode = false;
@@ -421,4 +422,42 @@ fn as_a_crushing_bed_stiffens_the_body_rolls_on_the_crushed_rim() {
         assert!((1.8..2.2).contains(r), "converges at {r} per decade");
     }
     assert!(gaps[3] < 1e-8, "{gaps:?}");
+}
+
+#[test]
+fn a_turning_point_short_of_upright_is_no_crossing() {
+    // a steady push holds the drum tilted in full contact; started beyond
+    // its equilibrium it oscillates about it, its tilt turning back at
+    // half the equilibrium without crossing upright: no restitution
+    let p = on_bed(false, Formulation::ShiftingPivot);
+    let mut planar = Simulator::new(p.build().unwrap(), RTOL);
+    planar.stiff_mode = false;
+    let spatial = Spatial::new(&p, None, RTOL).unwrap();
+    let b = spatial.model.body;
+    let k0 = p.kn * spatial.model.interface.shape().second_moment() - b.weight * b.hg;
+    let ag = -0.05;
+    let theta_eq = -b.mass * ag * b.hg / k0;
+    let (mut a, mut s) = (
+        planar.initial_state(1.5 * theta_eq, 0.0),
+        SpatialState::tilted(&spatial, 1.5 * theta_eq, 0.3, [0.0; 3]),
+    );
+    let push = PlanInput {
+        a: rot([ag, 0.0], 0.3),
+        da: [0.0; 2],
+    };
+    let (mut worst, mut low) = (0.0f64, 1.0f64);
+    for k in 1..=100 {
+        let t = k as f64 * DT;
+        planar.advance(&mut a, t, GroundInput { ag, dag: 0.0 });
+        spatial.advance(&mut s, t, push, VerticalInput::default());
+        worst = worst.max((a.theta - s.theta()).abs());
+        low = low.min(s.theta());
+    }
+    eprintln!(
+        "held at {theta_eq:.2e} rad: lowest tilt {low:.2e}, gap {worst:.1e} rad, crossings {} {}",
+        a.zero_crossings, s.impacts
+    );
+    assert!(low < 0.6 * theta_eq && low > 0.4 * theta_eq, "{low}");
+    assert_eq!((a.zero_crossings, s.impacts), (0, 0));
+    assert!(worst <= 1e-12, "{worst:e}");
 }

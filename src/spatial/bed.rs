@@ -1,7 +1,8 @@
 //! The events of a run on a flexible bed (docs/model.md §11.3): overturning
-//! where the weight's lever about the resultant vanishes, the tilt's
-//! minimum with the heel closed (the planar restitution rule), the kinks of
-//! the contact (restarts), rest after the rule, and leaving rest.
+//! where the weight's lever about the resultant vanishes, the tilt turning
+//! a right angle from the side it rocks on (with the heel closed: the
+//! planar restitution rule; else the side moves on), the kinks of the
+//! contact (restarts), rest after the rule, and leaving rest.
 //!
 //! Each event is the first zero of a margin, positive before it, checked
 //! at a step's end and located on the step itself (as the rigid bed's
@@ -12,7 +13,7 @@
 use nalgebra::Vector3;
 
 use super::eom::{Eom, N};
-use super::run::Cut;
+use super::run::{strikes, Cut};
 use super::step::dop853;
 use super::{Spatial, SpatialEvents, SpatialState};
 use crate::dynamics::controller::min_step;
@@ -25,8 +26,8 @@ const KINK_ARMED: f64 = 1e-10;
 /// The margins armed at a step's start.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Armed {
-    /// The tilt is moving toward upright, `e . de/dt < 0`.
-    approach: bool,
+    /// The tilt is on the side `d0` it rocks on, `e . d0 > 0`.
+    across: bool,
     /// Each threshold of the contact and the sign of its margin at the
     /// start (0: not armed).
     kinks: [(Option<Threshold>, f64); THRESHOLDS],
@@ -54,13 +55,9 @@ impl Spatial {
         q * (1.0 - s2).sqrt() - self.model.body.hg
     }
 
-    /// `e . de/dt`, 1/s: negative while the tilt moves toward upright.
-    fn approach(y: &[f64; N]) -> f64 {
-        let c = (1.0 - y[0] * y[0] - y[1] * y[1]).sqrt();
-        // de/dt = (omega x e3)_h, e3 = (ex, ey, c)
-        let dex = y[3] * c - y[4] * y[1];
-        let dey = y[4] * y[0] - y[2] * c;
-        y[0] * dex + y[1] * dey
+    /// `e . d0`: positive while the tilt is on the side `d0` (unit).
+    fn along(y: &[f64; N], d0: [f64; 2]) -> f64 {
+        y[0] * d0[0] + y[1] * d0[1]
     }
 
     /// The relative margin `1 - Nbed/N` of a threshold of the contact
@@ -78,8 +75,8 @@ impl Spatial {
         Interface::threshold_margin(it.threshold_resultant(theta, t), n)
     }
 
-    /// The margins armed at the state `y` at `t`.
-    pub(crate) fn arm(&self, eom: &Eom, t: f64, y: &[f64; N]) -> Armed {
+    /// The margins armed at the state `y` at `t` on the side `d0`.
+    pub(crate) fn arm(&self, eom: &Eom, t: f64, y: &[f64; N], d0: [f64; 2]) -> Armed {
         let n = self.weight_at(eom, t);
         let kinks = self.model.interface.moving_thresholds().map(|th| match th {
             Some(k) => {
@@ -94,20 +91,27 @@ impl Spatial {
             None => (None, 0.0),
         });
         Armed {
-            approach: Self::approach(y) < 0.0,
+            across: Self::along(y, d0) > 0.0,
             kinks,
         }
     }
 
     /// The smallest armed margin at `(t, y)` and its event (overturning is
     /// always armed).
-    pub(crate) fn margin(&self, eom: &Eom, t: f64, y: &[f64; N], armed: &Armed) -> (f64, Cut) {
+    pub(crate) fn margin(
+        &self,
+        eom: &Eom,
+        t: f64,
+        y: &[f64; N],
+        d0: [f64; 2],
+        armed: &Armed,
+    ) -> (f64, Cut) {
         let n = self.weight_at(eom, t);
         let mut best = (self.overturn_margin(y, n), Cut::Overturning);
-        if armed.approach {
-            let m = -Self::approach(y);
+        if armed.across {
+            let m = Self::along(y, d0);
             if m < best.0 {
-                best = (m, Cut::Minimum);
+                best = (m, Cut::Quarter);
             }
         }
         for (th, sign) in armed.kinks {
@@ -135,7 +139,7 @@ impl Spatial {
         armed: &Armed,
     ) -> (f64, Cut, [f64; N]) {
         let trial = |h: f64| dop853(eom, t, (y0, f0), h, d0, |a, b| self.scales(a, b)).y;
-        let g = |h: f64, y: &[f64; N]| self.margin(eom, t + h, y, armed).0;
+        let g = |h: f64, y: &[f64; N]| self.margin(eom, t + h, y, d0, armed).0;
         let (mut a, mut fa) = (0.0, g(0.0, y0).max(f64::MIN_POSITIVE));
         let (mut b, mut fb, mut yb) = (hh, g(hh, end), *end);
         let mut side = 0;
@@ -166,19 +170,29 @@ impl Spatial {
                 break;
             }
         }
-        let cut = self.margin(eom, t + b, &yb, armed).1;
+        let cut = self.margin(eom, t + b, &yb, d0, armed).1;
         (b, cut, yb)
     }
 
-    /// The tilt's minimum at `st`: with the heel closed, the planar
-    /// restitution rule (docs/model.md §3, §11.3) on the angular velocity
-    /// across the axis, `omega_perp <- eta omega_perp` (the spin about the
-    /// axis kept), then rest if it settles; with the heel open, nothing (the
-    /// contact runs on round the rim).
+    /// The tilt at `st` has turned a right angle from the side `st.pivot`
+    /// it rocked on (in a plane: it crossed upright), and the side becomes
+    /// the tilt's direction (`-pivot` within [`super::UPRIGHT`] of the
+    /// side's line). With the heel closed
+    /// there, the planar restitution rule (docs/model.md §3, §11.3) on the
+    /// angular velocity across the axis, `omega_perp <- eta omega_perp` (the
+    /// spin about the axis kept), then rest if it settles; with the heel
+    /// open, nothing more (a wobble whose contact runs round the rim).
     pub(crate) fn upright_pass(&self, st: &mut SpatialState, eom: &Eom, ev: &mut SpatialEvents) {
         let n = self.weight_at(eom, st.t);
-        let theta = st.e[0].hypot(st.e[1]).asin();
-        if !self.resultant(theta, n).heel_closed {
+        let s = st.e[0].hypot(st.e[1]);
+        // within round-off of the side's line (a planar motion along an
+        // oblique azimuth, `strikes`) the tilt's direction is round-off's
+        st.pivot = if strikes(st.e, st.pivot) {
+            [-st.pivot[0], -st.pivot[1]]
+        } else {
+            [st.e[0] / s, st.e[1] / s]
+        };
+        if !self.resultant(s.asin(), n).heel_closed {
             return;
         }
         let c = (1.0 - st.e[0] * st.e[0] - st.e[1] * st.e[1]).sqrt();

@@ -66,8 +66,6 @@ pub(crate) enum Cut {
     /// The tilt turned a right angle from the step's contact side.
     Quarter,
     Overturning,
-    /// A flexible bed: the tilt's minimum (`bed`).
-    Minimum,
     /// A flexible bed: a kink of the contact, where the step restarts.
     Kink,
 }
@@ -162,10 +160,24 @@ impl Spatial {
                 }
                 continue;
             }
-            let d0 = st.contact_direction();
+            if self.flexible() {
+                // on a flexible bed the side is the one the tilt rocks on,
+                // kept between steps (`bed`); a tilt that left rest away
+                // from the side the input pushed it to has that side
+                let [ex, ey] = st.e;
+                let s = ex.hypot(ey);
+                if ex * st.pivot[0] + ey * st.pivot[1] < 0.0 {
+                    st.pivot = [ex / s, ey / s];
+                }
+            }
+            let d0 = if self.flexible() {
+                st.pivot
+            } else {
+                st.contact_direction()
+            };
             let y0 = st.to_y();
             let f0 = eom.rates(st.t, &y0, d0);
-            let armed = self.flexible().then(|| self.arm(&eom, st.t, &y0));
+            let armed = self.flexible().then(|| self.arm(&eom, st.t, &y0, d0));
             if st.h <= 0.0 {
                 st.h = self.initial_step(&y0, &f0);
             }
@@ -183,13 +195,13 @@ impl Spatial {
             after_rejection = false;
             let t1 = if hh == remaining { t_end } else { st.t + hh };
             let cut = match &armed {
-                Some(a) => (self.margin(&eom, t1, &s.y, a).0 <= 0.0).then_some(Cut::Kink),
+                Some(a) => (self.margin(&eom, t1, &s.y, d0, a).0 <= 0.0).then_some(Cut::Kink),
                 None => self.cut(&s.y, d0),
             };
             match cut {
                 None => {
                     st.set_y(&s.y);
-                    st.pivot = self.side_after(&s.y, d0);
+                    st.pivot = d0;
                     st.t = t1;
                     st.h = next_h;
                 }
@@ -199,7 +211,7 @@ impl Spatial {
                         None => self.locate(&eom, st.t, (&y0, &f0), hh, d0),
                     };
                     st.set_y(&y);
-                    st.pivot = self.side_after(&y, d0);
+                    st.pivot = d0;
                     st.t += tau;
                     st.h = next_h.min(hh);
                     let impacts = ev.impacts;
@@ -222,19 +234,6 @@ impl Spatial {
             }
         }
         ev
-    }
-
-    /// The contact side kept after a step ending at `y` from the side `d0`:
-    /// `d0` on the rigid bed (a step's side, cut where it turns); on a
-    /// flexible bed, where nothing jumps at upright, the lean's direction
-    /// (`d0` at zero tilt).
-    fn side_after(&self, y: &[f64; N], d0: [f64; 2]) -> [f64; 2] {
-        let s = y[0].hypot(y[1]);
-        if self.flexible() && s > 0.0 {
-            [y[0] / s, y[1] / s]
-        } else {
-            d0
-        }
     }
 
     /// The first time in `[t, t_end]` at which the input leaves the model's
@@ -384,8 +383,8 @@ impl Spatial {
                 st.overturned = true;
                 ev.overturned_at = Some(st.t);
             }
-            Cut::Minimum => self.upright_pass(st, eom, ev),
             Cut::Kink => {}
+            Cut::Quarter if self.flexible() => self.upright_pass(st, eom, ev),
             Cut::Quarter => {
                 if !strikes(st.e, st.pivot) {
                     // off a plane: the contact runs on round the rim
