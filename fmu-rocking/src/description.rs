@@ -212,28 +212,16 @@ variables! {
         ..rigid_body::ic("Lumped inertia about the centre of mass, about the rocking axis")
     }
     INTERFACE = 12 => {
-        name: "interface",
-        description: "Interface law: rigid (Housner), elastic no-tension Winkler bed (kn), elastoPlastic (kn, crushing at fm)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: enumeration("InterfaceLaw", 3),
+        ..rigid_body::interface(enums::ELASTO_PLASTIC)
     }
     KN = 13 => {
-        name: "kn",
-        description: "Normal stiffness of the interface (stress per unit closure)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("Pa/m"), Some("MPa/m"), Some(5.0e9)),
+        ..rigid_body::KN
     }
     FM = 14 => {
-        name: "fm",
-        description: "Compressive strength of the interface (inf: no crushing)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: real(Some("Pa"), Some("MPa"), Some(5.0e6)),
+        ..rigid_body::FM
     }
     FORMULATION = 15 => {
-        name: "formulation",
-        description: "Equation of motion: costa (the paper's Eq. 1) or shiftingPivot (Eq. 9, Lagrangian, energy-consistent)",
-        causality: Parameter, variability: Fixed, initial: Some(Exact),
-        ty: enumeration("FormulationKind", 2),
+        ..rigid_body::FORMULATION
     }
     RESTITUTION = 16 => {
         ..rigid_body::restitution("Coefficient of restitution at impacts: housner (1 - 2 m b^2/IO) or given (eta)")
@@ -487,16 +475,8 @@ pub static UNITS: &[Unit] = &[
         base: base(1, 2, -2, 0),
         display: &[du("kN.m", 1e-3), du("MN.m", 1e-6)],
     },
-    Unit {
-        name: "Pa",
-        base: base(1, -1, -2, 0),
-        display: &[du("MPa", 1e-6)],
-    },
-    Unit {
-        name: "Pa/m",
-        base: base(1, -2, -2, 0),
-        display: &[du("MPa/m", 1e-6), du("GPa/m", 1e-9)],
-    },
+    units::PA,
+    units::PA_PER_M,
     units::M_PER_S2,
     units::RAD,
     units::RAD_PER_S,
@@ -512,14 +492,9 @@ pub mod enums {
     // the build script, which includes this file, uses none of them
     #[allow(unused_imports)]
     pub use model_description::rigid_body::enums::{
-        GIVEN, HOLLOW_CIRCLE, HOLLOW_RECTANGLE, HOUSNER, LUMPED, PRISM, SOLID_CIRCLE,
-        SOLID_RECTANGLE,
+        COSTA, ELASTIC, ELASTO_PLASTIC, GIVEN, HOLLOW_CIRCLE, HOLLOW_RECTANGLE, HOUSNER, LUMPED,
+        PRISM, RIGID, SHIFTING_PIVOT, SOLID_CIRCLE, SOLID_RECTANGLE,
     };
-    pub const RIGID: i32 = 1;
-    pub const ELASTIC: i32 = 2;
-    pub const ELASTO_PLASTIC: i32 = 3;
-    pub const COSTA: i32 = 1;
-    pub const SHIFTING_PIVOT: i32 = 2;
     pub const NONE: i32 = 1;
     pub const ONE_SIDED: i32 = 2;
 }
@@ -543,43 +518,8 @@ pub static TYPES: &[EnumType] = &[
         ],
     ),
     rigid_body::mass_model_type(&rigid_body::mass_model_kind("W, hG and Ic given directly")),
-    EnumType {
-        name: "InterfaceLaw",
-        description: "Law of the base interface",
-        items: &[
-            item(
-                "rigid",
-                enums::RIGID,
-                "Rigid contact (Housner): the reaction at the toe",
-            ),
-            item(
-                "elastic",
-                enums::ELASTIC,
-                "Elastic no-tension Winkler bed of stiffness kn",
-            ),
-            item(
-                "elastoPlastic",
-                enums::ELASTO_PLASTIC,
-                "Elastic no-tension, perfectly plastic at fm",
-            ),
-        ],
-    },
-    EnumType {
-        name: "FormulationKind",
-        description: "Equation of motion",
-        items: &[
-            item(
-                "costa",
-                enums::COSTA,
-                "The paper's Eq. 1 (Costa 2012), without the dI/dphi term",
-            ),
-            item(
-                "shiftingPivot",
-                enums::SHIFTING_PIVOT,
-                "The paper's Eq. 9, Lagrangian, energy-consistent",
-            ),
-        ],
-    },
+    rigid_body::INTERFACE_LAW,
+    rigid_body::FORMULATION_KIND,
     rigid_body::restitution_type(
         "Coefficient of restitution at impacts",
         &rigid_body::restitution_kind("eta = 1 - 2 m b^2 / IO", "eta = the parameter eta"),

@@ -1,7 +1,8 @@
 //! The table entries RockingBlock (`fmu-rocking`) and RoundBody
 //! (`fmu-round-body`) share: the rigid body's section, mass model,
-//! restitution and gravity parameters, the calculated parameters derived from
-//! them, their units, enumeration types and codes, and the log categories.
+//! restitution and gravity parameters, the interface's law (`interface`,
+//! `kn`, `fm`, `formulation`), the calculated parameters derived from them,
+//! their units, enumeration types and codes, and the log categories.
 //!
 //! A variable's name, causality, unit and start are defined once here; where
 //! its meaning differs between the two FMUs (the shape's items, the lumped
@@ -135,6 +136,16 @@ pub mod units {
         base: base(0, 0, 0, 1),
         display: &[du("deg", 180.0 / std::f64::consts::PI)],
     };
+    pub const PA: Unit = Unit {
+        name: "Pa",
+        base: base(1, -1, -2, 0),
+        display: &[du("MPa", 1e-6)],
+    };
+    pub const PA_PER_M: Unit = Unit {
+        name: "Pa/m",
+        base: base(1, -2, -2, 0),
+        display: &[du("MPa/m", 1e-6), du("GPa/m", 1e-9)],
+    };
     pub const RAD_PER_S: Unit = Unit {
         name: "rad/s",
         base: base(0, 0, -1, 1),
@@ -153,6 +164,11 @@ pub mod enums {
     pub const LUMPED: i32 = 2;
     pub const HOUSNER: i32 = 1;
     pub const GIVEN: i32 = 2;
+    pub const RIGID: i32 = 1;
+    pub const ELASTIC: i32 = 2;
+    pub const ELASTO_PLASTIC: i32 = 3;
+    pub const COSTA: i32 = 1;
+    pub const SHIFTING_PIVOT: i32 = 2;
 }
 
 /// The round items of `ShapeKind`.
@@ -213,6 +229,47 @@ pub const fn restitution_type(description: &'static str, items: &'static [EnumIt
         items,
     }
 }
+
+/// `InterfaceLaw`: the bed's law under the base.
+pub const INTERFACE_LAW: EnumType = EnumType {
+    name: "InterfaceLaw",
+    description: "Law of the base interface",
+    items: &[
+        item(
+            "rigid",
+            enums::RIGID,
+            "Rigid contact (Housner): the reaction at the toe",
+        ),
+        item(
+            "elastic",
+            enums::ELASTIC,
+            "Elastic no-tension Winkler bed of stiffness kn",
+        ),
+        item(
+            "elastoPlastic",
+            enums::ELASTO_PLASTIC,
+            "Elastic no-tension, perfectly plastic at fm",
+        ),
+    ],
+};
+
+/// `FormulationKind`: the equation of motion on a flexible interface.
+pub const FORMULATION_KIND: EnumType = EnumType {
+    name: "FormulationKind",
+    description: "Equation of motion",
+    items: &[
+        item(
+            "costa",
+            enums::COSTA,
+            "The paper's Eq. 1 (Costa 2012), without the dI/dphi term",
+        ),
+        item(
+            "shiftingPivot",
+            enums::SHIFTING_PIVOT,
+            "The paper's Eq. 9, Lagrangian, energy-consistent",
+        ),
+    ],
+};
 
 /// The log categories; `events` says which events `logEvents` reports.
 pub const fn log_categories(events: &'static str) -> [LogCategory; 4] {
@@ -318,6 +375,38 @@ pub const fn hg(description: &'static str, start: f64) -> Variable {
 pub const fn ic(description: &'static str) -> Variable {
     parameter("Ic", description, real(Some("kg.m2"), None, Some(1.0e4)))
 }
+
+/// `interface`, enumeration `InterfaceLaw` starting at the code `start`
+/// (RockingBlock's elastoPlastic; RoundBody's rigid, on which its Model
+/// Exchange runs).
+pub const fn interface(start: i32) -> Variable {
+    parameter(
+        "interface",
+        "Interface law: rigid (Housner), elastic no-tension Winkler bed (kn), elastoPlastic (kn, crushing at fm)",
+        enumeration("InterfaceLaw", start),
+    )
+}
+
+/// `kn`, Pa/m.
+pub const KN: Variable = parameter(
+    "kn",
+    "Normal stiffness of the interface (stress per unit closure)",
+    real(Some("Pa/m"), Some("MPa/m"), Some(5.0e9)),
+);
+
+/// `fm`, Pa.
+pub const FM: Variable = parameter(
+    "fm",
+    "Compressive strength of the interface (inf: no crushing)",
+    real(Some("Pa"), Some("MPa"), Some(5.0e6)),
+);
+
+/// `formulation`, enumeration `FormulationKind` starting at shiftingPivot.
+pub const FORMULATION: Variable = parameter(
+    "formulation",
+    "Equation of motion: costa (the paper's Eq. 1) or shiftingPivot (Eq. 9, Lagrangian, energy-consistent)",
+    enumeration("FormulationKind", enums::SHIFTING_PIVOT),
+);
 
 /// `restitution`, enumeration `RestitutionKind` starting at housner.
 pub const fn restitution(description: &'static str) -> Variable {
