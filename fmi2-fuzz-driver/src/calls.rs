@@ -233,7 +233,7 @@ impl<M: Model> Driver<M> {
     pub(crate) fn exit(&mut self, k: u8) {
         let Some(s) = self.slot(k) else { return };
         let expect = (s.machine == Some(Machine::Init))
-            .then(|| s.stored.as_ref().map(M::valid))
+            .then(|| s.stored.as_ref().map(|st| M::valid_for(st, s.me)))
             .flatten();
         let stored = s.stored.clone();
         let Some(st) = self.call(k, "fmi2ExitInitializationMode", INIT, |c| unsafe {

@@ -125,6 +125,12 @@ pub trait Model: Sized + 'static {
     /// Whether the stored values make a model the FMU must accept at
     /// fmi2ExitInitializationMode.
     fn valid(stored: &Stored) -> bool;
+    /// [`valid`](Self::valid) for an instance of fmuType
+    /// fmi2ModelExchange (`model_exchange`) or co-simulation, where an FMU
+    /// accepts less in one of them.
+    fn valid_for(stored: &Stored, _model_exchange: bool) -> bool {
+        Self::valid(stored)
+    }
     /// Operation 40: an input set to a value.
     fn set_input(b: &mut Bytes, slot: u8) -> Op;
     /// Operation 41: an input's derivative set.

@@ -37,10 +37,56 @@ const D_INERTIA: &[&str] = &[
 ];
 const D_THETA_ALPHA: &[&str] = &["shape", "Ro", "massModel", "H", "hG", "theta0"];
 const D_LEAN: &[&str] = &["theta0", "psi0"];
-const D_POSITION: &[&str] = &["shape", "Ro", "massModel", "H", "hG", "theta0", "psi0"];
-const D_REGIME: &[&str] = &["theta0", "omegaX0", "omegaY0", "omegaZ0"];
-const D_AREA: &[&str] = &[
-    "shape", "Ro", "Ri", "theta0", "omegaX0", "omegaY0", "omegaZ0",
+const D_OVERTURN: &[&str] = &[
+    "shape",
+    "Ro",
+    "Ri",
+    "massModel",
+    "H",
+    "rho",
+    "W",
+    "hG",
+    "interface",
+    "kn",
+    "fm",
+    "g",
+];
+// the lean of the initial tilt: on a flexible bed the resultant's place
+// under the weight (docs/model.md §11.2)
+const D_POSITION: &[&str] = &[
+    "shape",
+    "Ro",
+    "Ri",
+    "massModel",
+    "H",
+    "rho",
+    "W",
+    "hG",
+    "interface",
+    "kn",
+    "fm",
+    "g",
+    "theta0",
+    "psi0",
+];
+// the bed's reaction at the tilt under the apparent weight m (g + av)
+const D_CONTACT: &[&str] = &[
+    "shape",
+    "Ro",
+    "Ri",
+    "massModel",
+    "H",
+    "rho",
+    "W",
+    "interface",
+    "kn",
+    "fm",
+    "g",
+    "theta0",
+    "omegaX0",
+    "omegaY0",
+    "omegaZ0",
+    "av",
 ];
 /// Number of Model Exchange event indicators (`rocking::spatial::continuous`:
 /// the quarter turn or crossing, overturning, uplift, lift-off).
@@ -61,6 +107,10 @@ const D_DYNAMIC: &[&str] = &[
     "hG",
     "Ic",
     "IcAxial",
+    "interface",
+    "kn",
+    "fm",
+    "formulation",
     "g",
     "theta0",
     "psi0",
@@ -270,10 +320,10 @@ variables! {
     }
     REGIME = 36 => {
         name: "regime",
-        description: "rest (upright on the whole base) or rocking (on a point of the rim: rocking, wobbling, rolling; and after overturning)",
+        description: "On the rigid bed: rest (upright on the whole base) or rocking (on a point of the rim: rocking, wobbling, rolling; and after overturning). On a flexible bed the planar contact along the lean: fullContact, partialContact, partialCrushing, fullCrushing, or outOfRange (g + av <= 0, liftOff, or the apparent weight crushing the whole base)",
         causality: Output, variability: Discrete, initial: Some(Calculated),
         ty: Type::Enumeration { declared_type: "RegimeKind", start: None },
-        depends_on: D_REGIME,
+        depends_on: D_CONTACT,
     }
     IMPACTS = 37 => {
         name: "impacts",
@@ -312,8 +362,8 @@ variables! {
         ..rigid_body::eta_housner("Housner's coefficient of restitution 1 - 2 m Ro^2/IO (the planar impact's)")
     }
     THETA_OV = 45 => {
-        depends_on: D_LEVER,
-        ..rigid_body::theta_ov("Overturning tilt: alpha on the rigid bed")
+        depends_on: D_OVERTURN,
+        ..rigid_body::theta_ov("Overturning tilt: alpha on the rigid bed; on a flexible bed RockingBlock's, the first root of hW(phi) = 0")
     }
     DER_EX = 46 => {
         name: "der(ex)",
@@ -380,10 +430,36 @@ variables! {
     }
     CONTACT_AREA = 53 => {
         name: "contactArea",
-        description: "Area of the base in contact with the bed: the whole section at rest, 0 on a point of the rim (rocking, wobbling, rolling; and after overturning)",
-        causality: Output, variability: Discrete, initial: Some(Calculated),
+        description: "Area of the base in contact with the bed. Rigid bed: the whole section at rest, 0 on a point of the rim (rocking, wobbling, rolling; and after overturning). Flexible bed: the closed part of the base under the apparent weight m (g + av), 0 where g + av <= 0",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
         ty: real(Some("m2"), None, None),
-        depends_on: D_AREA,
+        depends_on: D_CONTACT,
+    }
+    INTERFACE = 54 => {
+        ..rigid_body::interface(rigid_body::enums::RIGID)
+    }
+    KN = 55 => {
+        ..rigid_body::KN
+    }
+    FM = 56 => {
+        ..rigid_body::FM
+    }
+    FORMULATION = 57 => {
+        ..rigid_body::FORMULATION
+    }
+    AF = 58 => {
+        name: "af",
+        description: "Distance of the bed's resultant from the toe (the rim point toward the lean), along the lean: Ro at rest on the rigid bed, 0 on its rim point; on a flexible bed RockingBlock's af at the tilt under the apparent weight m (g + av), 0 where g + av <= 0",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("m"), None, None),
+        depends_on: D_CONTACT,
+    }
+    CRUSHED_AREA = 59 => {
+        name: "crushedArea",
+        description: "Area of the crushed (plastic) part of the base: 0 on the rigid and elastic beds; on elastoPlastic the part at fm under the apparent weight m (g + av)",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("m2"), None, None),
+        depends_on: D_CONTACT,
     }
 }
 
@@ -397,10 +473,13 @@ pub static UNITS: &[Unit] = &[
     units::KG_PER_M3,
     units::KG_M2,
     units::N,
+    // kn, fm
+    units::PA,
+    units::PA_PER_M,
     units::M_PER_S2,
     units::RAD,
     units::RAD_PER_S,
-    // contactArea
+    // contactArea, crushedArea
     Unit {
         name: "m2",
         base: base(0, 2, 0, 0),
@@ -430,10 +509,16 @@ pub mod enums {
     // the build script, which includes this file, uses none of them
     #[allow(unused_imports)]
     pub use model_description::rigid_body::enums::{
-        GIVEN, HOLLOW_CIRCLE, HOUSNER, LUMPED, PRISM, SOLID_CIRCLE,
+        COSTA, ELASTIC, ELASTO_PLASTIC, GIVEN, HOLLOW_CIRCLE, HOUSNER, LUMPED, PRISM, RIGID,
+        SHIFTING_PIVOT, SOLID_CIRCLE,
     };
     pub const REST: i32 = 1;
     pub const ROCKING: i32 = 2;
+    pub const FULL_CONTACT: i32 = 3;
+    pub const PARTIAL_CONTACT: i32 = 4;
+    pub const PARTIAL_CRUSHING: i32 = 5;
+    pub const FULL_CRUSHING: i32 = 6;
+    pub const OUT_OF_RANGE: i32 = 7;
 }
 
 pub static TYPES: &[EnumType] = &[
@@ -444,6 +529,8 @@ pub static TYPES: &[EnumType] = &[
     rigid_body::mass_model_type(&rigid_body::mass_model_kind(
         "W, hG, Ic and IcAxial given directly",
     )),
+    rigid_body::INTERFACE_LAW,
+    rigid_body::FORMULATION_KIND,
     rigid_body::restitution_type(
         "Restitution at impacts",
         &rigid_body::restitution_kind(
@@ -461,6 +548,31 @@ pub static TYPES: &[EnumType] = &[
                 enums::ROCKING,
                 "On a point of the rim: rocking, wobbling or rolling",
             ),
+            rigid_body::item(
+                "fullContact",
+                enums::FULL_CONTACT,
+                "Flexible bed: the whole base closed, elastic",
+            ),
+            rigid_body::item(
+                "partialContact",
+                enums::PARTIAL_CONTACT,
+                "Flexible bed: the heel open, the contact elastic",
+            ),
+            rigid_body::item(
+                "partialCrushing",
+                enums::PARTIAL_CRUSHING,
+                "Flexible bed: the heel open, the toe crushed",
+            ),
+            rigid_body::item(
+                "fullCrushing",
+                enums::FULL_CRUSHING,
+                "Flexible bed: the whole base closed, the toe crushed",
+            ),
+            rigid_body::item(
+                "outOfRange",
+                enums::OUT_OF_RANGE,
+                "Flexible bed: g + av <= 0 (liftOff) or the apparent weight crushes the whole base",
+            ),
         ],
     },
 ];
@@ -470,7 +582,7 @@ pub static LOG_CATEGORIES: &[LogCategory] =
 
 pub static ROUND_BODY: ModelDescription = ModelDescription {
     model_name: "RoundBody",
-    description: "A round body (solid or hollow circle) rocking, wobbling and rolling in space on a rigid bed under two horizontal ground accelerations and the vertical one (co-simulation and model exchange)",
+    description: "A round body (solid or hollow circle) rocking, wobbling and rolling in space on a rigid or flexible, crushing bed under two horizontal ground accelerations and the vertical one (co-simulation; model exchange on the rigid bed)",
     author: common::AUTHOR,
     version: env!("CARGO_PKG_VERSION"),
     copyright: common::COPYRIGHT,
@@ -573,10 +685,16 @@ mod tests {
             "der(xG)",
             "der(yG)",
             "contactArea",
+            "interface",
+            "kn",
+            "fm",
+            "formulation",
+            "af",
+            "crushedArea",
         ] {
             assert!(ROUND_BODY.variable(n).is_some(), "{n}");
         }
-        assert_eq!(VARIABLES.len(), 54);
+        assert_eq!(VARIABLES.len(), 60);
     }
 
     /// docs/round-body.md has one row per variable, with its causality and

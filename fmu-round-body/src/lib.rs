@@ -1,6 +1,6 @@
 //! The RoundBody FMU: FMI 2.0 and 3.0 co-simulation and Model Exchange of a round body (a
 //! solid or hollow circle's base) rocking, wobbling and rolling in space on
-//! a rigid bed under both horizontal components of the ground motion and
+//! a rigid or flexible, crushing bed under both horizontal components of the ground motion and
 //! the vertical one.
 //!
 //! Three parts, each knowing only what it must:
@@ -18,6 +18,8 @@ pub mod slave;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_flexible;
 #[cfg(test)]
 mod tests_me;
 

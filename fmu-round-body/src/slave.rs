@@ -10,10 +10,11 @@ use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
 use fmi2_export::model_description::ModelDescription;
 use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Update, Values};
 use rocking::dynamics::VerticalInput;
+use rocking::interface::{Regime, RoundBed, RoundReaction};
 use rocking::model::{LawKind, MassKind, ShapeKind};
 use rocking::spatial::continuous::{EVENT_INDICATORS, STATES};
 use rocking::spatial::{PlanInput, Spatial, SpatialState};
-use rocking::{Params, Restitution};
+use rocking::{Formulation, Params, Restitution};
 
 /// Largest |agx|, |agy|, |av| a step accepts, m/s2 (RockingBlock's bound:
 /// far beyond any ground motion, below where the arithmetic overflows).
@@ -34,10 +35,21 @@ const _: () = assert!(crate::description::EVENT_INDICATORS as usize == EVENT_IND
 pub struct RoundBodySlave {
     body: Spatial,
     state: SpatialState,
+    /// The flexible bed's law asked in space (`contactArea`, `af`,
+    /// `crushedArea`, `regime`); `None` on the rigid bed.
+    bed: Option<RoundBed>,
+}
+
+/// The bed's reaction where the apparent weight leaves the law's range.
+enum Outside {
+    /// `g + av <= 0`: the bed carries nothing (liftOff).
+    Unloaded,
+    /// `m (g + av) >= fm A`: the whole base crushed (baseCrushing).
+    Crushed,
 }
 
 /// The physics parameters of the stored values: the body and the bed
-/// (rigid, rocking every way) with the initial tilt; `Err` names the variable.
+/// (rocking every way) with the initial tilt; `Err` names the variable.
 fn params(v: Values<'_>) -> Result<Params, String> {
     let shape = match v.integer(vr::SHAPE) {
         enums::SOLID_CIRCLE => ShapeKind::SolidCircle,
@@ -60,6 +72,17 @@ fn params(v: Values<'_>) -> Result<Params, String> {
         enums::GIVEN => Restitution::Given,
         r => return Err(format!("restitution = {r}: not an item of RestitutionKind")),
     };
+    let interface = match v.integer(vr::INTERFACE) {
+        enums::RIGID => LawKind::Rigid,
+        enums::ELASTIC => LawKind::Elastic,
+        enums::ELASTO_PLASTIC => LawKind::ElastoPlastic,
+        i => return Err(format!("interface = {i}: not an item of InterfaceLaw")),
+    };
+    let formulation = match v.integer(vr::FORMULATION) {
+        enums::COSTA => Formulation::Costa,
+        enums::SHIFTING_PIVOT => Formulation::ShiftingPivot,
+        f => return Err(format!("formulation = {f}: not an item of FormulationKind")),
+    };
     Ok(Params {
         shape,
         ro: v.real(vr::RO),
@@ -70,7 +93,10 @@ fn params(v: Values<'_>) -> Result<Params, String> {
         w: v.real(vr::W),
         hg: v.real(vr::HG),
         ic: v.real(vr::IC),
-        interface: LawKind::Rigid,
+        interface,
+        kn: v.real(vr::KN),
+        fm: v.real(vr::FM),
+        formulation,
         restitution,
         eta: v.real(vr::ETA),
         g: v.real(vr::G),
@@ -249,6 +275,70 @@ impl RoundBodySlave {
         Ok(StepEnd::Completed)
     }
 
+    /// The flexible bed's reaction at the state under the apparent weight
+    /// `m (g + av)` of the input now (`None` on the rigid bed).
+    fn reaction(
+        &self,
+        inputs: &Inputs<'_>,
+    ) -> Result<Option<Result<RoundReaction, Outside>>, String> {
+        let Some(bed) = &self.bed else {
+            return Ok(None);
+        };
+        let (_, av) = inputs_now(inputs)?;
+        let b = &self.body.model.body;
+        let n = b.mass * (b.g + av);
+        if n <= 0.0 {
+            return Ok(Some(Err(Outside::Unloaded)));
+        }
+        let s = &self.state;
+        match bed.reaction_toward(s.theta(), s.contact_direction(), n) {
+            Ok(r) => Ok(Some(Ok(r))),
+            // the one condition left: n >= fm A
+            Err(e) if e.variable == "N" => Ok(Some(Err(Outside::Crushed))),
+            Err(e) => Err(format!(
+                "the bed's reaction at theta = {} rad under N = {n} N: {} = {}: {}",
+                s.theta(),
+                e.variable,
+                e.value,
+                e.condition
+            )),
+        }
+    }
+
+    /// `contactArea`, `crushedArea` and `af`, m², m², m.
+    fn contact(&self, inputs: &Inputs<'_>) -> Result<[f64; 3], String> {
+        let area = self.body.model.interface.shape().area();
+        let ro = self.body.model.interface.shape().depth() / 2.0;
+        Ok(match self.reaction(inputs)? {
+            // the rigid bed: the whole base upright at rest, else a rim point
+            None if self.state.at_rest => [area, 0.0, ro],
+            None => [0.0, 0.0, 0.0],
+            Some(Ok(r)) => [r.contact_area, r.crushed_area, r.contact.af],
+            Some(Err(Outside::Unloaded)) => [0.0, 0.0, 0.0],
+            Some(Err(Outside::Crushed)) => [area, area, ro],
+        })
+    }
+
+    /// `regime` (RegimeKind's code).
+    fn regime(&self, inputs: &Inputs<'_>) -> Result<i32, String> {
+        if self.bed.is_some() && self.state.out_of_range {
+            return Ok(enums::OUT_OF_RANGE);
+        }
+        Ok(match self.reaction(inputs)? {
+            None if self.state.at_rest => enums::REST,
+            None => enums::ROCKING,
+            Some(Ok(r)) => match r.regime() {
+                Regime::FullContact => enums::FULL_CONTACT,
+                Regime::Partial => enums::PARTIAL_CONTACT,
+                Regime::PartialCrushing => enums::PARTIAL_CRUSHING,
+                Regime::FullCrushing => enums::FULL_CRUSHING,
+                // set by the planar dynamics, never by the law
+                Regime::Overturned => enums::PARTIAL_CONTACT,
+            },
+            Some(Err(_)) => enums::OUT_OF_RANGE,
+        })
+    }
+
     /// The bed's force on the body under the inputs now, N.
     fn force(&self, inputs: &Inputs<'_>) -> Result<[f64; 3], String> {
         let (ag, av) = inputs_now(inputs)?;
@@ -286,6 +376,13 @@ impl Slave for RoundBodySlave {
         };
         let mut body = Spatial::new(&p, ic_axial, rtol)
             .map_err(|e| format!("{} = {}: {}", public_name(e.variable), e.value, e.condition))?;
+        if setup.model_exchange {
+            // rocking::spatial::continuous's indicators and event update
+            // are the rigid bed's: a flexible bed is refused naming interface
+            body.check_model_exchange().map_err(|e| {
+                format!("{} = {}: {}", public_name(e.variable), e.value, e.condition)
+            })?;
+        }
         let max_steps = values.integer(vr::MAX_STEPS);
         if max_steps < 1 {
             return Err(format!(
@@ -314,7 +411,13 @@ impl Slave for RoundBodySlave {
         }
         let mut state = SpatialState::tilted(&body, p.theta0, psi0, omega);
         state.t = setup.start_time;
-        Ok(RoundBodySlave { body, state })
+        let bed = match p.interface {
+            LawKind::Rigid => None,
+            _ => Some(RoundBed::new(body.model.interface).map_err(|e| {
+                format!("{} = {}: {}", public_name(e.variable), e.value, e.condition)
+            })?),
+        };
+        Ok(RoundBodySlave { body, state, bed })
     }
 
     fn get_real(&mut self, r: u32, inputs: Inputs<'_>) -> Result<f64, String> {
@@ -352,9 +455,9 @@ impl Slave for RoundBodySlave {
             vr::ETA_HOUSNER => b.eta_housner(),
             vr::THETA_OV => self.body.model.theta_ov,
             vr::DER_EX..=vr::DER_YG => self.rates(&inputs)?[(r - vr::DER_EX) as usize],
-            // the rigid bed touches a rocking body at one point of its rim
-            vr::CONTACT_AREA if s.at_rest => self.body.model.interface.shape().area(),
-            vr::CONTACT_AREA => 0.0,
+            vr::CONTACT_AREA => self.contact(&inputs)?[0],
+            vr::CRUSHED_AREA => self.contact(&inputs)?[1],
+            vr::AF => self.contact(&inputs)?[2],
             _ => return Err(format!("no computed Real with value reference {r}")),
         };
         if !x.is_finite() {
@@ -363,10 +466,9 @@ impl Slave for RoundBodySlave {
         Ok(x)
     }
 
-    fn get_integer(&mut self, r: u32, _inputs: Inputs<'_>) -> Result<i32, String> {
+    fn get_integer(&mut self, r: u32, inputs: Inputs<'_>) -> Result<i32, String> {
         match r {
-            vr::REGIME if self.state.at_rest => Ok(enums::REST),
-            vr::REGIME => Ok(enums::ROCKING),
+            vr::REGIME => self.regime(&inputs),
             vr::IMPACTS => Ok(i32::try_from(self.state.impacts).unwrap_or(i32::MAX)),
             _ => Err(format!("no computed Integer with value reference {r}")),
         }

@@ -19,11 +19,11 @@ type Host = test_host::Host<crate::RoundBodySlave>;
 /// `g tan(alpha)` of the default drum (Ro 0.5 m, H 3 m): the uplift threshold, m/s2.
 const UPLIFT: f64 = 9.81 / 3.0;
 
-const DT: f64 = 0.01;
+pub(crate) const DT: f64 = 0.01;
 
 /// Two horizontal components and a vertical one that rock the default drum
 /// off any plane without overturning it, m/s2 at t s.
-fn ground(t: f64) -> [f64; 3] {
+pub(crate) fn ground(t: f64) -> [f64; 3] {
     let w = 2.0 * std::f64::consts::PI;
     let decay = (-0.25 * t).exp();
     [
@@ -34,13 +34,13 @@ fn ground(t: f64) -> [f64; 3] {
 }
 
 /// The inputs over step `k`: values at its start and the chords' slopes.
-fn step_inputs(k: usize) -> ([f64; 3], [f64; 3]) {
+pub(crate) fn step_inputs(k: usize) -> ([f64; 3], [f64; 3]) {
     let (t0, t1) = (k as f64 * DT, (k + 1) as f64 * DT);
     let (a, b) = (ground(t0), ground(t1));
     (a, [0, 1, 2].map(|i| (b[i] - a[i]) / DT))
 }
 
-const INPUTS: [u32; 3] = [vr::AGX, vr::AGY, vr::AV];
+pub(crate) const INPUTS: [u32; 3] = [vr::AGX, vr::AGY, vr::AV];
 
 /// Every Real output, then impacts, regime and overturned, as f64 bits.
 fn output_vrs() -> Vec<u32> {
@@ -385,16 +385,22 @@ unsafe extern "C" fn collect(env: *mut c_void, _s: i32, _c: *const c_char, m: *c
     }
 }
 
-struct Fmi3 {
+pub(crate) struct Fmi3 {
     c: *mut c_void,
     // boxed: the FMU keeps the log's address as its environment
     #[allow(clippy::box_collection)]
-    log: Box<Vec<String>>,
+    pub(crate) log: Box<Vec<String>>,
 }
 
 impl Fmi3 {
     /// Instantiated (no event mode, no early return) and initialized at t = 0.
-    fn new() -> Fmi3 {
+    pub(crate) fn new() -> Fmi3 {
+        Fmi3::with(&[], &[])
+    }
+
+    /// As [`Fmi3::new`] with the parameters `reals` and `enums` (by value
+    /// reference) set before initialization.
+    pub(crate) fn with(reals: &[(u32, f64)], enums: &[(u32, i64)]) -> Fmi3 {
         let mut log = Box::new(Vec::new());
         let name = CString::new("round3").unwrap();
         let token = CString::new(GUID).unwrap();
@@ -416,6 +422,12 @@ impl Fmi3 {
         };
         assert!(!c.is_null(), "{log:?}");
         unsafe {
+            for (r, x) in reals {
+                assert_eq!(fmi3SetFloat64(c, r, 1, x, 1), 0, "{log:?}");
+            }
+            for (r, x) in enums {
+                assert_eq!(fmi3SetInt64(c, r, 1, x, 1), 0, "{log:?}");
+            }
             assert_eq!(
                 fmi3EnterInitializationMode(c, false, 0.0, 0.0, false, 0.0),
                 0
@@ -425,12 +437,12 @@ impl Fmi3 {
         Fmi3 { c, log }
     }
 
-    fn set(&self, vrs: &[u32], x: &[f64]) -> i32 {
+    pub(crate) fn set(&self, vrs: &[u32], x: &[f64]) -> i32 {
         unsafe { fmi3SetFloat64(self.c, vrs.as_ptr(), vrs.len(), x.as_ptr(), x.len()) }
     }
 
     /// `(status, lastSuccessfulTime)`.
-    fn step(&self, t: f64, h: f64) -> (i32, f64) {
+    pub(crate) fn step(&self, t: f64, h: f64) -> (i32, f64) {
         let (mut event, mut terminate, mut early, mut last) = (false, false, false, f64::NAN);
         let s = unsafe {
             fmi3DoStep(
@@ -448,21 +460,14 @@ impl Fmi3 {
     }
 
     fn outputs(&self) -> Vec<u64> {
-        let vrs = output_vrs();
-        let mut x = vec![f64::NAN; vrs.len()];
-        let s = unsafe { fmi3GetFloat64(self.c, vrs.as_ptr(), vrs.len(), x.as_mut_ptr(), x.len()) };
-        assert_eq!(s, 0, "{:?}", self.log);
-        let mut bits: Vec<u64> = x.iter().map(|x| x.to_bits()).collect();
-        let mut regime = [0i64];
+        let mut bits: Vec<u64> = self
+            .reals(&output_vrs())
+            .iter()
+            .map(|x| x.to_bits())
+            .collect();
         let mut impacts = [0i32];
         let mut over = [false];
         unsafe {
-            assert_eq!(
-                fmi3GetInt64(self.c, &vr::REGIME, 1, regime.as_mut_ptr(), 1),
-                0,
-                "{:?}",
-                self.log
-            );
             assert_eq!(
                 fmi3GetInt32(self.c, &vr::IMPACTS, 1, impacts.as_mut_ptr(), 1),
                 0,
@@ -474,10 +479,26 @@ impl Fmi3 {
                 0
             );
         }
-        bits.push(regime[0] as u64);
+        bits.push(self.int64(vr::REGIME) as u64);
         bits.push(impacts[0] as u64);
         bits.push(over[0] as u64);
         bits
+    }
+
+    /// The Float64 variables `vrs`.
+    pub(crate) fn reals(&self, vrs: &[u32]) -> Vec<f64> {
+        let mut x = vec![f64::NAN; vrs.len()];
+        let s = unsafe { fmi3GetFloat64(self.c, vrs.as_ptr(), vrs.len(), x.as_mut_ptr(), x.len()) };
+        assert_eq!(s, 0, "{:?}", self.log);
+        x
+    }
+
+    /// The Int64 (enumeration) variable `r`.
+    pub(crate) fn int64(&self, r: u32) -> i64 {
+        let mut x = [0i64];
+        let s = unsafe { fmi3GetInt64(self.c, &r, 1, x.as_mut_ptr(), 1) };
+        assert_eq!(s, 0, "{:?}", self.log);
+        x[0]
     }
 }
 

@@ -336,6 +336,8 @@ fn each_documented_bad_parameter_is_refused_naming_it() {
     let lumped = (vec![vr::MASS_MODEL], vec![enums::LUMPED]);
     let hollow = (vec![vr::SHAPE], vec![enums::HOLLOW_CIRCLE]);
     let none = (vec![], vec![]);
+    let elastic = (vec![vr::INTERFACE], vec![enums::ELASTIC]);
+    let crushing = (vec![vr::INTERFACE], vec![enums::ELASTO_PLASTIC]);
     // (the parameter, a bad value, a good one, the settings it needs)
     let cases: Vec<(u32, f64, f64, Settings)> = vec![
         (vr::RO, -0.5, 0.4, none.clone()),
@@ -351,6 +353,12 @@ fn each_documented_bad_parameter_is_refused_naming_it() {
         (vr::H, -3.0, 30.0, none.clone()),
         (vr::RHO, 0.0, 2400.0, none.clone()),
         (vr::G, f64::NAN, 1.62, none),
+        // the beds: kn > 0 with kn Is > W hG (the drum's 62 kN m over Is =
+        // 0.049 m4), fm > 0 with W < fm A (41.6 kN over A = 0.785 m2)
+        (vr::KN, -1e8, 1e8, elastic.clone()),
+        (vr::KN, 1e5, 1e7, elastic),
+        (vr::FM, 0.0, 3e5, crushing.clone()),
+        (vr::FM, 5e4, 6e4, crushing),
     ];
     for (r, bad, good, (iv, ix)) in cases {
         for (x, ok) in [(bad, false), (good, true)] {

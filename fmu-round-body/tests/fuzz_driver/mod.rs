@@ -11,13 +11,15 @@
 //! the parameters make a valid round body (docs/round-body.md, "Bad
 //! input": `rocking::Params::build` of the driver's own copy of the values,
 //! a round shape, `IcAxial > 0` for the lumped model, `maxSteps >= 1`,
-//! finite `psi0` and initial angular velocities), the refusal naming a
+//! finite `psi0` and initial angular velocities; an instance of Model
+//! Exchange only on the rigid bed), the refusal naming a
 //! parameter (`name = value`); a step refused with `fmi2Error` names an
 //! input or the communication point and leaves the state (theta .. yG) as
 //! it was; Real outputs and calculated parameters are finite
 //! (`frictionDemand` at most 1e60, which it is where `Fz <= 0`), `theta` in
 //! [0, pi/2] equals `asin(sqrt(ex^2 + ey^2))`, `psi` in (-pi, pi], `regime`
-//! is rest (1) or rocking (2), `impacts` >= 0.
+//! one of RegimeKind's codes 1 ..= 7, `thetaOv <= alpha` (equal on the rigid
+//! bed; a flexible bed's resultant shortens the lever), `impacts` >= 0.
 
 #![allow(dead_code)]
 
@@ -28,7 +30,7 @@ use fmi2_export::test_host::Message;
 use fmi2_fuzz_driver::rigid_body::{rigid_body_params, SHAPES};
 use fmu_round_body::description::{enums, vr, LOG_CATEGORIES, ROUND_BODY, VARIABLES};
 use rocking::model::LawKind;
-use rocking::Params;
+use rocking::{Formulation, Params};
 
 pub use fmi2_fuzz_driver::*;
 
@@ -112,8 +114,21 @@ impl Model for RoundBody {
     /// initial tilt); `None` for a code that is no item of its enumeration
     /// or a rectangle.
     fn params(stored: &Stored) -> Option<Params> {
+        // the bed: RockingBlock's codes (docs/round-body.md, "Flexible beds")
         let own = Params {
-            interface: LawKind::Rigid,
+            interface: match stored.int[vr::INTERFACE as usize] {
+                1 => LawKind::Rigid,
+                2 => LawKind::Elastic,
+                3 => LawKind::ElastoPlastic,
+                _ => return None,
+            },
+            kn: stored.real[vr::KN as usize],
+            fm: stored.real[vr::FM as usize],
+            formulation: match stored.int[vr::FORMULATION as usize] {
+                1 => Formulation::Costa,
+                2 => Formulation::ShiftingPivot,
+                _ => return None,
+            },
             theta0: stored.real[vr::THETA0 as usize],
             ..Params::default()
         };
@@ -131,6 +146,12 @@ impl Model for RoundBody {
                 .all(|&k| r(k).is_finite())
             && (!lumped || (ic_axial.is_finite() && ic_axial > 0.0))
             && Self::params(stored).is_some_and(|p| p.build().is_ok())
+    }
+
+    /// Model Exchange runs on the rigid bed only (docs/round-body.md).
+    fn valid_for(stored: &Stored, model_exchange: bool) -> bool {
+        Self::valid(stored)
+            && !(model_exchange && stored.int[vr::INTERFACE as usize] != enums::RIGID)
     }
 
     fn set_input(b: &mut Bytes, s: u8) -> Op {
@@ -187,14 +208,17 @@ impl Model for RoundBody {
             );
         }
         if let (Some(alpha), Some(theta_ov)) = (of(vr::ALPHA), of(vr::THETA_OV)) {
-            // on the rigid bed the body overturns at alpha
-            assert_eq!(alpha, theta_ov, "alpha and thetaOv differ");
+            // alpha on the rigid bed, before it on a flexible one
+            assert!(
+                theta_ov <= alpha,
+                "thetaOv = {theta_ov} beyond alpha = {alpha}"
+            );
         }
     }
 
     fn integer_in_range(r: u32, x: c_int) -> Option<bool> {
         match r {
-            vr::REGIME => Some(x == enums::REST || x == enums::ROCKING),
+            vr::REGIME => Some((enums::REST..=enums::OUT_OF_RANGE).contains(&x)),
             vr::IMPACTS => Some(x >= 0),
             _ => None,
         }
