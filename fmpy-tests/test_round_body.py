@@ -3,13 +3,17 @@ through fmpy: both archives validate, a run under two horizontal components
 goes through simulate_fmu in both standards, the response to an input
 rotated by an angle is the response rotated by it (an invariance of the
 physics: the bed and the body are round), against the unrotated run, and
-Model Exchange under fmpy's CVode gives co-simulation's motion and impacts."""
+Model Exchange under fmpy's CVode gives co-simulation's motion and impacts; on
+the flexible beds (RockingBlock's interface, kn, fm, formulation) the same in
+both standards and under a rotated input, and Model Exchange refused naming
+interface."""
 
 import math
 
 import numpy as np
 import pytest
 from fmpy import read_model_description, simulate_fmu
+from fmpy.fmi1 import FMICallException
 from fmpy.validation import validate_fmu
 
 from conftest import TARGET
@@ -46,8 +50,14 @@ def ground(beta=0.0):
     return signal
 
 
-def run(path, beta=0.0):
-    return simulate_fmu(path, stop_time=STOP, output_interval=0.01, input=ground(beta), output=OUTPUTS)
+def run(path, beta=0.0, start=None, outputs=OUTPUTS):
+    return simulate_fmu(path, stop_time=STOP, output_interval=0.01, input=ground(beta), output=outputs,
+                        start_values=start or {})
+
+
+# a bed of kn = 1e8 Pa/m under the drum; 3: elastoPlastic, crushing at fm = 0.3 MPa (2: elastic)
+BED = {"kn": 1e8, "fm": 3e5}
+CONTACT = ["contactArea", "crushedArea", "af"]
 
 
 def test_both_archives_validate(archives):
@@ -178,3 +188,39 @@ def test_model_exchange_under_a_ground_motion(archives, fmpy_input_derivative_bu
     assert abs(me["theta"].max() - cs["theta"].max()) <= tol
     if components == "xy":
         assert np.ptp(np.unwrap(me["psi"][me["theta"] > 0.01])) > 1.0
+
+
+@pytest.mark.parametrize("interface", [2, 3])
+def test_flexible_beds_run_in_both_standards_and_turn_with_the_input(archives, interface):
+    """On the elastic and the crushing bed: 2.0 and 3.0 give the same outputs; the input rotated
+    by 0.7 rad leaves the tilt and the contact unchanged (the bed and the body are round) and
+    turns the lean by it; the contact is at most the base, the crushed part at most the contact
+    (nothing crushed on the elastic bed)."""
+    start = dict(BED, interface=interface)
+    outputs = OUTPUTS + CONTACT
+    r2, r3 = (run(p, start=start, outputs=outputs) for p in archives)
+    for name in outputs:
+        np.testing.assert_array_equal(r2[name], r3[name], err_msg=name)
+    assert 0.05 < r2["theta"].max() and not r2["overturned"].any()
+    area = math.pi * 0.5 ** 2
+    assert (r2["contactArea"] <= area * (1 + 1e-15)).all() and r2["contactArea"].min() < 0.5 * area
+    assert (r2["crushedArea"] <= r2["contactArea"]).all()
+    assert (r2["crushedArea"].max() > 0) == (interface == 3)
+    turned = run(archives[0], 0.7, start=start, outputs=outputs)
+    np.testing.assert_allclose(turned["theta"], r2["theta"], rtol=0, atol=1e-9)
+    moving = r2["theta"] > 1e-3
+    shift = np.angle(np.exp(1j * (turned["psi"][moving] - r2["psi"][moving] - 0.7)))
+    assert moving.sum() > 100 and np.abs(shift).max() < 1e-9
+    for name in CONTACT:
+        scale = np.abs(r2[name]).max()
+        np.testing.assert_allclose(turned[name], r2[name], rtol=0, atol=1e-9 * scale, err_msg=name)
+    np.testing.assert_array_equal(turned["regime"], r2["regime"])
+
+
+@pytest.mark.parametrize("standard", [0, 1])
+def test_model_exchange_refuses_a_flexible_bed_naming_interface(archives, standard):
+    messages = []
+    with pytest.raises(FMICallException):
+        simulate_fmu(archives[standard], fmi_type="ModelExchange", stop_time=0.1, start_values=dict(BED, interface=2),
+                     logger=lambda *args: messages.append(str(args[-1])))
+    assert any("interface = 2" in m and "Model Exchange" in m for m in messages), messages
