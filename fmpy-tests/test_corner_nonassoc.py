@@ -142,23 +142,34 @@ def test_small_corner_converges_below_the_lp_and_does_work_by_friction_alone(end
     v = r.velocity
     weights = np.array([a.weight(i) for i in range(len(a.blocks))])
     power_dead = float(-(weights * v[:, 2]).sum())
-    dissipation, k = 0.0, 0
-    for f in interfaces(a):
-        e = [ax for ax in range(3) if ax != f.axis]
-        for p in f.corners:
-            dv = lp.point_velocity(v[f.j], a.blocks[f.j].centroid, p) - lp.point_velocity(v[f.i], a.blocks[f.i].centroid, p)
-            dissipation += a.mu * r.normal[k] * _support(dv[e], 8)
-            k += 1
-    assert k == len(r.normal)
-    assert dissipation > 0.01 * r.lam  # it slides somewhere
-    assert r.lam + power_dead == pytest.approx(dissipation, rel=1e-6)
+
+    def dissipation(normal):
+        out, k = 0.0, 0
+        for f in interfaces(a):
+            e = [ax for ax in range(3) if ax != f.axis]
+            for p in f.corners:
+                dv = (lp.point_velocity(v[f.j], a.blocks[f.j].centroid, p)
+                      - lp.point_velocity(v[f.i], a.blocks[f.i].centroid, p))
+                out += a.mu * normal[k] * _support(dv[e], 8)
+                k += 1
+        assert k == len(normal)
+        return out
+
+    assert dissipation(r.normal) > 0.01 * r.lam  # it slides somewhere
+    assert r.lam + power_dead == pytest.approx(dissipation(r.normal), rel=1e-6)
     assert r.opening_max_pressed <= 1e-9 * np.abs(v).max()
     # the converged state is a collapse state, so complementarity.certify (an LP over all
-    # force fields complementary to the mechanism) must find its lambda among its own
+    # force fields complementary to the mechanism) must find its lambda among its own; the
+    # fields at both ends of that range obey the same virtual work
     from rocking.corner_blocks import complementarity
 
-    lo, hi = complementarity.certify(a, math.pi / 2, v)
+    p = nonassoc._Problem(a, math.pi / 2, 8)
+    fields = []
+    lo, hi = complementarity._certify(p, v, fields=fields)
     assert lo - 1e-6 <= r.lam <= hi + 1e-6
+    for x, lam in zip(fields, (lo, hi)):
+        assert x[p.lam_col] == lam
+        assert lam + power_dead == pytest.approx(dissipation(x[p.n_cols]), abs=1e-6 * lam)
 
 
 def test_committed_cases_lie_at_or_below_their_lp():
@@ -209,11 +220,13 @@ def test_diagnose_follows_the_wall_case_by_hand(relaxation):
     heel's capacity is mu n0 (1 - r)^(k-1) at iteration k, and the moment about the toe,
     lambda W h/2 = W b/2 + mu n_hat b, gives lambda_k - b/h = (lambda_1 - b/h)(1 - r)^(k-1);
     at iteration 2 the wall interface changes by (1 - r) n0, more than the table's
-    (mu r n0)."""
+    (mu r n0). Every iteration's mechanism is the rocking one, whose collapse states span
+    b/h to lambda_1 (test_certify_gives_the_wall_cases_range_of_collapse_states)."""
     mu, bh = 0.6, B / H
     n0 = (mu - bh) / (1 - mu ** 2 + 2 * mu * bh)
     lam1 = bh * (1 + 2 * mu * n0)
-    rows = nonassoc.diagnose(block_against_a_wall(mu), 0.0, relaxation=relaxation, iterations=6, tol=1e-9)
+    rows = nonassoc.diagnose(block_against_a_wall(mu), 0.0, relaxation=relaxation, iterations=6, tol=1e-9,
+                             certify=True)
     assert [r["iteration"] for r in rows] == list(range(1, 7))
     for r in rows:
         assert r["lam"] == pytest.approx(bh + (lam1 - bh) * (1 - relaxation) ** (r["iteration"] - 1), rel=1e-6)
@@ -221,6 +234,8 @@ def test_diagnose_follows_the_wall_case_by_hand(relaxation):
     assert rows[1]["interface"] == pytest.approx((1 - relaxation) * n0, rel=1e-6)
     assert math.isnan(rows[0]["against_k_minus_2"])
     assert rows[1]["against_k_minus_2"] == pytest.approx(rows[0]["corner"], rel=1e-6)  # n_2 = 0 at the heel, as n_1
+    for r in rows:
+        assert r["certified"] == pytest.approx([bh, lam1], rel=1e-6)
 
 
 def test_certify_gives_the_wall_cases_range_of_collapse_states():

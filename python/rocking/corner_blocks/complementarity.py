@@ -224,8 +224,11 @@ def certify(assembly, alpha, velocity, facets=8, rel_tol=1e-7):
     return _certify(_Problem(assembly, alpha, facets), velocity, rel_tol)
 
 
-def _certify(p, velocity, rel_tol=1e-7):
-    """certify on a built nonassoc._Problem."""
+def _certify(p, velocity, rel_tol=1e-7, fields=None, time_limit=None):
+    """certify on a built nonassoc._Problem; fields: a list that receives the LP's column
+    values (the force fields) at lambda_min and lambda_max; time_limit (s) per LP: an LP
+    that HiGHS has not decided by then counts as none found (on the paper's corner a
+    certify LP took from under a minute to more than ten)."""
     assembly = p.assembly
     facets = p.facets
     z, slip, d = relative_velocities(p, velocity)
@@ -266,8 +269,11 @@ def _certify(p, velocity, rel_tol=1e-7):
         c = np.zeros(nx)
         c[p.lam_col] = sign
         res = linprog(c, A_ub=p.a_assoc, b_ub=np.zeros(p.a_assoc.shape[0]), A_eq=a_eq, b_eq=b_eq,
-                      bounds=p.bounds, method="highs")
+                      bounds=p.bounds, method="highs",
+                      options={} if time_limit is None else {"time_limit": time_limit})
         if res.status != 0:  # infeasible: no force field completes this mechanism
             return math.nan, math.nan
         out.append(float(res.x[p.lam_col]))
+        if fields is not None:
+            fields.append(res.x)
     return out[0], out[1]

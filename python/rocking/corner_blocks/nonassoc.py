@@ -327,14 +327,21 @@ def case(specimen, alpha, **options):
             "mu": specimen.mu, "certified": r.certified, "certified_range": list(r.certified_range)}
 
 
-def diagnose(assembly, alpha, relaxation=0.5, iterations=40, proximity=PROXIMITY, facets=8, tol=1e-4, log=None):
+def diagnose(assembly, alpha, relaxation=0.5, iterations=40, proximity=PROXIMITY, facets=8, tol=1e-4, log=None,
+             certify=False, on_row=None, certify_time=None):
     """solve's iteration with what moves in it (docs/corner-nonassociative.md, section 4):
     per iteration a dict of lambda, the largest change of a corner's normal force and of an
     interface's resultant normal force (sum of its 4 corners) against n_hat, the largest
     change against the iterate before last (0 for a two-state cycle), all / W_max, and the
     labels of the interface where the corner change is largest. proximity replaces
-    PROXIMITY in the choice among optima. Stops when the corner change is below tol, or
-    after `iterations`."""
+    PROXIMITY in the choice among optima; certify: also "certified", the range of lambda
+    of the collapse states with that iteration's mechanism (complementarity.certify; nan:
+    none, or not decided within certify_time s per LP), and "cpu_s", the process time
+    since the start; on_row(rows) after every
+    iteration if given. Stops when the corner change is below tol, or after `iterations`."""
+    import time
+
+    t0 = time.process_time()
     p = _Problem(assembly, alpha, facets)
     p.proximity = proximity
     w_max = max(assembly.weight(i) for i in assembly.free())
@@ -342,7 +349,7 @@ def diagnose(assembly, alpha, relaxation=0.5, iterations=40, proximity=PROXIMITY
     n_hat = x[p.n_cols].copy()
     found, rows = [n_hat.copy()], []  # the LPs' normal forces, iteration 0 on
     for k in range(1, iterations + 1):
-        x, _ = p.solve(mu_n=assembly.mu * n_hat)
+        x, res = p.solve(mu_n=assembly.mu * n_hat)
         lam = float(x[p.lam_col])
         n = p.least_normal(assembly.mu * n_hat, n_hat, lam, tol * max(1.0, lam))[p.n_cols]
         where = int(np.argmax(np.abs(n - n_hat))) // 4
@@ -351,7 +358,14 @@ def diagnose(assembly, alpha, relaxation=0.5, iterations=40, proximity=PROXIMITY
                "interface": float(np.abs((n - n_hat).reshape(-1, 4).sum(axis=1)).max()) / w_max,
                "against_k_minus_2": float(np.abs(n - found[-2]).max()) / w_max if len(found) > 1 else math.nan,
                "at": f"{assembly.blocks[face.i].label()}/{assembly.blocks[face.j].label()}"}
+        if certify:
+            from .complementarity import _certify
+
+            row["certified"] = list(_certify(p, p.velocity(res), time_limit=certify_time))
+            row["cpu_s"] = time.process_time() - t0
         rows.append(row)
+        if on_row:
+            on_row(rows)
         if log:
             log(" ".join(f"{key} {v:.4g}" if isinstance(v, float) else f"{key} {v}" for key, v in row.items()))
         if row["corner"] < tol:
@@ -394,6 +408,8 @@ def main(argv=None):
                    help="the least collapse multiplier by complementarity.least (MILP, --time-limit s): "
                         "least_*.json")
     p.add_argument("--time-limit", type=float, default=600.0)
+    p.add_argument("--certify-time", type=float, default=None,
+                   help="with --diagnose --certify: HiGHS's time limit per certify LP (s)")
     p.add_argument("--y-scale", type=float, default=10.0)
     args = p.parse_args(argv)
     out = Path(args.out)
@@ -402,11 +418,13 @@ def main(argv=None):
         for i in (int(k) for k in args.cases.split(",")):
             alpha, label = ORIENTATIONS[i]
             spec = Specimen(ends=args.ends, mu=args.mu, courses=args.courses, blocks=args.blocks)
-            rows = diagnose(Assembly.from_specimen(spec), alpha, args.relaxation, args.max_iter, args.proximity,
-                            tol=args.tol, log=lambda s: print(f"{args.ends} {label}: {s}", file=sys.stderr, flush=True))
             name = (f"diagnose_{args.ends}_{i}_{args.courses}x{args.blocks}_r{args.relaxation:g}"
-                    f"_p{args.proximity:g}.json")
-            (out / name).write_text(json.dumps(rows))
+                    f"_p{args.proximity:g}{'_certify' if args.certify else ''}.json")
+            # written after every iteration: a run stopped early keeps what it found
+            diagnose(Assembly.from_specimen(spec), alpha, args.relaxation, args.max_iter, args.proximity,
+                     tol=args.tol, log=lambda s: print(f"{args.ends} {label}: {s}", file=sys.stderr, flush=True),
+                     certify=args.certify, certify_time=args.certify_time,
+                     on_row=lambda rows: (out / name).write_text(json.dumps(rows)))
         return
     for i in (int(k) for k in args.cases.split(",")):
         suffix = "" if (args.courses, args.blocks) == (9, 7) else f"_{args.courses}x{args.blocks}"
