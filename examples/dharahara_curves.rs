@@ -25,14 +25,7 @@ use rocking::{Model, Params};
 
 #[path = "support/dharahara.rs"]
 mod dharahara;
-use dharahara::{tower, ALPHA_PAPER, R0_PAPER, RI, RO};
-
-/// Foundation stiffnesses of Table 1, MPa/m.
-const FOUNDATION_MPA: [f64; 6] = [85.0, 170.0, 340.0, 680.0, 1350.0, 13500.0];
-/// Interface stiffnesses of Table 1, GPa/m.
-const INTERFACE_GPA: [f64; 6] = [2.0, 5.0, 15.0, 200.0, 500.0, 1500.0];
-/// Compressive strengths of Table 1, MPa (and none: infinity).
-const FM_MPA: [f64; 4] = [2.0, 5.0, 15.0, f64::INFINITY];
+use dharahara::{tower, ALPHA_PAPER, FM_MPA, FOUNDATION_MPA, INTERFACE_GPA, R0_PAPER, RI, RO};
 
 struct Case {
     id: String,

@@ -44,3 +44,45 @@ pub fn tower(hg: Option<f64>, ic: Option<f64>) -> Params {
         ..Params::default()
     }
 }
+
+/// Foundation stiffnesses of the paper's Table 1, MPa/m.
+pub const FOUNDATION_MPA: [f64; 6] = [85.0, 170.0, 340.0, 680.0, 1350.0, 13500.0];
+/// Interface stiffnesses of the paper's Table 1, GPa/m.
+pub const INTERFACE_GPA: [f64; 6] = [2.0, 5.0, 15.0, 200.0, 500.0, 1500.0];
+/// Compressive strengths of Table 1, MPa (and none: infinity).
+pub const FM_MPA: [f64; 4] = [2.0, 5.0, 15.0, f64::INFINITY];
+
+/// The 49 cases of docs/model.md §4 as the planar study runs them
+/// (`python/rocking/cases.py`, `dharahara_cases`: the same ids, the
+/// elastic law where fm is infinite, the default formulation
+/// shiftingPivot): `(id, params)`, rigid first.
+pub fn cases() -> Vec<(String, Params)> {
+    use rocking::model::LawKind;
+    let base = tower(None, None);
+    let mut out = vec![(
+        "rigid".to_string(),
+        Params {
+            interface: LawKind::Rigid,
+            ..base
+        },
+    )];
+    for (prefix, unit, kns) in [("F", 1e6, FOUNDATION_MPA), ("I", 1e9, INTERFACE_GPA)] {
+        for kn in kns {
+            for fm in FM_MPA {
+                let (interface, label) = if fm.is_finite() {
+                    (LawKind::ElastoPlastic, format!("fm{fm}"))
+                } else {
+                    (LawKind::Elastic, "elastic".to_string())
+                };
+                let params = Params {
+                    interface,
+                    kn: kn * unit,
+                    fm: if fm.is_finite() { fm * 1e6 } else { base.fm },
+                    ..base
+                };
+                out.push((format!("{prefix}{kn}_{label}"), params));
+            }
+        }
+    }
+    out
+}

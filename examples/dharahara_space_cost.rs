@@ -1,0 +1,146 @@
+//! The cost of the round tower in space on its 49 beds against the planar
+//! run of the same body and record (docs/performance.md, "The tower in
+//! space on flexible and crushing beds"; the issue's target: at most 5x on
+//! a crushing bed). For each case of docs/model.md §4
+//! (`examples/support/dharahara.rs` `cases`) under one record pair: planar
+//! along x with the vertical, in space under x and the vertical (the same
+//! input: the same motion), and in space under both components and the
+//! vertical; rtol 1e-10, 10 s past the record. CPU time, the best of 3
+//! interleaved repetitions, integrator steps (accepted and rejected) and
+//! rejected steps. Prints a table, then the median and the worst ratio.
+//!
+//! ```sh
+//! .venv/bin/python examples/dharahara_space.py --flexible   # writes out/dharahara_space/inputs
+//! cargo run --release --example dharahara_space_cost -- 1 out/dharahara_space/inputs/Darfield_DFHS.txt
+//! ```
+
+use rocking::dynamics::Simulator;
+use rocking::spatial::Spatial;
+
+#[path = "support/cpu.rs"]
+mod cpu;
+#[path = "support/dharahara.rs"]
+mod dharahara;
+#[path = "support/pair_file.rs"]
+mod pair_file;
+#[path = "support/space_runs.rs"]
+mod space_runs;
+
+use cpu::cpu;
+use space_runs::Run;
+
+const RTOL: f64 = 1e-10;
+/// Seconds of quiet after the record.
+const TAIL_S: f64 = 10.0;
+const REPEAT: usize = 3;
+
+fn outcome(r: &Run, alpha: f64) -> String {
+    match (r.overturned, r.lift_off) {
+        (Some(t), _) => format!("overturns {t:.2} s"),
+        (None, Some(t)) => format!("liftOff {t:.2} s"),
+        _ => format!("{:.3}", r.peak / alpha),
+    }
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let usage = "usage: dharahara_space_cost SCALE FILE";
+    let scale: f64 = args.next().expect(usage).parse().expect("SCALE: a number");
+    let pair = pair_file::read(&args.next().expect(usage));
+    let cases = dharahara::cases();
+    println!(
+        "{} x{scale}, rtol {RTOL:e}, {TAIL_S} s past the record, CPU best of {REPEAT}",
+        pair.name
+    );
+    println!();
+    println!("| case | planar x: steps (rejected) | CPU (ms) | outcome | space x: steps (rejected) | CPU / planar | space x y v: steps (rejected) | CPU (ms) | CPU / planar | outcome |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    // ratios: all cases, crushing beds, crushing beds where both runs last the
+    // whole record (neither overturns nor lifts off), CPU per step, space
+    // along x alone
+    let (mut all, mut crushing, mut whole, mut per_step, mut along_x) =
+        (vec![], vec![], vec![], vec![], vec![]);
+    let mut worst = (0.0, String::new());
+    for (id, params) in &cases {
+        let model = params.build().unwrap_or_else(|e| panic!("case {id}: {e}"));
+        let b = model.body;
+        // a hollow cylinder about its axis
+        let c_axial = b.mass * (dharahara::RO.powi(2) + dharahara::RI.powi(2)) / 2.0;
+        let sim = Simulator::new(model, RTOL);
+        let body =
+            Spatial::new(params, Some(c_axial), RTOL).unwrap_or_else(|e| panic!("case {id}: {e}"));
+        let runs: [&dyn Fn() -> Run; 3] = [
+            &|| space_runs::planar(&sim, &pair, scale, 0.0, TAIL_S, 0),
+            &|| space_runs::space(&body, &pair, scale, false, TAIL_S, 0),
+            &|| space_runs::space(&body, &pair, scale, true, TAIL_S, 0),
+        ];
+        let mut best = [f64::INFINITY; 3];
+        let mut out: [Run; 3] = Default::default();
+        for _ in 0..REPEAT {
+            for (i, run) in runs.iter().enumerate() {
+                let t = cpu();
+                out[i] = run();
+                best[i] = best[i].min(cpu() - t);
+            }
+        }
+        let ratio = best[2] / best[0];
+        all.push(ratio);
+        along_x.push(best[1] / best[0]);
+        let [p, sx, s] = &out;
+        per_step.push(ratio * p.steps as f64 / s.steps as f64);
+        if params.interface == rocking::model::LawKind::ElastoPlastic {
+            crushing.push(ratio);
+            let ends = |r: &Run| r.overturned.is_none() && r.lift_off.is_none();
+            if ends(p) && ends(s) {
+                whole.push(ratio);
+            }
+        }
+        if ratio > worst.0 {
+            worst = (ratio, id.clone());
+        }
+        println!(
+            "| {id} | {} ({}) | {:.1} | {} | {} ({}) | {:.2} | {} ({}) | {:.1} | {:.2} | {} |",
+            p.steps,
+            p.rejected,
+            best[0] * 1e3,
+            outcome(p, b.alpha),
+            sx.steps,
+            sx.rejected,
+            best[1] / best[0],
+            s.steps,
+            s.rejected,
+            best[2] * 1e3,
+            ratio,
+            outcome(s, b.alpha)
+        );
+    }
+    println!();
+    let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
+    println!("| CPU ratio | cases | median | worst |");
+    println!("|---|---|---|---|");
+    for (label, v) in [
+        ("space x y v / planar x, all", &mut all),
+        ("space x y v / planar x, crushing beds", &mut crushing),
+        ("... crushing, both runs last the record", &mut whole),
+        ("space x y v / planar x, per step", &mut per_step),
+        ("space x / planar x (the same motion)", &mut along_x),
+    ] {
+        println!(
+            "| {label} | {} | {:.2} | {:.2} |",
+            v.len(),
+            median(v),
+            max(v)
+        );
+    }
+    println!("worst ratio: {} ({:.2})", worst.1, worst.0);
+}

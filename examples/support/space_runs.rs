@@ -1,0 +1,140 @@
+//! One record pair run on the round tower in space and planar along an
+//! azimuth, for the examples that compare them on any bed
+//! (`#[path = "support/space_runs.rs"] mod space_runs;`, beside
+//! `pair_file`): peak tilt, overturning, crossings, the integrator's work
+//! and, when asked, the path of the top.
+
+#![allow(dead_code)] // each example uses part of it
+
+use rocking::dynamics::{GroundInput, Simulator, VerticalInput};
+use rocking::spatial::{PlanInput, Spatial, SpatialState};
+
+use super::pair_file::PairFile;
+
+/// What a run did.
+#[derive(Default)]
+pub struct Run {
+    /// Peak tilt, rad.
+    pub peak: f64,
+    /// Overturning time, s.
+    pub overturned: Option<f64>,
+    /// Returns to upright that applied the restitution rule: the planar
+    /// model's `zeroCrossings`, the spatial state's `impacts`
+    /// (docs/model.md §11.3).
+    pub crossings: u64,
+    /// Time the vertical input reached -g (the run ends there), s.
+    pub lift_off: Option<f64>,
+    /// Integrator steps, accepted and rejected.
+    pub steps: u64,
+    pub rejected: u64,
+    /// When kept, every `every` samples: `[t, tilt (rad, signed for a
+    /// planar run), top x, top y]`, the top relative to the base's centre
+    /// (2 hG times the axis's horizontal part, m).
+    pub history: Vec<[f64; 4]>,
+}
+
+fn at(p: &PairFile, k: usize, scale: f64) -> [f64; 3] {
+    p.samples.get(k).map_or([0.0; 3], |s| s.map(|x| scale * x))
+}
+
+/// Samples of the record plus `tail_s` of quiet.
+pub fn samples(p: &PairFile, tail_s: f64) -> usize {
+    p.samples.len() + (tail_s / p.dt).round() as usize
+}
+
+/// Planar along the azimuth `az` (rad from x toward y), with the vertical;
+/// the history every `every` samples if `every > 0`.
+pub fn planar(
+    sim: &Simulator,
+    p: &PairFile,
+    scale: f64,
+    az: f64,
+    tail_s: f64,
+    every: usize,
+) -> Run {
+    let (s, c) = az.sin_cos();
+    let hg = sim.model.body.hg;
+    let mut st = sim.initial_state(0.0, 0.0);
+    let mut run = Run::default();
+    for k in 0..samples(p, tail_s) {
+        let (a0, a1) = (at(p, k, scale), at(p, k + 1, scale));
+        let (g0, g1) = (c * a0[0] + s * a0[1], c * a1[0] + s * a1[1]);
+        // no work limit is set: one call reaches t_end
+        let ev = sim.advance_vertical(
+            &mut st,
+            (k + 1) as f64 * p.dt,
+            GroundInput {
+                ag: g0,
+                dag: (g1 - g0) / p.dt,
+            },
+            VerticalInput {
+                av: a0[2],
+                dav: (a1[2] - a0[2]) / p.dt,
+            },
+        );
+        run.steps += u64::from(ev.stats.steps + ev.stats.rejected);
+        run.rejected += u64::from(ev.stats.rejected);
+        run.peak = run.peak.max(st.theta.abs());
+        if st.overturned {
+            run.overturned = ev.overturned_at;
+            break;
+        }
+        if let Some(term) = ev.terminal {
+            run.lift_off = Some(term.t);
+            break;
+        }
+        if every > 0 && (k + 1) % every == 0 {
+            let lean = 2.0 * hg * st.theta.sin();
+            run.history.push([st.t, st.theta, lean * c, lean * s]);
+        }
+    }
+    run.crossings = st.zero_crossings;
+    run
+}
+
+/// In space under both components and the vertical (`both`; else x and the
+/// vertical, the planar run's input along x); the history every `every`
+/// samples if `every > 0`.
+pub fn space(
+    body: &Spatial,
+    p: &PairFile,
+    scale: f64,
+    both: bool,
+    tail_s: f64,
+    every: usize,
+) -> Run {
+    let on = if both { 1.0 } else { 0.0 };
+    let hg = body.model.body.hg;
+    let mut st = SpatialState::at_rest();
+    let mut run = Run::default();
+    for k in 0..samples(p, tail_s) {
+        let (a0, a1) = (at(p, k, scale), at(p, k + 1, scale));
+        let h = PlanInput {
+            a: [a0[0], on * a0[1]],
+            da: [(a1[0] - a0[0]) / p.dt, on * (a1[1] - a0[1]) / p.dt],
+        };
+        let v = VerticalInput {
+            av: a0[2],
+            dav: (a1[2] - a0[2]) / p.dt,
+        };
+        // no max_steps is set: one call reaches the sample's end
+        let ev = body.advance(&mut st, (k + 1) as f64 * p.dt, h, v);
+        run.steps += u64::from(ev.steps + ev.rejected);
+        run.rejected += u64::from(ev.rejected);
+        run.peak = run.peak.max(st.theta());
+        if st.overturned {
+            run.overturned = ev.overturned_at;
+            break;
+        }
+        if let Some(term) = ev.terminal {
+            run.lift_off = Some(term.t);
+            break;
+        }
+        if every > 0 && (k + 1) % every == 0 {
+            run.history
+                .push([st.t, st.theta(), 2.0 * hg * st.e[0], 2.0 * hg * st.e[1]]);
+        }
+    }
+    run.crossings = st.impacts;
+    run
+}
