@@ -276,6 +276,14 @@ def test_fmu_state_round_trips_and_output_derivatives(fmu3_path):
     s.freeInstance()
 
 
+def test_instantiation_is_traced_with_the_instance_name(fmu3_path):
+    """With logging on, the instantiation's trace names the instance as the
+    host gave it: the quoted string, as FMI 2.0's does."""
+    s, _, messages = _slave3(fmu3_path, loggingOn=True)
+    s.freeInstance()
+    assert any(m.startswith('fmi3InstantiateCoSimulation: instance "s3", token ') for m in messages), messages
+
+
 def test_bad_calls_are_refused_through_the_logger(fmu3_path):
     """Each bad call on a fresh instance: refused with fmi3Error and a
     message naming the function and what is wrong."""

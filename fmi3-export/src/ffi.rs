@@ -90,7 +90,10 @@ pub unsafe fn instantiate<S: Slave>(
         let mut inner = Inner::<S>::new(logger, resource_dir, kind.model_exchange);
         inner.event_mode_used = kind.event_mode_used && !kind.model_exchange;
         inner.early_return_allowed = kind.early_return_allowed && !kind.model_exchange;
-        inner.trace(|| format!("{function}: instance {name:?}, token {}", S::guid()));
+        inner.trace(|| {
+            let name = name.as_deref().unwrap_or("");
+            format!("{function}: instance {name:?}, token {}", S::guid())
+        });
         let inst = Box::new(Instance {
             magic: INSTANCE_MAGIC,
             guid: S::guid(),
