@@ -16,6 +16,7 @@ import pytest
 
 from rocking import groundmotion as gm
 from rocking import paths
+from rocking.cases import dharahara_cases
 from rocking.fmu import RockingFMU
 from rocking.round_body import RoundBodyFMU
 
@@ -124,3 +125,27 @@ def test_bad_input_is_one_line(tmp_path, args, words):
     assert r.returncode == 2, r.stdout + r.stderr
     lines = [line for line in r.stderr.splitlines() if not line.startswith("rocking space: note")]
     assert len(lines) == 1 and words in lines[0], r.stderr
+
+
+def flexible_row(case):
+    """The cells of `case`'s row in the page's table of the 49 cases under Darfield DFHS x3
+    (docs/dharahara.md, "The tower in space on flexible and crushing beds")."""
+    text = (REPO / "docs" / "dharahara.md").read_text()
+    section = text.split("## The tower in space on flexible and crushing beds", 1)[1]
+    row = next(line for line in section.splitlines() if line.startswith(f"| {case} |"))
+    return [c.strip() for c in row.strip("|").split("|")]
+
+
+@pytest.mark.parametrize("case", ["F170_fm5", "I15_elastic"])
+def test_the_flexible_table_s_planar_runs_are_the_planar_fmu_s(case):
+    """The page's planar runs along x under Darfield DFHS x3 with the vertical (the Rust
+    example dharahara_space_flexible, calling the planar Simulator directly) through
+    RockingBlock.fmu and its host loop: the same peak to 3 digits and the same
+    crossings (the FMU's zeroCrossings), 10 s past the record, rtol 1e-10."""
+    pair = gm.pair_of(DFHS)
+    rec = pair.along(0.0, with_vertical=True)
+    with RockingFMU() as rfmu:
+        run = rfmu.simulate(dharahara_cases()[case], record=rec, scale=3.0, rtol=1e-10,
+                            stop_time=float(rec.time[-1]) + 10.0)
+    assert not run.overturned and run.zero_crossings >= 20, "the case must rock and stand along x"
+    assert flexible_row(case)[2] == f"{run.peak_theta_over_alpha:.3f} ({run.zero_crossings})"
