@@ -12,7 +12,8 @@ Writes DIR/dharahara_space.json (every run), dharahara_space.md (the page's tabl
 dharahara_space_plan.png and dharahara_space_tilt.png; with --flexible
 DIR/dharahara_space_flexible.json, dharahara_space_flexible.md (the page's tables),
 dharahara_space_flexible_plan.png and dharahara_space_flexible_tilt.png. About 1 min on 2 cores;
---flexible about 6 min (392 runs in space and 4704 planar).
+--flexible about 5 min of CPU (11 min of wall time on a loaded 2-core machine; 392 runs in space and
+4704 planar).
 """
 
 import argparse

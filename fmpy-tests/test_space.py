@@ -149,3 +149,16 @@ def test_the_flexible_table_s_planar_runs_are_the_planar_fmu_s(case):
                             stop_time=float(rec.time[-1]) + 10.0)
     assert not run.overturned and run.zero_crossings >= 20, "the case must rock and stand along x"
     assert flexible_row(case)[2] == f"{run.peak_theta_over_alpha:.3f} ({run.zero_crossings})"
+
+
+def test_the_flexible_table_s_rigid_case_is_the_rigid_study_s():
+    """The rigid case of the 49 under Darfield DFHS x3 (examples/dharahara_space_flexible.rs,
+    support/space_runs.rs) against the rigid study's row (examples/dharahara_space.rs, its own
+    loops): the same peak in space and the same overturning along x."""
+    rigid = [c.strip() for c in next(
+        line for line in (REPO / "docs" / "dharahara.md").read_text().splitlines()
+        if line.startswith("| Darfield DFHS | 3 |")).strip("|").split("|")]
+    row = flexible_row("rigid")
+    assert row[1] == rigid[2]  # peak (impacts): on the rigid bed the crossings are the impacts
+    assert row[2].split(" (")[0] == rigid[4]
+    assert row[3].split(" (")[0] == rigid[5]
