@@ -22,8 +22,8 @@
 //! - `run`: the stepping loop, its events (the tilt crossing upright,
 //!   overturning) and rest;
 //! - [`continuous`]: Model Exchange, the same motion as a host's solver
-//!   integrates it (derivatives, event indicators, the event update); the
-//!   rigid bed only ([`Spatial::check_model_exchange`]).
+//!   integrates it (derivatives, event indicators, the event update), on
+//!   every bed.
 //!
 //! [`Body`]: crate::body::Body
 

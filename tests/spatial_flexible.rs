@@ -360,16 +360,6 @@ fn a_motion_near_a_plane_takes_the_planar_loss_at_each_pass_near_upright() {
 }
 
 #[test]
-fn model_exchange_refuses_a_flexible_bed_by_naming_interface() {
-    let flexible = Spatial::new(&on_bed(true, Formulation::ShiftingPivot), None, RTOL).unwrap();
-    let err = flexible.check_model_exchange().unwrap_err();
-    assert_eq!(err.variable, "interface");
-    assert!(err.to_string().contains("rigid"), "{err}");
-    let rigid = Spatial::new(&drum(Restitution::Housner, false), None, RTOL).unwrap();
-    assert!(rigid.check_model_exchange().is_ok());
-}
-
-#[test]
 fn as_a_crushing_bed_stiffens_the_body_rolls_on_the_crushed_rim() {
     // kn -> infinity at a fixed fm: beyond thetaC -> 0 the resultant sits
     // at af_lim from the toe (the centroid of the crushed segment carrying

@@ -35,14 +35,14 @@ pub(crate) struct Armed {
 
 impl Spatial {
     /// The apparent weight `N = m (g + av)` at `t` (docs/model.md §6.1), N.
-    fn weight_at(&self, eom: &Eom, t: f64) -> f64 {
+    pub(super) fn weight_at(&self, eom: &Eom, t: f64) -> f64 {
         self.model.body.weight + self.mass() * eom.av(t)
     }
 
     /// `hW / sin(theta)`, m: the lever of the weight about the resultant,
     /// `rho cos(theta) - hG sin(theta)` (the planar `hW`, docs/model.md §3),
     /// over `sin(theta)`; `kn Is/N - hG > 0` at upright, 0 at overturning.
-    fn overturn_margin(&self, y: &[f64; N], n: f64) -> f64 {
+    pub(super) fn overturn_margin(&self, y: &[f64; N], n: f64) -> f64 {
         let s2 = y[0] * y[0] + y[1] * y[1];
         let s = s2.sqrt();
         let theta = s.asin();

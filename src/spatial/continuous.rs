@@ -1,30 +1,46 @@
 //! Model Exchange of the round body in space: the motion as a host's own
-//! solver integrates it (docs/round-body.md, "Model Exchange"). The host
-//! integrates the seven continuous states with [`Spatial::derivatives`],
-//! watches [`Spatial::event_indicators`] for sign changes and, at each one,
-//! calls [`Spatial::event_update`]; this module only evaluates. The
-//! equation of motion is the one the co-simulation integrator steps
-//! (`eom`), the impact, the rest check and the uplift test are the
-//! co-simulation's (`Spatial::apply`, `comes_to_rest`, `lifts_at`).
+//! solver integrates it (docs/round-body.md, "Model Exchange"), on the
+//! rigid bed (docs/model.md §10) and on the flexible and crushing beds
+//! (§11.5). The host integrates the seven continuous states with
+//! [`Spatial::derivatives`], watches [`Spatial::event_indicators`] for sign
+//! changes and, at each one, calls [`Spatial::event_update`]; this module
+//! only evaluates. The equation of motion is the one the co-simulation
+//! integrator steps (`eom`), the events are the co-simulation's
+//! (`Spatial::apply`, `upright_pass`, `comes_to_rest`, `lifts_at`).
 //!
 //! The continuous states are `y = (ex, ey, omegaX, omegaY, omegaZ, xG,
-//! yG)` ([`SpatialState::continuous_states`]); the discrete state is the
-//! contact side `pivot`, held between events: the rates are those of the
-//! contact on the side of `pivot`, so a tilt that crosses upright goes on
-//! about the old contact, smoothly, until the host locates the crossing
-//! (co-simulation holds it over one of its steps).
+//! yG)` ([`SpatialState::continuous_states`]) on every bed; the discrete
+//! state is the contact side `pivot`, held between events: the rates are
+//! those of the contact on the side of `pivot`, so a tilt that crosses
+//! upright goes on about the old contact, smoothly, until the host locates
+//! the crossing (co-simulation holds it over one of its steps).
 //!
-//! Event indicators (a state event where one changes sign), in this order:
+//! Event indicators (a state event where one changes sign), in this order
+//! (rigid bed / flexible bed where they differ):
 //!
 //! | index | indicator | event |
 //! |---|---|---|
-//! | 0 | `e . pivot` while the body moves, else 1 | the tilt turned a right angle from the contact side: an impact if `|e x pivot| <= UPRIGHT` (it crossed upright in a plane), else the contact runs on round the rim (`pivot = e/|e|`) |
-//! | 1 | `sin²(alpha) - |e|²` | overturning: the run ends |
-//! | 2 | `(g + av) tan(alpha) (1 + 1e-12) - |ag|` at rest, else 1 | uplift: the body tips toward `-ag/|ag|` |
-//! | 3 | `(g + av)/g` | lift-off (`g + av <= 0`, docs/model.md §6.5): the run ends |
+//! | 0 | `e . pivot` while the body moves, else 1 | the tilt turned a right angle from the contact side. Rigid: an impact if `|e x pivot| <= UPRIGHT` (it crossed upright in a plane), else the contact runs on round the rim (`pivot = e/|e|`). Flexible: the planar restitution rule if the heel is closed there, then rest if it settles (docs/model.md §11.3) |
+//! | 1 | rigid `sin²(alpha) - |e|²`; flexible `hW/(hG sin(theta))` at `N = m (g + av)` | overturning: the run ends |
+//! | 2 | at rest: rigid `(g + av) tan(alpha) (1 + 1e-12) - |ag|`, flexible `1` while `ag = 0` else `-1`; moving: 1 | uplift / leaving rest: the body tips toward `-ag/|ag|` |
+//! | 3 | rigid `(g + av)/g`; flexible the smallest relative margin of `N` to `liftOff`, `restUnstable`, `baseCrushing` | out of range (docs/model.md §6.5): the run ends |
 //!
-//! After overturning or lift-off every indicator is 1 and the derivatives
-//! are 0; at rest the derivatives are 0 (the states frozen) until uplift.
+//! The contact's kinks on a flexible bed (joint opening, crushing onset, a
+//! ring's inner edge; the restarts of co-simulation) are no indicators: the
+//! derivatives are continuous there (the resultant's distance `rho` and its
+//! slope `af'` are; only `af''` jumps), so a host's error control sees a
+//! kink in the rates' slope only.
+//!
+//! Under Model Exchange the host gives no input derivatives: the rates take
+//! `dN/dt = m dav/dt` as 0. It enters only `shiftingPivot` on a flexible
+//! bed (the resultant sliding along the base as `N` changes, the spatial
+//! form of the planar `dI/dN dN/dt`, docs/model.md §6.2), which
+//! [`Spatial::check_model_exchange`] therefore refuses; `costa` and the
+//! rigid bed have no such term (docs/model.md §11.5).
+//!
+//! After overturning or leaving the range every indicator is 1 and the
+//! derivatives are 0; at rest the derivatives are 0 (the states frozen)
+//! until uplift.
 
 use super::eom::{Eom, N};
 use super::run::Cut;
@@ -87,26 +103,58 @@ impl SpatialState {
 }
 
 impl Spatial {
-    /// Whether this body can run under Model Exchange: the rigid bed only.
-    /// The indicators and the event update here are the rigid bed's; a
-    /// flexible bed's events (docs/model.md §11.3) run in co-simulation
-    /// ([`Spatial::advance`]) only, so a host must ask this first.
+    /// Whether this body can run under Model Exchange: on the rigid bed,
+    /// and on a flexible bed with `formulation = costa`. A flexible bed's
+    /// `shiftingPivot` is refused, naming `formulation`: its equation has
+    /// the resultant sliding along the base as the apparent weight changes,
+    /// `dN/dt = m dav/dt`, and Model Exchange gives no input derivatives;
+    /// taking it as 0 moved the tilt by up to 20 % of its peak under a
+    /// 2 m/s² vertical sine (tests/spatial_flexible_me.rs). It needs a
+    /// state in place of `omega` whose rate has no `dN/dt`, as the planar
+    /// `omegaW` (docs/model.md §11.5), which is not written yet.
     pub fn check_model_exchange(&self) -> Result<(), crate::model::ParamError> {
-        if self.flexible() {
+        if self.flexible() && self.model.formulation == crate::model::Formulation::ShiftingPivot {
             return Err(crate::model::ParamError {
-                variable: "interface",
-                // the FMU's enumeration: rigid 1, elastic 2, elastoPlastic 3
-                value: match self.model.interface.law() {
-                    crate::interface::Law::Rigid => 1.0,
-                    crate::interface::Law::Elastic { .. } => 2.0,
-                    crate::interface::Law::ElastoPlastic { .. } => 3.0,
-                },
-                condition: "Model Exchange of a body in space runs on the rigid bed only \
-                            (interface = rigid); flexible beds run in co-simulation"
+                variable: "formulation",
+                // the FMU's enumeration: costa 1, shiftingPivot 2
+                value: 2.0,
+                condition: "Model Exchange of a body in space on a flexible bed runs with \
+                            formulation = costa (the rate of the apparent weight that \
+                            shiftingPivot needs is no Model Exchange input); shiftingPivot \
+                            runs in co-simulation"
                     .into(),
             });
         }
         Ok(())
+    }
+
+    /// The smallest relative margin of `N = m (g + av)` to the range of a
+    /// flexible bed (docs/model.md §6.5: `liftOff` at `N = 0`,
+    /// `restUnstable` at `kn Is/hG`, `baseCrushing` at `fm A`), positive
+    /// inside it; on the rigid bed `(g + av)/g`.
+    fn range_margin(&self, av: f64) -> f64 {
+        let b = &self.model.body;
+        let n = b.weight + b.mass * av;
+        let mut z = n / b.weight;
+        let shape = self.model.interface.shape();
+        let unstable = |kn: f64| kn * shape.second_moment() / b.hg;
+        match self.model.interface.law() {
+            crate::interface::Law::Rigid => z = (b.g + av) / b.g,
+            crate::interface::Law::Elastic { kn } => z = z.min(1.0 - n / unstable(kn)),
+            crate::interface::Law::ElastoPlastic { kn, fm } => {
+                z = z
+                    .min(1.0 - n / unstable(kn))
+                    .min(1.0 - n / (fm * shape.area()))
+            }
+        }
+        z
+    }
+
+    /// On a flexible bed, the relative lever of the weight about the
+    /// resultant, `hW/(hG sin(theta))` at `N = m (g + av)`: 0 at overturning.
+    fn overturn_indicator(&self, st: &SpatialState, eom: &Eom) -> f64 {
+        let n = self.weight_at(eom, st.t);
+        self.overturn_margin(&st.to_y(), n) / self.model.body.hg
     }
 
     /// The right-hand side under the inputs at `t` held (the host gives no
@@ -147,8 +195,21 @@ impl Spatial {
         }
         let b = &self.model.body;
         let [ex, ey] = st.e;
+        z[3] = self.range_margin(av);
+        if self.flexible() {
+            // beyond the range N is no bed's: the lever is not evaluated
+            if z[3] > 0.0 && !st.at_rest {
+                z[1] = self.overturn_indicator(st, &self.eom_at(st.t, ag, av));
+            }
+            if st.at_rest {
+                // any horizontal input moves a body on a flexible bed (§3)
+                z[2] = if ag == [0.0; 2] { 1.0 } else { -1.0 };
+            } else {
+                z[0] = ex * st.pivot[0] + ey * st.pivot[1];
+            }
+            return z;
+        }
         z[1] = b.sin_alpha * b.sin_alpha - (ex * ex + ey * ey);
-        z[3] = (b.g + av) / b.g;
         if st.at_rest {
             z[2] = (b.g + av) * (b.b / b.hg) * (1.0 + UPLIFT_MARGIN) - ag[0].hypot(ag[1]);
         } else {
@@ -173,13 +234,16 @@ impl Spatial {
             return u;
         }
         let b = &self.model.body;
-        if b.g + av <= 0.0 {
+        if self.range_margin(av) <= 0.0 {
             st.out_of_range = true;
             u.out_of_range = true;
             return u;
         }
         let eom = self.eom_at(st.t, ag, av);
         let mut ev = SpatialEvents::default();
+        if self.flexible() {
+            return self.event_update_on_bed(st, &eom, ag);
+        }
         if st.at_rest {
             if let Some(pivot) = self.lifts_at(&eom, st.t) {
                 st.at_rest = false;
@@ -225,14 +289,61 @@ impl Spatial {
             return false;
         }
         let b = &self.model.body;
-        if b.g + av <= 0.0 {
+        if self.range_margin(av) <= 0.0 {
             return true;
+        }
+        if self.flexible() {
+            if st.at_rest {
+                return ag != [0.0; 2];
+            }
+            return self.overturn_indicator(st, &self.eom_at(st.t, ag, av)) <= 0.0 || crossed(st);
         }
         if st.at_rest {
             return self.lifts_at(&self.eom_at(st.t, ag, av), st.t).is_some();
         }
         let [ex, ey] = st.e;
         ex * ex + ey * ey >= b.sin_alpha * b.sin_alpha || crossed(st)
+    }
+
+    /// [`event_update`](Self::event_update) on a flexible bed, in range:
+    /// leaving rest under a horizontal input, overturning, or the tilt
+    /// turning a right angle from the side it rocks on (the restitution
+    /// rule with the heel closed, then rest; `Spatial::upright_pass`, as
+    /// co-simulation).
+    fn event_update_on_bed(&self, st: &mut SpatialState, eom: &Eom, ag: [f64; 2]) -> SpatialUpdate {
+        let mut u = SpatialUpdate::default();
+        let mut ev = SpatialEvents::default();
+        if st.at_rest {
+            let a = ag[0].hypot(ag[1]);
+            if a > 0.0 {
+                let pivot = [-ag[0] / a, -ag[1] / a];
+                st.at_rest = false;
+                st.pivot = pivot;
+                st.omega = [0.0; 3];
+                st.e = [OFF_ZERO * pivot[0], OFF_ZERO * pivot[1]];
+                u.uplift = true;
+                u.states_changed = true;
+            }
+            return u;
+        }
+        if self.overturn_indicator(st, eom) <= 0.0 {
+            self.apply(st, Cut::Overturning, eom, &mut ev);
+            u.overturned = true;
+            return u;
+        }
+        if !crossed(st) {
+            return u;
+        }
+        let before = st.pivot;
+        self.upright_pass(st, eom, &mut ev);
+        if ev.impacts == 0 {
+            u.rolled_on = st.pivot != before;
+            return u;
+        }
+        u.impact = true;
+        u.states_changed = true;
+        u.came_to_rest = ev.came_to_rest;
+        u
     }
 
     /// Nominal values of the continuous states: the planar model's scales
