@@ -377,8 +377,8 @@ impl Slave for RoundBodySlave {
         let mut body = Spatial::new(&p, ic_axial, rtol)
             .map_err(|e| format!("{} = {}: {}", public_name(e.variable), e.value, e.condition))?;
         if setup.model_exchange {
-            // rocking::spatial::continuous's indicators and event update
-            // are the rigid bed's: a flexible bed is refused naming interface
+            // a flexible bed's shiftingPivot needs the rate of av, which
+            // Model Exchange does not give: refused naming formulation
             body.check_model_exchange().map_err(|e| {
                 format!("{} = {}: {}", public_name(e.variable), e.value, e.condition)
             })?;

@@ -2,8 +2,8 @@
 //! `kn`, `fm`, `formulation`): the FMU against `rocking::spatial` run
 //! directly with the same parameters and inputs, FMI 2.0 against 3.0, the
 //! contact outputs against the bed's law, bad values refused naming the
-//! variable, Model Exchange refused naming `interface`. The planar limit
-//! against RockingBlock is in `tests/planar.rs`.
+//! variable. The planar limit against RockingBlock is in `tests/planar.rs`;
+//! Model Exchange on these beds in `tests_me.rs`.
 
 use fmi2_export::test_host;
 use fmi2_export::types::*;
@@ -325,28 +325,5 @@ fn bad_bed_parameters_are_refused_naming_them() {
             "{name} = {code}: {:?}",
             h.errors()
         );
-    }
-}
-
-/// Model Exchange runs on the rigid bed only: a flexible bed is refused at
-/// initialization with fmi2Error, the logger naming interface (no
-/// fmi2Fatal); the instance, reset to the rigid bed, initializes.
-#[test]
-fn model_exchange_refuses_a_flexible_bed_naming_interface() {
-    for interface in [enums::ELASTIC, enums::ELASTO_PLASTIC] {
-        let h = Host::instantiate(fmi2ModelExchange, true);
-        h.check("interface", h.set_integer("interface", interface));
-        h.check("kn", h.set_real("kn", KN));
-        h.check("fm", h.set_real("fm", FM));
-        assert_eq!(h.initialize(), fmi2Error);
-        assert!(
-            h.logged(&format!("interface = {interface}")) && h.logged("Model Exchange"),
-            "{:?}",
-            h.errors()
-        );
-        assert!(h.messages().iter().all(|m| m.status != fmi2Fatal));
-        h.check("reset", h.reset());
-        h.check("rigid", h.set_integer("interface", enums::RIGID));
-        h.check("initialize", h.initialize());
     }
 }

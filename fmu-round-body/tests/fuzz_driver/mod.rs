@@ -148,10 +148,13 @@ impl Model for RoundBody {
             && Self::params(stored).is_some_and(|p| p.build().is_ok())
     }
 
-    /// Model Exchange runs on the rigid bed only (docs/round-body.md).
+    /// Model Exchange runs on the rigid bed and on a flexible one with
+    /// `costa` (docs/round-body.md).
     fn valid_for(stored: &Stored, model_exchange: bool) -> bool {
         Self::valid(stored)
-            && !(model_exchange && stored.int[vr::INTERFACE as usize] != enums::RIGID)
+            && !(model_exchange
+                && stored.int[vr::INTERFACE as usize] != enums::RIGID
+                && stored.int[vr::FORMULATION as usize] == enums::SHIFTING_PIVOT)
     }
 
     fn set_input(b: &mut Bytes, s: u8) -> Op {
