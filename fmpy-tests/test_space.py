@@ -115,8 +115,9 @@ def test_the_command_writes_its_files_and_matches_the_dharahara_page(tmp_path):
 @pytest.mark.parametrize("args, words", [
     (["space", paths.data_dir() / "katnp-standin" / "KATNP_NS_standin.csv"], "horizontal component"),
     (["space", DFHS, "--shape", "solidRectangle"], "not one of solidCircle, hollowCircle"),
-    (["space", DFHS, "--preset", "fig15-alpha0.20-costa"], "rigid bed"),
-    (["space", DFHS, "--preset", "dharahara-F170-fm5"], "rigid bed"),
+    (["space", DFHS, "--preset", "fig15-alpha0.20-costa"], "not one of solidCircle, hollowCircle"),
+    (["space", DFHS, "--interface", "soft"], "not one of rigid, elastic, elastoPlastic (interface)"),
+    (["space", DFHS, "--preset", "dharahara-F170-fm5", "--kn", "-1"], "kn = -1"),
     (["space", DFHS, "--Ro", "-1"], "Ro"),
     (["space", "no/such/file.090"], "no such record file"),
 ])
@@ -162,3 +163,32 @@ def test_the_flexible_table_s_rigid_case_is_the_rigid_study_s():
     assert row[1] == rigid[2]  # peak (impacts): on the rigid bed the crossings are the impacts
     assert row[2].split(" (")[0] == rigid[4]
     assert row[3].split(" (")[0] == rigid[5]
+
+
+def test_the_command_runs_a_crushing_bed_and_matches_the_flexible_table(tmp_path):
+    """`rocking space --preset dharahara-F170-fm5` (the bed's interface, kn, fm and formulation
+    through RoundBody.fmu) under Darfield DFHS x3: the page's run in space (the Rust example,
+    Spatial called directly), peak and crossings."""
+    out = tmp_path / "f170"
+    r = rocking("space", DFHS, "--scale", 3, "--preset", "dharahara-F170-fm5", "--tail", 10, "--rtol", 1e-10,
+                "--out", out)
+    assert r.returncode == 0, r.stderr
+    s = json.loads((out / "summary.json").read_text())
+    assert {k: s["parameters"][k] for k in ("interface", "kn", "fm")} == {
+        "interface": "elastoPlastic", "kn": 170e6, "fm": 5e6}
+    assert not s["overturned"] and s["impacts"] >= 20
+    assert flexible_row("F170_fm5")[1] == f"{s['peak_theta_over_alpha']:.3f} ({s['impacts']})"
+    assert f"{s['impacts']} crossings" in r.stdout
+
+
+def test_a_crushing_case_that_overturns_along_x_stands_in_space_through_the_fmu(fmu):
+    """I15_fm15 under Darfield DFHS x3 (the page's first figure): through RoundBody.fmu the run
+    in space stands with the page's peak and crossings, where the page's planar run along x
+    overturns."""
+    params = dict(dharahara_cases()["I15_fm15"])
+    params["IcAxial"] = params["W"] / params["g"] * (3.99 ** 2 + 2.12 ** 2) / 2
+    pair = gm.pair_of(DFHS)
+    run = fmu.simulate(params, pair=pair, scale=3.0, rtol=1e-10, stop_time=pair.npts * pair.dt + 10.0)
+    row = flexible_row("I15_fm15")
+    assert row[2].startswith("overturns")
+    assert not run.overturned and row[1] == f"{run.peak_theta_over_alpha:.3f} ({run.impacts})"

@@ -1,4 +1,5 @@
-"""RoundBody.fmu, a round body in space on a rigid bed (docs/model.md §10, docs/round-body.md),
+"""RoundBody.fmu, a round body in space on a rigid, elastic or crushing bed (docs/model.md §10, §11,
+docs/round-body.md),
 extracted once and run through fmpy's FMU2Slave under both horizontal components and the vertical.
 
     from rocking import groundmotion as gm
@@ -45,7 +46,8 @@ class SpaceRun:
     t_end                  time of the last row
     t_overturn             t_end if overturned, else nan
     peak_theta_over_alpha  max theta / alpha over the recorded samples
-    impacts                returns of the base to the bed at the end
+    impacts                returns of the base to the bed at the end (on a flexible bed, the
+                           applications of the restitution rule: RockingBlock's zeroCrossings)
     terminal               the FMU's message when the vertical input took the body off the bed
                            (liftOff), else None
     calculated             the calculated parameters

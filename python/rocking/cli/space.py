@@ -15,9 +15,9 @@ from .common import CLIError, add_record_options, check_parameter, read_params_f
 #: This subcommand also takes any RoundBody.fmu parameter as `--NAME VALUE`.
 TAKES_PARAMETERS = True
 
-#: RockingBlock parameters a preset may carry that mean nothing on the rigid bed in space.
-PLANAR_ONLY = ("interface", "kn", "fm", "formulation", "B", "L", "t", "theta", "omega", "restraint", "side",
-               "eRestraint")
+#: RockingBlock parameters a preset may carry that RoundBody.fmu does not have (the bed's interface,
+#: kn, fm and formulation it takes with the same names and meanings).
+PLANAR_ONLY = ("B", "L", "t", "theta", "omega", "restraint", "side", "eRestraint")
 
 
 def round_fmu_path(arg):
@@ -34,8 +34,8 @@ def round_fmu_path(arg):
 
 
 def gather(fmu, args, params_given):
-    """(RoundBody start values, notes): the preset's (its planar-only names left out; a
-    flexible bed refused), under --params FILE's, under --NAME VALUE; a lumped body without
+    """(RoundBody start values, notes): the preset's (its planar-only names left out), under
+    --params FILE's, under --NAME VALUE; a lumped body without
     IcAxial gets its cylinder's m (Ro² + Ri²)/2 (Ri = 0 for a solid circle), noted."""
     from .. import presets as presets_module
     params, notes = {}, []
@@ -44,12 +44,9 @@ def gather(fmu, args, params_given):
             values = presets_module.preset(args.preset)
         except KeyError as exc:
             raise CLIError(f"--preset: {exc.args[0]}") from None
-        if values.get("interface", "rigid") not in ("rigid", 0):
-            raise CLIError(f"--preset {args.preset}: interface = {values['interface']}: a round body in space "
-                           "runs on the rigid bed for now (dharahara-rigid, or --NAME VALUE)")
         dropped = sorted(n for n in values if n in PLANAR_ONLY)
         if dropped:
-            notes.append(f"preset {args.preset}: {', '.join(dropped)} left out (the rigid bed in space)")
+            notes.append(f"preset {args.preset}: {', '.join(dropped)} left out (planar only)")
         for name, value in values.items():
             if name not in PLANAR_ONLY:
                 params[name] = check_parameter(fmu, name, value, f"preset {args.preset}: {name}")
@@ -68,10 +65,11 @@ def gather(fmu, args, params_given):
 
 
 def planar_params(rocking_fmu, params):
-    """The same body for RockingBlock.fmu on its rigid interface."""
+    """The same body on the same bed for RockingBlock.fmu: RoundBody's interface starts at rigid,
+    RockingBlock's does not."""
     out = {n: v for n, v in params.items() if n in rocking_fmu.variables and rocking_fmu.variables[n].causality
            == "parameter"}
-    out["interface"] = "rigid"
+    out.setdefault("interface", "rigid")
     return out
 
 
@@ -109,7 +107,7 @@ def sweep_planar(rocking_fmu, params, pair, args, stop_time):
 def summary_of_planar(az, run):
     return {"azimuth_deg": az, "peak_theta_over_alpha": run.peak_theta_over_alpha, "overturned": run.overturned,
             "t_overturn_s": None if not run.overturned else run.t_overturn, "impacts": run.impacts,
-            "terminal": run.terminal}
+            "zero_crossings": run.zero_crossings, "terminal": run.terminal}
 
 
 def cmd_space(args, params_given):
@@ -173,13 +171,17 @@ def cmd_space(args, params_given):
     plot_space(out / "plot.png", run, compare, alpha, pair, args)
     word = f"overturns at {run.t_overturn:.3f} s" if run.overturned else (
         run.terminal or f"stands, peak theta/alpha {run.peak_theta_over_alpha:.3f}")
-    print(f"in space: {word}, {run.impacts} impacts ({out})")
+    # on a flexible bed the body in space counts as impacts every application of the restitution
+    # rule (docs/model.md §11.3), which RockingBlock counts as zeroCrossings
+    flexible = params.get("interface", "rigid") not in ("rigid", 0)
+    counted = "crossings" if flexible else "impacts"
+    print(f"in space: {word}, {run.impacts} {counted} ({out})")
     if compare is not None:
         for label in ("x", "y", "worst"):
             r = compare[label]
             at = f" ({compare['worst_azimuth']:g} deg)" if label == "worst" else ""
             w = f"overturns at {r.t_overturn:.3f} s" if r.overturned else f"peak {r.peak_theta_over_alpha:.3f}"
-            print(f"planar along {label}{at}: {w}, {r.impacts} impacts")
+            print(f"planar along {label}{at}: {w}, {r.zero_crossings if flexible else r.impacts} {counted}")
     return 0
 
 
@@ -232,8 +234,9 @@ def register(sub, common):
               "                     [--stop-time S | --tail S] [--output-interval S] [--rtol R]\n"
               "                     [--compare [--sweep DEG] [--planar-fmu PATH]] --out DIR",
         description=textwrap.fill(
-            "Run a round body (solidCircle or hollowCircle) on the rigid bed in space under both horizontal "
-            "components of RECORD's set and its vertical, through RoundBody.fmu (docs/model.md §10), and write "
+            "Run a round body (solidCircle or hollowCircle) in space on the rigid, elastic or crushing bed "
+            "(interface, kn, fm, formulation as RockingBlock's) under both horizontal components of RECORD's set "
+            "and its vertical, through RoundBody.fmu (docs/model.md §10, §11), and write "
             "DIR/timehistory.csv (time, agx, agy, av and the outputs), DIR/summary.json and DIR/plot.png (the "
             "path of the top in plan, the tilt against time). agx is the component along --azimuth (degrees "
             "from the set's x toward its y), agy the one 90 degrees counterclockwise of it. --compare adds "
@@ -245,8 +248,8 @@ def register(sub, common):
     p.add_argument("--azimuth", type=float, default=0.0, help="degrees from the set's x toward its y (default 0)")
     p.add_argument("--no-vertical", action="store_true", help="leave out the set's vertical component")
     add_record_options(p)
-    p.add_argument("--preset", metavar="NAME", help="a parameter set of `rocking info --presets` on the rigid bed "
-                   "(its planar-only names are left out)")
+    p.add_argument("--preset", metavar="NAME", help="a parameter set of `rocking info --presets` (its "
+                   "planar-only names are left out)")
     p.add_argument("--params", metavar="FILE", help="parameters from a JSON object of name -> value")
     p.add_argument("--fmu", metavar="PATH", help="RoundBody.fmu (default: the one an installed wheel carries; "
                    "in a clone target/fmu/RoundBody.fmu, written by `cargo xtask fmu`)")
