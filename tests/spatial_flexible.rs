@@ -9,36 +9,10 @@ use rocking::spatial::{PlanInput, Spatial, SpatialState};
 use rocking::Params;
 
 mod support;
-use support::drum::{drum, pulse_train};
+use support::drum::{drum, on_bed, pulse_train, vertical, DT};
+use support::rotated::{assert_rotates, rot, run_rotated};
 
 const RTOL: f64 = 1e-13;
-const DT: f64 = 0.01;
-
-/// The drum of `support::drum` on a bed of `kn = 1e8 Pa/m` (`thetaJo` 1.2e-3
-/// rad), crushing at `fm = 0.3 MPa` if `crushing`.
-fn on_bed(crushing: bool, formulation: Formulation) -> Params {
-    Params {
-        interface: if crushing {
-            LawKind::ElastoPlastic
-        } else {
-            LawKind::Elastic
-        },
-        kn: 1e8,
-        fm: 3e5,
-        formulation,
-        ..drum(Restitution::Housner, false)
-    }
-}
-
-fn vertical(t: f64) -> f64 {
-    2.0 * (2.0 * std::f64::consts::PI * 3.1 * t).sin()
-}
-
-/// Rotate a horizontal vector by `beta` (rad).
-fn rot(v: [f64; 2], beta: f64) -> [f64; 2] {
-    let (s, c) = beta.sin_cos();
-    [c * v[0] - s * v[1], s * v[0] + c * v[1]]
-}
 
 /// The planar run and the spatial run along the azimuth `psi`, sampled
 /// every `DT`: the worst `|theta_planar - theta_spatial|`, the peak
@@ -110,37 +84,6 @@ fn in_a_plane_the_body_on_a_flexible_bed_is_the_planar_model() {
             }
         }
     }
-}
-
-/// The horizontal input (both components) and the vertical one, m/s² at `t` s.
-type Inputs<'a> = (&'a dyn Fn(f64) -> [f64; 2], &'a dyn Fn(f64) -> f64);
-
-/// Run `spatial` from `st` under `ag(t)` (both components) rotated by
-/// `beta` and `av(t)`, sampled every `DT`.
-fn run_rotated(
-    spatial: &Spatial,
-    mut st: SpatialState,
-    (ag, av): Inputs,
-    beta: f64,
-    t_end: f64,
-) -> Vec<SpatialState> {
-    let n = (t_end / DT).round() as usize;
-    let mut out = vec![];
-    for k in 0..n {
-        let (t0, t1) = (k as f64 * DT, (k + 1) as f64 * DT);
-        let (a0, a1) = (rot(ag(t0), beta), rot(ag(t1), beta));
-        let h = PlanInput {
-            a: a0,
-            da: [(a1[0] - a0[0]) / DT, (a1[1] - a0[1]) / DT],
-        };
-        let v = VerticalInput {
-            av: av(t0),
-            dav: (av(t1) - av(t0)) / DT,
-        };
-        spatial.advance(&mut st, t1, h, v);
-        out.push(st);
-    }
-    out
 }
 
 fn two_components(t: f64) -> [f64; 2] {
@@ -221,23 +164,7 @@ fn a_rotated_input_rotates_the_response_on_a_crushing_bed() {
                 beta,
                 4.0,
             );
-            let mut worst = 0.0f64;
-            for (a, b) in base.iter().zip(&turned) {
-                let e = rot(a.e, beta);
-                let w = rot([a.omega[0], a.omega[1]], beta);
-                worst = worst
-                    .max((e[0] - b.e[0]).abs() + (e[1] - b.e[1]).abs())
-                    .max((w[0] - b.omega[0]).abs() + (w[1] - b.omega[1]).abs())
-                    .max((a.omega[2] - b.omega[2]).abs());
-                assert_eq!(a.impacts, b.impacts, "{name}, beta {beta}, t = {}", a.t);
-            }
-            let peak = base.iter().map(|s| s.theta()).fold(0.0, f64::max);
-            eprintln!(
-                "{name} beta {beta}: worst {worst:.2e}, peak tilt {peak:.3} rad, impacts {}",
-                base.last().unwrap().impacts
-            );
-            assert!(peak > 0.05);
-            assert!(worst <= 1e-9, "{name}, beta {beta}: {worst:e}");
+            assert_rotates(name, beta, &base, &turned);
         }
     }
 }

@@ -6,16 +6,19 @@
 //! generator for the random sweeps ([`lcg`]), a sampled ground pulse
 //! ([`pulse`]), a body under a constant `av` against reduced gravity
 //! ([`reduced_gravity`]), the drum of the spatial tests and its ground
-//! motion ([`drum`]).
+//! motion ([`drum`]), their rotated inputs ([`rotated`]) and a Model
+//! Exchange host for them ([`model_exchange`]).
 #![allow(dead_code)]
 
 pub mod base;
 pub mod drum;
 pub mod exact;
 pub mod lcg;
+pub mod model_exchange;
 pub mod pulse;
 pub mod reduced_gravity;
 pub mod rk4;
+pub mod rotated;
 
 use rocking::dynamics::{Jet, OutputRates};
 use rocking::model::{LawKind, MassKind, ShapeKind};
