@@ -2,7 +2,7 @@
 without dilatancy), as a mathematical program with complementarity constraints (Ferris &
 Tin-Loi, Int. J. Mech. Sci. 43, 2001, 209-224), solved as a mixed-integer LP with big-M
 switches by HiGHS through scipy (`scipy.optimize.milp`); and a check that a given
-mechanism is a collapse state (`certify`, one LP).
+mechanism is a collapse state (`certify`, two LPs).
 
 The contact model is nonassoc.py's (lp.py's): at each corner c of every interface a
 normal force n_c >= 0 and tangential forces t_c, the friction pyramid of `facets` planes
@@ -21,15 +21,16 @@ n = n_hat, so every converged state of the iteration is one, and the least lambd
 all of them is at most the iteration's. `least` minimises lambda over them: binaries
 b_c (corner closed: z_c = 0; open: n_c = 0) and q_ck (plane active: mu n_c = e_k . t_c;
 inactive: s_ck = 0), with big-M bounds n_c <= N, |y| <= Y (translations Y/W_min m/s,
-rotations Y/(W_min L_min) rad/s, W_min the lightest free block's weight, L_min its
-smallest side), and the bounds on z and s these imply. HiGHS's branch and bound returns
+rotations Y/(W_min L_min) rad/s, W_min the lightest free block's weight, L_min the
+smallest side of any free block), and the bounds on z and s these imply. HiGHS's branch and bound returns
 the best state found (an upper end, a genuine collapse state) and a dual bound (a lower
 end): together a certified interval for the least collapse multiplier among states
 within those bounds. The bounds are an assumption, stated with every result: a state
 with larger forces or a mechanism with a larger ratio of speed to load power is not
 searched. The virtual-work identity lambda = -dead . y + sum mu n_c s_ck (from the
 complementarity) gives the valid cut lambda + dead . y >= 0, added to tighten the
-relaxation.
+relaxation. Even so the relaxation decouples forces and mechanism, and its bound stays at
+lambda = 0 beyond a block or two (docs/corner-nonassociative.md, section 1).
 
 `certify(assembly, alpha, velocity)`: for a mechanism found elsewhere (the iteration's
 last LP), the least and the largest lambda of force fields that are a collapse state with
@@ -37,7 +38,7 @@ it (the openings and slip directions of the mechanism fix which corners carry n 
 which pyramid planes are at their limit): an LP each. Any lambda in that range is a
 collapse state, so the least one is an upper end of the least collapse multiplier."""
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 import math
 import time
 
@@ -67,7 +68,6 @@ class Least:
     normal: np.ndarray = None
     velocity: np.ndarray = None
     bound_active: bool = False
-    extra: dict = field(default_factory=dict)
 
 
 def _blocks(p):
@@ -158,7 +158,8 @@ def least(assembly, alpha, facets=8, n_max=None, y_scale=10.0, time_limit=600.0,
     block([(oy, g[ncol]), (ob, _diag(z_max))], -np.inf, z_max)
     block([(0, pick_n), (ob, _diag(np.full(m, -n_max)))], -np.inf, 0.0)
     # plane active (q = 1): mu n - e_k . t <= T (1 - q); inactive: s <= s_max q
-    t_big = 2.2 * mu * n_max + 1e-9
+    # mu n - e_k . t <= mu N + |t|, |t| <= mu N / cos(pi / facets) inside the pyramid
+    t_big = 1.01 * mu * n_max * (1 + 1 / math.cos(math.pi / facets)) + 1e-9
     block([(0, -p.a_assoc), (oq, _diag(np.full(ns, t_big)))], -np.inf, t_big)
     block([(os_, identity(ns, format="csr")), (oq, _diag(-s_max))], -np.inf, 0.0)
 
@@ -271,7 +272,7 @@ def _certify(p, velocity, rel_tol=1e-7, fields=None, time_limit=None):
         res = linprog(c, A_ub=p.a_assoc, b_ub=np.zeros(p.a_assoc.shape[0]), A_eq=a_eq, b_eq=b_eq,
                       bounds=p.bounds, method="highs",
                       options={} if time_limit is None else {"time_limit": time_limit})
-        if res.status != 0:  # infeasible: no force field completes this mechanism
+        if res.status != 0:  # infeasible (no force field completes this mechanism) or undecided
             return math.nan, math.nan
         out.append(float(res.x[p.lam_col]))
         if fields is not None:
