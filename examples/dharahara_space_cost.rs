@@ -27,11 +27,8 @@ mod pair_file;
 mod space_runs;
 
 use cpu::cpu;
-use space_runs::Run;
+use space_runs::{Run, RTOL, TAIL_S};
 
-const RTOL: f64 = 1e-10;
-/// Seconds of quiet after the record.
-const TAIL_S: f64 = 10.0;
 const REPEAT: usize = 3;
 
 fn outcome(r: &Run, alpha: f64) -> String {

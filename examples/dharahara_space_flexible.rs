@@ -32,11 +32,8 @@ mod pair_file;
 #[path = "support/space_runs.rs"]
 mod space_runs;
 
-use space_runs::Run;
+use space_runs::{Run, RTOL, TAIL_S};
 
-const RTOL: f64 = 1e-10;
-/// Seconds of quiet after the record.
-const TAIL_S: f64 = 10.0;
 /// History sampling, s.
 const EVERY: f64 = 0.05;
 /// Planar azimuths, degrees from x toward y.

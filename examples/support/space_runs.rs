@@ -11,6 +11,11 @@ use rocking::spatial::{PlanInput, Spatial, SpatialState};
 
 use super::pair_file::PairFile;
 
+/// Both integrators' relative tolerance.
+pub const RTOL: f64 = 1e-10;
+/// Seconds of quiet after the record.
+pub const TAIL_S: f64 = 10.0;
+
 /// What a run did.
 #[derive(Default)]
 pub struct Run {
@@ -31,6 +36,35 @@ pub struct Run {
     /// planar run), top x, top y]`, the top relative to the base's centre
     /// (2 hG times the axis's horizontal part, m).
     pub history: Vec<[f64; 4]>,
+}
+
+impl Run {
+    /// One sample: its integrator steps (accepted, rejected) and tilt
+    /// (rad); the run ends at an overturning (`overturned`, at
+    /// `overturned_at` s) or at liftOff (at `lift_off` s). Returns whether
+    /// it ended.
+    fn sample(
+        &mut self,
+        steps: u32,
+        rejected: u32,
+        tilt: f64,
+        overturned: bool,
+        overturned_at: Option<f64>,
+        lift_off: Option<f64>,
+    ) -> bool {
+        self.steps += u64::from(steps + rejected);
+        self.rejected += u64::from(rejected);
+        self.peak = self.peak.max(tilt);
+        if overturned {
+            self.overturned = overturned_at;
+            return true;
+        }
+        if lift_off.is_some() {
+            self.lift_off = lift_off;
+            return true;
+        }
+        false
+    }
 }
 
 fn at(p: &PairFile, k: usize, scale: f64) -> [f64; 3] {
@@ -72,15 +106,16 @@ pub fn planar(
                 dav: (a1[2] - a0[2]) / p.dt,
             },
         );
-        run.steps += u64::from(ev.stats.steps + ev.stats.rejected);
-        run.rejected += u64::from(ev.stats.rejected);
-        run.peak = run.peak.max(st.theta.abs());
-        if st.overturned {
-            run.overturned = ev.overturned_at;
-            break;
-        }
-        if let Some(term) = ev.terminal {
-            run.lift_off = Some(term.t);
+        let (steps, rejected) = (ev.stats.steps, ev.stats.rejected);
+        let (turned, lift_off) = (st.overturned, ev.terminal.map(|term| term.t));
+        if run.sample(
+            steps,
+            rejected,
+            st.theta.abs(),
+            turned,
+            ev.overturned_at,
+            lift_off,
+        ) {
             break;
         }
         if every > 0 && (k + 1) % every == 0 {
@@ -119,15 +154,15 @@ pub fn space(
         };
         // no max_steps is set: one call reaches the sample's end
         let ev = body.advance(&mut st, (k + 1) as f64 * p.dt, h, v);
-        run.steps += u64::from(ev.steps + ev.rejected);
-        run.rejected += u64::from(ev.rejected);
-        run.peak = run.peak.max(st.theta());
-        if st.overturned {
-            run.overturned = ev.overturned_at;
-            break;
-        }
-        if let Some(term) = ev.terminal {
-            run.lift_off = Some(term.t);
+        let (turned, lift_off) = (st.overturned, ev.terminal.map(|term| term.t));
+        if run.sample(
+            ev.steps,
+            ev.rejected,
+            st.theta(),
+            turned,
+            ev.overturned_at,
+            lift_off,
+        ) {
             break;
         }
         if every > 0 && (k + 1) % every == 0 {
