@@ -15,7 +15,7 @@
 //! Each input file: a first line `# name bearing_x`, the time step (s), then
 //! `agx agy av` per sample (m/s²).
 
-use rocking::dynamics::{GroundInput, Simulator, VerticalInput};
+use rocking::dynamics::{Simulator, VerticalInput};
 use rocking::model::LawKind;
 use rocking::spatial::{PlanInput, Spatial, SpatialState};
 use serde_json::{json, Value};
@@ -24,62 +24,25 @@ use serde_json::{json, Value};
 mod dharahara;
 #[path = "support/pair_file.rs"]
 mod pair_file;
+#[path = "support/space_runs.rs"]
+mod space_runs;
 
-const RTOL: f64 = 1e-10;
-/// Seconds of quiet after the record.
-const TAIL_S: f64 = 10.0;
 /// History sampling, s.
 const EVERY: f64 = 0.05;
 
 use pair_file::PairFile as Pair;
-
-/// What a run did, and its history when asked: `[t, tilt (signed for a
-/// planar run), top x, top y]` every `EVERY`.
-struct Run {
-    peak: f64,
-    overturned: Option<f64>,
-    impacts: u64,
-    lift_off: Option<f64>,
-    history: Vec<[f64; 4]>,
-}
-
-fn at(p: &Pair, k: usize, scale: f64) -> [f64; 3] {
-    p.samples.get(k).map_or([0.0; 3], |s| s.map(|x| scale * x))
-}
-
-fn steps(p: &Pair) -> usize {
-    p.samples.len() + (TAIL_S / p.dt).round() as usize
-}
+use space_runs::{at, planar_input, samples, Run, RTOL, TAIL_S};
 
 /// Planar along the azimuth `az` (rad from x toward y), with the vertical.
 fn planar(sim: &Simulator, p: &Pair, scale: f64, az: f64, keep: bool) -> Run {
     let (s, c) = az.sin_cos();
     let (hg, radius) = (sim.model.body.hg, sim.model.body.b);
     let mut st = sim.initial_state(0.0, 0.0);
-    let mut run = Run {
-        peak: 0.0,
-        overturned: None,
-        impacts: 0,
-        lift_off: None,
-        history: vec![],
-    };
+    let mut run = Run::default();
     let every = (EVERY / p.dt).round().max(1.0) as usize;
-    for k in 0..steps(p) {
-        let (a0, a1) = (at(p, k, scale), at(p, k + 1, scale));
-        let (g0, g1) = (c * a0[0] + s * a0[1], c * a1[0] + s * a1[1]);
-        let ev = sim.advance_vertical(
-            &mut st,
-            (k + 1) as f64 * p.dt,
-            GroundInput {
-                ag: g0,
-                dag: (g1 - g0) / p.dt,
-            },
-            VerticalInput {
-                av: a0[2],
-                dav: (a1[2] - a0[2]) / p.dt,
-            },
-        );
-        run.peak = run.peak.max(st.theta.abs());
+    for k in 0..samples(p, TAIL_S) {
+        let (ga, v) = planar_input(p, k, scale, az);
+        let ev = sim.advance_vertical(&mut st, (k + 1) as f64 * p.dt, ga, v);
         if keep && (k + 1) % every == 0 {
             // the top, at 2 hG, from the base's centre at rest: about the
             // toe at R sgn(theta), R sgn(theta) (1 - cos) + 2 hG sin
@@ -87,16 +50,20 @@ fn planar(sim: &Simulator, p: &Pair, scale: f64, az: f64, keep: bool) -> Run {
             let lean = radius * st.theta.signum() * (1.0 - cs) + 2.0 * hg * sn;
             run.history.push([st.t, st.theta, lean * c, lean * s]);
         }
-        if st.overturned {
-            run.overturned = ev.overturned_at;
-            break;
-        }
-        if let Some(term) = ev.terminal {
-            run.lift_off = Some(term.t);
+        let (steps, rejected) = (ev.stats.steps, ev.stats.rejected);
+        let (turned, lift_off) = (st.overturned, ev.terminal.map(|term| term.t));
+        if run.sample(
+            steps,
+            rejected,
+            st.theta.abs(),
+            turned,
+            ev.overturned_at,
+            lift_off,
+        ) {
             break;
         }
     }
-    run.impacts = st.impacts;
+    run.crossings = st.impacts;
     run
 }
 
@@ -104,16 +71,10 @@ fn planar(sim: &Simulator, p: &Pair, scale: f64, az: f64, keep: bool) -> Run {
 fn space(body: &Spatial, p: &Pair, scale: f64, vertical: bool) -> Run {
     let hg = body.model.body.hg;
     let mut st = SpatialState::at_rest();
-    let mut run = Run {
-        peak: 0.0,
-        overturned: None,
-        impacts: 0,
-        lift_off: None,
-        history: vec![],
-    };
+    let mut run = Run::default();
     let every = (EVERY / p.dt).round().max(1.0) as usize;
     let v_on = if vertical { 1.0 } else { 0.0 };
-    for k in 0..steps(p) {
+    for k in 0..samples(p, TAIL_S) {
         let (a0, a1) = (at(p, k, scale), at(p, k + 1, scale));
         let h = PlanInput {
             a: [a0[0], a0[1]],
@@ -124,7 +85,6 @@ fn space(body: &Spatial, p: &Pair, scale: f64, vertical: bool) -> Run {
             dav: v_on * (a1[2] - a0[2]) / p.dt,
         };
         let ev = body.advance(&mut st, (k + 1) as f64 * p.dt, h, v);
-        run.peak = run.peak.max(st.theta());
         if (k + 1) % every == 0 {
             // the top, 2 hG up the axis from the base: G plus hG e
             run.history.push([
@@ -134,21 +94,24 @@ fn space(body: &Spatial, p: &Pair, scale: f64, vertical: bool) -> Run {
                 st.xg[1] + hg * st.e[1],
             ]);
         }
-        if st.overturned {
-            run.overturned = ev.overturned_at;
-            break;
-        }
-        if let Some(term) = ev.terminal {
-            run.lift_off = Some(term.t);
+        let (turned, lift_off) = (st.overturned, ev.terminal.map(|term| term.t));
+        if run.sample(
+            ev.steps,
+            ev.rejected,
+            st.theta(),
+            turned,
+            ev.overturned_at,
+            lift_off,
+        ) {
             break;
         }
     }
-    run.impacts = st.impacts;
+    run.crossings = st.impacts;
     run
 }
 
 fn summary(r: &Run, alpha: f64) -> Value {
-    json!({"peak_over_alpha": r.peak / alpha, "overturned_at": r.overturned, "impacts": r.impacts, "lift_off_at": r.lift_off})
+    json!({"peak_over_alpha": r.peak / alpha, "overturned_at": r.overturned, "impacts": r.crossings, "lift_off_at": r.lift_off})
 }
 
 fn main() {

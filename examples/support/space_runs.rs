@@ -34,7 +34,8 @@ pub struct Run {
     pub rejected: u64,
     /// When kept, every `every` samples: `[t, tilt (rad, signed for a
     /// planar run), top x, top y]`, the top relative to the base's centre
-    /// (2 hG times the axis's horizontal part, m).
+    /// at rest, m (here 2 hG times the axis's horizontal part; the rigid
+    /// tower of `dharahara_space` adds the pivot's and the centre's travel).
     pub history: Vec<[f64; 4]>,
 }
 
@@ -43,7 +44,7 @@ impl Run {
     /// (rad); the run ends at an overturning (`overturned`, at
     /// `overturned_at` s) or at liftOff (at `lift_off` s). Returns whether
     /// it ended.
-    fn sample(
+    pub fn sample(
         &mut self,
         steps: u32,
         rejected: u32,
@@ -67,8 +68,29 @@ impl Run {
     }
 }
 
-fn at(p: &PairFile, k: usize, scale: f64) -> [f64; 3] {
+/// Sample `k` of the pair times `scale` (zero past the record): `[agx,
+/// agy, av]`, m/s².
+pub fn at(p: &PairFile, k: usize, scale: f64) -> [f64; 3] {
     p.samples.get(k).map_or([0.0; 3], |s| s.map(|x| scale * x))
+}
+
+/// The planar input over sample interval `k` along the azimuth `az` (rad
+/// from x toward y): the horizontal components projected on it, and the
+/// vertical, linear between the samples.
+pub fn planar_input(p: &PairFile, k: usize, scale: f64, az: f64) -> (GroundInput, VerticalInput) {
+    let (s, c) = az.sin_cos();
+    let (a0, a1) = (at(p, k, scale), at(p, k + 1, scale));
+    let (g0, g1) = (c * a0[0] + s * a0[1], c * a1[0] + s * a1[1]);
+    (
+        GroundInput {
+            ag: g0,
+            dag: (g1 - g0) / p.dt,
+        },
+        VerticalInput {
+            av: a0[2],
+            dav: (a1[2] - a0[2]) / p.dt,
+        },
+    )
 }
 
 /// Samples of the record plus `tail_s` of quiet.
@@ -91,21 +113,9 @@ pub fn planar(
     let mut st = sim.initial_state(0.0, 0.0);
     let mut run = Run::default();
     for k in 0..samples(p, tail_s) {
-        let (a0, a1) = (at(p, k, scale), at(p, k + 1, scale));
-        let (g0, g1) = (c * a0[0] + s * a0[1], c * a1[0] + s * a1[1]);
+        let (ga, v) = planar_input(p, k, scale, az);
         // no work limit is set: one call reaches t_end
-        let ev = sim.advance_vertical(
-            &mut st,
-            (k + 1) as f64 * p.dt,
-            GroundInput {
-                ag: g0,
-                dag: (g1 - g0) / p.dt,
-            },
-            VerticalInput {
-                av: a0[2],
-                dav: (a1[2] - a0[2]) / p.dt,
-            },
-        );
+        let ev = sim.advance_vertical(&mut st, (k + 1) as f64 * p.dt, ga, v);
         let (steps, rejected) = (ev.stats.steps, ev.stats.rejected);
         let (turned, lift_off) = (st.overturned, ev.terminal.map(|term| term.t));
         if run.sample(
