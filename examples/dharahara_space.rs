@@ -50,16 +50,7 @@ fn planar(sim: &Simulator, p: &Pair, scale: f64, az: f64, keep: bool) -> Run {
             let lean = radius * st.theta.signum() * (1.0 - cs) + 2.0 * hg * sn;
             run.history.push([st.t, st.theta, lean * c, lean * s]);
         }
-        let (steps, rejected) = (ev.stats.steps, ev.stats.rejected);
-        let (turned, lift_off) = (st.overturned, ev.terminal.map(|term| term.t));
-        if run.sample(
-            steps,
-            rejected,
-            st.theta.abs(),
-            turned,
-            ev.overturned_at,
-            lift_off,
-        ) {
+        if run.after_planar(&st, &ev) {
             break;
         }
     }
@@ -94,15 +85,7 @@ fn space(body: &Spatial, p: &Pair, scale: f64, vertical: bool) -> Run {
                 st.xg[1] + hg * st.e[1],
             ]);
         }
-        let (turned, lift_off) = (st.overturned, ev.terminal.map(|term| term.t));
-        if run.sample(
-            ev.steps,
-            ev.rejected,
-            st.theta(),
-            turned,
-            ev.overturned_at,
-            lift_off,
-        ) {
+        if run.after_space(&st, &ev) {
             break;
         }
     }
@@ -126,12 +109,8 @@ fn main() {
         interface: LawKind::Rigid,
         ..dharahara::tower(None, None)
     };
-    let model = params.build().unwrap();
-    let b = model.body;
-    // a hollow cylinder about its axis
-    let c_axial = b.mass * (dharahara::RO.powi(2) + dharahara::RI.powi(2)) / 2.0;
-    let sim = Simulator::new(model, RTOL);
-    let body = Spatial::new(&params, Some(c_axial), RTOL).unwrap();
+    let (sim, body) = space_runs::tower("rigid", &params);
+    let b = sim.model.body;
     let mut out = vec![];
     for path in args {
         let p = pair_file::read(&path);

@@ -14,9 +14,6 @@
 //! cargo run --release --example dharahara_space_cost -- 1 out/dharahara_space/inputs/Darfield_DFHS.txt
 //! ```
 
-use rocking::dynamics::Simulator;
-use rocking::spatial::Spatial;
-
 #[path = "support/cpu.rs"]
 mod cpu;
 #[path = "support/dharahara.rs"]
@@ -69,13 +66,7 @@ fn main() {
         (vec![], vec![], vec![], vec![], vec![]);
     let mut worst = (0.0, String::new());
     for (id, params) in &cases {
-        let model = params.build().unwrap_or_else(|e| panic!("case {id}: {e}"));
-        let b = model.body;
-        // a hollow cylinder about its axis
-        let c_axial = b.mass * (dharahara::RO.powi(2) + dharahara::RI.powi(2)) / 2.0;
-        let sim = Simulator::new(model, RTOL);
-        let body =
-            Spatial::new(params, Some(c_axial), RTOL).unwrap_or_else(|e| panic!("case {id}: {e}"));
+        let (sim, body) = space_runs::tower(id, params);
         let runs: [&dyn Fn() -> Run; 3] = [
             &|| space_runs::planar(&sim, &pair, scale, 0.0, TAIL_S, 0),
             &|| space_runs::space(&body, &pair, scale, false, TAIL_S, 0),
@@ -110,7 +101,7 @@ fn main() {
             p.steps,
             p.rejected,
             best[0] * 1e3,
-            outcome(p, b.alpha),
+            outcome(p, sim.model.body.alpha),
             sx.steps,
             sx.rejected,
             best[1] / best[0],
@@ -118,7 +109,7 @@ fn main() {
             s.rejected,
             best[2] * 1e3,
             ratio,
-            outcome(s, b.alpha)
+            outcome(s, sim.model.body.alpha)
         );
     }
     println!();

@@ -21,8 +21,6 @@
 //! cargo run --release --example dharahara_space_flexible -- --history F170_fm5@Coalinga@3 3 DIR/*.txt
 //! ```
 
-use rocking::dynamics::Simulator;
-use rocking::spatial::Spatial;
 use serde_json::{json, Value};
 
 #[path = "support/dharahara.rs"]
@@ -77,13 +75,7 @@ fn main() {
     let alpha = cases[0].1.build().unwrap().body.alpha;
     let mut out = vec![];
     for (id, params) in &cases {
-        let model = params.build().unwrap_or_else(|e| panic!("case {id}: {e}"));
-        let b = model.body;
-        // a hollow cylinder about its axis
-        let c_axial = b.mass * (dharahara::RO.powi(2) + dharahara::RI.powi(2)) / 2.0;
-        let sim = Simulator::new(model, RTOL);
-        let body =
-            Spatial::new(params, Some(c_axial), RTOL).unwrap_or_else(|e| panic!("case {id}: {e}"));
+        let (sim, body) = space_runs::tower(id, params);
         for p in &pairs {
             for &scale in &scales {
                 let history = wanted.as_ref().map(|w| {

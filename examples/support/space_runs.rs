@@ -6,9 +6,11 @@
 
 #![allow(dead_code)] // each example uses part of it
 
-use rocking::dynamics::{GroundInput, Simulator, VerticalInput};
-use rocking::spatial::{PlanInput, Spatial, SpatialState};
+use rocking::dynamics::{Events, GroundInput, Simulator, State, VerticalInput};
+use rocking::spatial::{PlanInput, Spatial, SpatialEvents, SpatialState};
+use rocking::Params;
 
+use super::dharahara::{RI, RO};
 use super::pair_file::PairFile;
 
 /// Both integrators' relative tolerance.
@@ -66,6 +68,47 @@ impl Run {
         }
         false
     }
+
+    /// [`Run::sample`] after a planar call.
+    pub fn after_planar(&mut self, st: &State, ev: &Events) -> bool {
+        let lift_off = ev.terminal.map(|term| term.t);
+        let (steps, rejected) = (ev.stats.steps, ev.stats.rejected);
+        self.sample(
+            steps,
+            rejected,
+            st.theta.abs(),
+            st.overturned,
+            ev.overturned_at,
+            lift_off,
+        )
+    }
+
+    /// [`Run::sample`] after a call in space.
+    pub fn after_space(&mut self, st: &SpatialState, ev: &SpatialEvents) -> bool {
+        let lift_off = ev.terminal.map(|term| term.t);
+        self.sample(
+            ev.steps,
+            ev.rejected,
+            st.theta(),
+            st.overturned,
+            ev.overturned_at,
+            lift_off,
+        )
+    }
+}
+
+/// The tower on `params` (case `id`, named when it does not build), planar
+/// and in space, both at `RTOL`; in space with the axial moment of inertia
+/// of a hollow cylinder of radii `RO` and `RI` (kg m²).
+pub fn tower(id: &str, params: &Params) -> (Simulator, Spatial) {
+    let model = params.build().unwrap_or_else(|e| panic!("case {id}: {e}"));
+    let b = model.body;
+    // a hollow cylinder about its axis
+    let c_axial = b.mass * (RO.powi(2) + RI.powi(2)) / 2.0;
+    let sim = Simulator::new(model, RTOL);
+    let body =
+        Spatial::new(params, Some(c_axial), RTOL).unwrap_or_else(|e| panic!("case {id}: {e}"));
+    (sim, body)
 }
 
 /// Sample `k` of the pair times `scale` (zero past the record): `[agx,
@@ -116,16 +159,7 @@ pub fn planar(
         let (ga, v) = planar_input(p, k, scale, az);
         // no work limit is set: one call reaches t_end
         let ev = sim.advance_vertical(&mut st, (k + 1) as f64 * p.dt, ga, v);
-        let (steps, rejected) = (ev.stats.steps, ev.stats.rejected);
-        let (turned, lift_off) = (st.overturned, ev.terminal.map(|term| term.t));
-        if run.sample(
-            steps,
-            rejected,
-            st.theta.abs(),
-            turned,
-            ev.overturned_at,
-            lift_off,
-        ) {
+        if run.after_planar(&st, &ev) {
             break;
         }
         if every > 0 && (k + 1) % every == 0 {
@@ -164,15 +198,7 @@ pub fn space(
         };
         // no max_steps is set: one call reaches the sample's end
         let ev = body.advance(&mut st, (k + 1) as f64 * p.dt, h, v);
-        let (turned, lift_off) = (st.overturned, ev.terminal.map(|term| term.t));
-        if run.sample(
-            ev.steps,
-            ev.rejected,
-            st.theta(),
-            turned,
-            ev.overturned_at,
-            lift_off,
-        ) {
+        if run.after_space(&st, &ev) {
             break;
         }
         if every > 0 && (k + 1) % every == 0 {
