@@ -54,6 +54,22 @@ def unzipped(fmu_path, tmp_path_factory) -> str:
     return extract(fmu_path, unzipdir=str(tmp_path_factory.mktemp("fmu")))
 
 
+# The test files that take longest, collected first. The test command hands
+# whole files to two pytest-xdist workers (--dist loadfile) in collection
+# order as each worker frees up, so a long file collected last runs alone at
+# the end while the other worker idles; longest first, the other worker takes
+# the short files meanwhile. (test_wheel, 155 s of cross builds, runs in
+# tools/wheel-check.sh.)
+LONGEST_FIRST = ("test_wheel", "test_examples", "test_first_hour", "test_platforms", "test_round_body",
+                 "test_space", "test_cosim_hosts", "test_vertical", "test_cli")
+
+
+def pytest_collection_modifyitems(session, config, items):
+    rank = {name: i for i, name in enumerate(LONGEST_FIRST)}
+    # a stable sort: within a file, and among the other files, the order stays
+    items.sort(key=lambda item: rank.get(item.path.stem, len(rank)))
+
+
 _FMPY_LOGGER = []
 
 

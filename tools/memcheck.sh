@@ -6,10 +6,8 @@
 #       simulate with impacts / a crushing interface / overturning, get, set,
 #       serialize and deserialize FMU states, reset, free, and the error
 #       paths, with debug logging), built in the release profile (what the FMU
-#       ships; ROUNDS x STEPS, default 3 x 1000 steps per case) and in the dev
-#       profile (no optimisation, overflow checks; DEV_ROUNDS x DEV_STEPS,
-#       default 1 x 400). Fails on any memcheck error or definite/indirect
-#       leak. Then the Model Exchange tests (fmu-rocking/tests/model_exchange.rs)
+#       ships; ROUNDS x STEPS, default 3 x 1000 steps per case). Fails on any
+#       memcheck error or definite/indirect leak. Then the Model Exchange tests (fmu-rocking/tests/model_exchange.rs)
 #       under memcheck, and FMI 3.0: an instance's life in a plain C host
 #       (co-simulation with early return, Model Exchange) and the 3.0 call
 #       sequences (fmu-rocking/tests/fmi3_c_api.rs); then RoundBody.fmu's
@@ -17,8 +15,11 @@
 #       FMU states, random call sequences, beside RockingBlock). This is what
 #       tools/test.sh runs (about 2 minutes).
 #   tools/memcheck.sh --suites
-#       every test binary of fmu-rocking (fmu_import among them, which dlopens
-#       the packaged FMU) and fmi2-export, under memcheck
+#       c_api_loop built in the dev profile (no optimisation, debug assertions
+#       and overflow checks; DEV_ROUNDS x DEV_STEPS, default 1 x 400: a dev
+#       build of the FMU's whole graph, 100 s of CPU, which the test command
+#       leaves out), then every test binary of fmu-rocking (fmu_import among
+#       them, which dlopens the packaged FMU) and fmi2-export, under memcheck
 #       (ci profile, each in its package's directory; PROPTEST_CASES=16;
 #       at most SUITE_TIMEOUT=1800 s each; about 6 minutes).
 #   tools/memcheck.sh --fmpy
@@ -62,9 +63,21 @@ for line in sys.stdin:
         print(m["target"]["name"], m["executable"], m["manifest_path"].rsplit("/", 1)[0])'
 }
 
+# c_api_loop PROFILE ROUNDS STEPS: built in PROFILE, under memcheck
+c_api_loop() {
+  local profile=$1 dir=$1
+  [ "$profile" = dev ] && dir=debug
+  cargo build --quiet --profile "$profile" -p fmu-rocking --example c_api_loop
+  local log="$out/c_api_loop.$profile.log"
+  echo "-- memcheck: c_api_loop ($profile profile, $2 rounds x $3 steps)"
+  "${vg[@]}" --suppressions="$supp" --log-file="$log" "$target/$dir/examples/c_api_loop" "$2" "$3" | tail -n 1 || status=1
+  summary "$log"
+}
+
 status=0
 case "${1:-}" in
 --suites)
+  c_api_loop dev "${DEV_ROUNDS:-1}" "${DEV_STEPS:-400}"
   cargo xtask fmu >/dev/null # fmu-rocking/tests/fmu_import.rs loads the packaged FMU
   export PROPTEST_CASES=${PROPTEST_CASES:-16}
   root=$PWD
@@ -107,19 +120,7 @@ case "${1:-}" in
   cargo run --quiet --release "${asan[@]}" -p fmu-rocking --example c_api_loop -- 3 1000 2>&1 | tail -n 3 || status=1
   ;;
 *)
-  rounds=${1:-3}
-  steps=${2:-1000}
-  for profile in release dev; do
-    dir=release
-    if [ "$profile" = dev ]; then
-      dir=debug rounds=${DEV_ROUNDS:-1} steps=${DEV_STEPS:-400}
-    fi
-    cargo build --quiet --profile "$profile" -p fmu-rocking --example c_api_loop
-    log="$out/c_api_loop.$profile.log"
-    echo "-- memcheck: c_api_loop ($profile profile, $rounds rounds x $steps steps)"
-    "${vg[@]}" --suppressions="$supp" --log-file="$log" "$target/$dir/examples/c_api_loop" "$rounds" "$steps" | tail -n 1 || status=1
-    summary "$log"
-  done
+  c_api_loop release "${1:-3}" "${2:-1000}"
   # the Model Exchange call sequences (fmu-rocking/tests/model_exchange.rs)
   root=$PWD
   while read -r name exe dir; do

@@ -6,11 +6,14 @@
 # Rust workspace from it (setup.py: `cargo xtask bundle`, a cold build: 11
 # min 33 s wall, 7 min of CPU on 2 cores, so not part of tools/test.sh); the installed
 # `rocking --version` must name the FMU the install built into its own
-# rocking/_bundled.
+# rocking/_bundled. First the library crates as another FMU author gets
+# them from a registry: `cargo publish --dry-run`, packaged and then built
+# from the packages (tools/test.sh checks the packages without that build).
 #   tools/sdist-check.sh [--keep]   (--keep: leave the work folder and print it)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/venv.sh
+cargo publish --dry-run --allow-dirty --quiet -p rocking -p model-description -p fmi2-export -p corner
 work=$(mktemp -d "${TMPDIR:-/tmp}/sdist-check.XXXXXX")
 if [ "${1:-}" != "--keep" ]; then trap 'rm -rf "$work"' EXIT; fi
 
