@@ -13,10 +13,9 @@
 use nalgebra::Vector3;
 
 use super::eom::{Eom, N};
-use super::run::{strikes, Cut};
+use super::run::{illinois, strikes, Cut};
 use super::step::dop853;
 use super::{Spatial, SpatialEvents, SpatialState};
-use crate::dynamics::controller::min_step;
 use crate::interface::{Interface, Threshold, THRESHOLDS};
 
 /// A kink's margin within this of zero at a step's start is the kink the
@@ -140,36 +139,11 @@ impl Spatial {
     ) -> (f64, Cut, [f64; N]) {
         let trial = |h: f64| dop853(eom, t, (y0, f0), h, d0, |a, b| self.scales(a, b)).y;
         let g = |h: f64, y: &[f64; N]| self.margin(eom, t + h, y, d0, armed).0;
-        let (mut a, mut fa) = (0.0, g(0.0, y0).max(f64::MIN_POSITIVE));
-        let (mut b, mut fb, mut yb) = (hh, g(hh, end), *end);
-        let mut side = 0;
-        for _ in 0..200 {
-            if b - a <= min_step(t, b) * 0.25 {
-                break;
-            }
-            let mut c = b - fb * (b - a) / (fb - fa);
-            if !(c > a && c < b) {
-                c = 0.5 * (a + b);
-            }
+        let fa = g(0.0, y0).max(f64::MIN_POSITIVE);
+        let (b, yb) = illinois(t, (0.0, fa), (hh, g(hh, end), *end), |c| {
             let y = trial(c);
-            let fc = g(c, &y);
-            if fc <= 0.0 {
-                (b, fb, yb) = (c, fc, y);
-                if side == -1 {
-                    fa *= 0.5;
-                }
-                side = -1;
-            } else {
-                (a, fa) = (c, fc);
-                if side == 1 {
-                    fb *= 0.5;
-                }
-                side = 1;
-            }
-            if fc == 0.0 {
-                break;
-            }
-        }
+            (g(c, &y), y)
+        });
         let cut = self.margin(eom, t + b, &yb, d0, armed).1;
         (b, cut, yb)
     }

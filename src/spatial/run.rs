@@ -340,34 +340,10 @@ impl Spatial {
                 (a, fa) = (c, fc);
             }
         }
-        let mut side = 0;
-        for _ in 0..200 {
-            if b - a <= min_step(t, b) * 0.25 {
-                break;
-            }
-            let mut c = b - fb * (b - a) / (fb - fa);
-            if !(c > a && c < b) {
-                c = 0.5 * (a + b);
-            }
+        let (b, yb) = illinois(t, (a, fa), (b, fb, yb), |c| {
             let s = trial(c);
-            let fc = g(&s);
-            if fc <= 0.0 {
-                (b, fb, yb) = (c, fc, s.y);
-                if side == -1 {
-                    fa *= 0.5;
-                }
-                side = -1;
-            } else {
-                (a, fa) = (c, fc);
-                if side == 1 {
-                    fb *= 0.5;
-                }
-                side = 1;
-            }
-            if fc == 0.0 {
-                break;
-            }
-        }
+            (g(&s), s.y)
+        });
         let cut = self.cut(&yb, d0).unwrap_or(Cut::Quarter);
         (b, cut, yb)
     }
@@ -535,6 +511,47 @@ impl Spatial {
         };
         h.min(0.01 / p)
     }
+}
+
+/// The Illinois method on a step from `t`: the margin is `fa > 0` at the
+/// offset `a` and `fb <= 0` at `b` (s), with the state `yb` there;
+/// `trial(c)` is the margin and the state at the offset `c`. Returns the
+/// first offset found with a margin `<= 0` and its state, within a quarter
+/// of the least step (docs/model.md §10.4).
+pub(crate) fn illinois(
+    t: f64,
+    (mut a, mut fa): (f64, f64),
+    (mut b, mut fb, mut yb): (f64, f64, [f64; N]),
+    trial: impl Fn(f64) -> (f64, [f64; N]),
+) -> (f64, [f64; N]) {
+    let mut side = 0;
+    for _ in 0..200 {
+        if b - a <= min_step(t, b) * 0.25 {
+            break;
+        }
+        let mut c = b - fb * (b - a) / (fb - fa);
+        if !(c > a && c < b) {
+            c = 0.5 * (a + b);
+        }
+        let (fc, y) = trial(c);
+        if fc <= 0.0 {
+            (b, fb, yb) = (c, fc, y);
+            if side == -1 {
+                fa *= 0.5;
+            }
+            side = -1;
+        } else {
+            (a, fa) = (c, fc);
+            if side == 1 {
+                fb *= 0.5;
+            }
+            side = 1;
+        }
+        if fc == 0.0 {
+            break;
+        }
+    }
+    (b, yb)
 }
 
 /// The margin `at` of the state that a cubic Hermite in time through the
