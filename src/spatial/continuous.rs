@@ -246,12 +246,7 @@ impl Spatial {
         }
         if st.at_rest {
             if let Some(pivot) = self.lifts_at(&eom, st.t) {
-                st.at_rest = false;
-                st.pivot = pivot;
-                st.omega = [0.0; 3];
-                st.e = [OFF_ZERO * pivot[0], OFF_ZERO * pivot[1]];
-                u.uplift = true;
-                u.states_changed = true;
+                leave_rest(st, pivot, &mut u);
             }
             return u;
         }
@@ -317,12 +312,7 @@ impl Spatial {
             let a = ag[0].hypot(ag[1]);
             if a > 0.0 {
                 let pivot = [-ag[0] / a, -ag[1] / a];
-                st.at_rest = false;
-                st.pivot = pivot;
-                st.omega = [0.0; 3];
-                st.e = [OFF_ZERO * pivot[0], OFF_ZERO * pivot[1]];
-                u.uplift = true;
-                u.states_changed = true;
+                leave_rest(st, pivot, &mut u);
             }
             return u;
         }
@@ -362,4 +352,15 @@ impl Spatial {
 fn crossed(st: &SpatialState) -> bool {
     let [ex, ey] = st.e;
     ex * st.pivot[0] + ey * st.pivot[1] <= 0.0 && (ex != 0.0 || ey != 0.0)
+}
+
+/// The body leaves rest tipping toward `pivot` (unit, the contact side):
+/// still, its tilt a hair off upright on that side.
+fn leave_rest(st: &mut SpatialState, pivot: [f64; 2], u: &mut SpatialUpdate) {
+    st.at_rest = false;
+    st.pivot = pivot;
+    st.omega = [0.0; 3];
+    st.e = [OFF_ZERO * pivot[0], OFF_ZERO * pivot[1]];
+    u.uplift = true;
+    u.states_changed = true;
 }
