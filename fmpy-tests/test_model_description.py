@@ -52,6 +52,37 @@ def test_archive_layout_is_reproducible(fmu_path):
     assert all(i.date_time == (1980, 1, 1, 0, 0, 0) for i in infos)
 
 
+
+def test_a_win64_binary_ships_the_notices_of_its_c_runtime(fmu_path):
+    """mingw-w64's gcc links its startup code (ZPL-2.1, whose clause 2 asks
+    a binary redistribution to reproduce the notice) and libgcc statically
+    into the DLL, which imports only Windows' own libraries; the licence file
+    carries the copyright files of the Debian packages that hold them."""
+    import shutil
+    import subprocess
+
+    with zipfile.ZipFile(fmu_path) as z:
+        if "binaries/win64/RockingBlock.dll" not in z.namelist():
+            pytest.skip("no win64 binary (test_platforms.py says why)")
+        dll = z.read("binaries/win64/RockingBlock.dll")
+        text = z.read("documentation/licenses/license.txt").decode()
+    # no mingw runtime DLL is imported: its code is in the binary
+    assert b"libwinpthread" not in dll and b"libgcc_s" not in dll
+    assert b"Mingw-w64 runtime failure" in dll
+    section = text[text.index("The C runtime of the win64 binaries"):]
+    assert "Redistributions in binary form must reproduce the accompanying" in section
+    assert "GCC RUNTIME LIBRARY EXCEPTION" in section
+    if shutil.which("dpkg-query") and shutil.which("x86_64-w64-mingw32-gcc"):
+        libgcc = subprocess.run(
+            ["x86_64-w64-mingw32-gcc", "-print-libgcc-file-name"],
+            capture_output=True, text=True, check=True,
+        ).stdout.strip()
+        owner = subprocess.run(
+            ["dpkg-query", "--search", os.path.realpath(libgcc)],
+            capture_output=True, text=True, check=True,
+        ).stdout.split(":")[0]
+        assert f"== {owner} " in section
+
 def test_co_simulation_capabilities(model_description):
     cs = model_description.coSimulation
     assert model_description.fmiVersion == "2.0"

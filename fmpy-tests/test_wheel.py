@@ -347,6 +347,9 @@ def test_wheels_list_the_licences_of_their_crates(wheels):
         assert _dist_info(files, "licenses/THIRD-PARTY-LICENSES.txt").encode() == text
         assert "License-File: THIRD-PARTY-LICENSES.txt" in _dist_info(files, "METADATA")
         assert _check_licences(text.decode(), shipped, tag) > 50
+        # mingw-w64's runtime is linked into the win64 binaries only (test_model_description.py)
+        runtime = "The C runtime of the win64 binaries" in text.decode()
+        assert runtime == (tag == "win_amd64"), tag
 
 
 def test_fmus_list_the_licences_of_their_crates(wheels):

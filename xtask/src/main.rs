@@ -31,6 +31,7 @@ use std::process::{Command, Stdio};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
+mod c_runtime;
 mod licences;
 mod wheel;
 
@@ -582,9 +583,7 @@ fn package(model: &Model) -> Res<(PathBuf, Built, Vec<&'static str>)> {
             0o644,
         ),
     ];
-    let licence = licence?.into_bytes();
-    entries.push((licences::FMU_ENTRY.into(), licence.clone(), 0o644));
-    entries3.push((licences::FMU_ENTRY.into(), licence, 0o644));
+    let mut licence = licence?;
     let mut platforms = Vec::new();
     let mut add = |platform: &'static str, library: &Path, seconds: f64| -> Res<()> {
         let data = read(library)?;
@@ -624,6 +623,15 @@ fn package(model: &Model) -> Res<(PathBuf, Built, Vec<&'static str>)> {
         (Ok(dll), seconds) => add("win64", &dll, seconds)?,
         (Err(why), _) => println!("win64: skipped: {why}"),
     }
+    if platforms.contains(&"win64") {
+        licence.push_str(&c_runtime::section()?);
+    }
+    entries.push((
+        licences::FMU_ENTRY.into(),
+        licence.clone().into_bytes(),
+        0o644,
+    ));
+    entries3.push((licences::FMU_ENTRY.into(), licence.into_bytes(), 0o644));
     let dir = target_dir().join("fmu");
     fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let path = dir.join(format!("{}.fmu", model.identifier));

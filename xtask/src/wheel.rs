@@ -20,8 +20,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use crate::{
-    all_messages, licences, linux64_cargo, package, root, shipped_profile, target_dir, win64_cargo,
-    Res, LINUX64_TARGET, MODELS, WIN64_TARGET,
+    all_messages, c_runtime, licences, linux64_cargo, package, root, shipped_profile, target_dir,
+    win64_cargo, Res, LINUX64_TARGET, MODELS, WIN64_TARGET,
 };
 
 /// A wheel's platform: how its helpers are built and named.
@@ -59,7 +59,7 @@ const PLATFORMS: [Platform; 2] = [
     Platform {
         name: "win64",
         target: WIN64_TARGET,
-        tag: "win_amd64",
+        tag: WIN64_TAG,
         stepper: "fmu_stepper.dll",
         corner: "rocking-corner.exe",
         cargo: win64_cargo,
@@ -103,6 +103,9 @@ fn archives(model: &crate::Model) -> Vec<String> {
     }
     all
 }
+
+/// The win64 wheel's platform tag (its binaries carry mingw-w64's C runtime).
+const WIN64_TAG: &str = "win_amd64";
 
 /// `cargo xtask wheel [--reuse-fmus]`.
 pub fn wheels(args: &[String]) -> Res<()> {
@@ -173,7 +176,10 @@ fn stage_bundle(bundle: &Path, helpers: &[(&str, PathBuf)], commit: &str, tag: &
         )?;
     }
     let what = format!("the rocking wheel for {tag} (its FMUs, stepping loop and rocking-corner)");
-    let text = licences::file(&SHIPPED, &what)?;
+    let mut text = licences::file(&SHIPPED, &what)?;
+    if tag == WIN64_TAG {
+        text.push_str(&c_runtime::section()?);
+    }
     write(&bundle.join(LICENCES), text.as_bytes())?;
     let info = serde_json::json!({ "commit": commit, "platform": tag });
     write(&bundle.join("BUILD.json"), info.to_string().as_bytes())
