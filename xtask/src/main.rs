@@ -620,11 +620,16 @@ fn package(model: &Model) -> Res<(PathBuf, Built, Vec<&'static str>)> {
         }
     }
     match win64? {
-        (Ok(dll), seconds) => add("win64", &dll, seconds)?,
+        // a binary whose C runtime's notice cannot be found is not shipped
+        // (a machine with mingw-w64 but no dpkg, building from the sdist)
+        (Ok(dll), seconds) => match c_runtime::section() {
+            Ok(notice) => {
+                add("win64", &dll, seconds)?;
+                licence.push_str(&notice);
+            }
+            Err(why) => println!("win64: skipped: the licence of its C runtime: {why}"),
+        },
         (Err(why), _) => println!("win64: skipped: {why}"),
-    }
-    if platforms.contains(&"win64") {
-        licence.push_str(&c_runtime::section()?);
     }
     entries.push((
         licences::FMU_ENTRY.into(),
