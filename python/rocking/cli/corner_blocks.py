@@ -69,10 +69,11 @@ def cmd_lp(args, _params):
 
 
 def _protocol(args):
-    from ..corner_blocks.dem import SIZE_FACTOR, Protocol
+    from ..corner_blocks.dem import SIZE_FACTOR, Protocol, rest_speed
+    v_tol = args.v_tol if args.v_tol is not None else rest_speed(args.courses, args.blocks)
     return Protocol(step=args.step, collapse=args.collapse, hold=args.hold, start=args.start,
                     lam_max=args.lam_max, size_factor=args.size_factor or SIZE_FACTOR, dt=args.dt,
-                    v_tol=args.v_tol, nlgs_tol=args.nlgs_tol or 0.0, nlgs_relax=args.nlgs_relax or 0.0)
+                    v_tol=v_tol, nlgs_tol=args.nlgs_tol or 0.0, nlgs_relax=args.nlgs_relax or 0.0)
 
 
 def cmd_dem(args, _params):
@@ -295,8 +296,9 @@ def _protocol_parser():
     p.add_argument("--lam-max", type=float, default=1.5, help="DEM: last lambda (default 1.5)")
     p.add_argument("--size-factor", type=int, default=0, help="DEM: the engine's contact room (default 16; 8 for the 3 x 3 corner)")
     p.add_argument("--dt", type=_positive("s"), default=1e-3, help="DEM: time step, s (default 0.001)")
-    p.add_argument("--v-tol", type=_positive("m/s", infinite=True), default=1e-3,
-                   help="DEM: rest speed, m/s; inf: collapse by the displacement alone (default 0.001)")
+    p.add_argument("--v-tol", type=_positive("m/s", infinite=True), default=None,
+                   help="DEM: rest speed, m/s; inf: collapse by the displacement alone (default 0.01 for the "
+                        "paper's corner of 9 courses x 7 blocks or larger, 0.001 for smaller ones)")
     p.add_argument("--nlgs-tol", type=_positive(""), default=None,
                    help="DEM: the contact solver's tolerance (default the wrapper's, 1.666e-4)")
     p.add_argument("--nlgs-relax", type=_positive(""), default=None,

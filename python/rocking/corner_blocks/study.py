@@ -109,7 +109,7 @@ def run(out, ends=("fixed", "free", "outOfPlane"), mu=0.66, methods=("lp",), bin
             record(n, method, e, i, lp_of[e, i], 0.0)
     dem_cases = [(e, i) for m, e, i in todo if m == "dem"]
     if dem_cases:
-        protocol = dem_protocol or _default_protocol()
+        protocol = dem_protocol or _default_protocol(courses, blocks)
         jobs = {}
         for e, i in dem_cases:
             name = f"dem_{e}_mu{mu:g}_{i}{suffix}"
@@ -165,9 +165,29 @@ def dem_figure(path, specimen, result, title):
     draw.figure(a.blocks, path, corners, result["moving"], title=title, fixed=a.fixed)
 
 
-def _default_protocol():
-    from .dem import Protocol
-    return Protocol()
+def _default_protocol(courses, blocks):
+    """The DEM's protocol with the corner's rest speed (dem.rest_speed: 10 mm/s on the
+    paper's corner, whose standing levels creep at up to 1 mm/s)."""
+    from .dem import Protocol, rest_speed
+    return Protocol(v_tol=rest_speed(courses, blocks))
+
+
+def reread(result, v_tol, collapse=None):
+    """lambda_c of a DEM run (dem.run's result) under another collapse criterion (rest
+    speed v_tol, m/s; displacement collapse, m, default the run's), from its level history
+    without a new run: the first level whose end speed reaches v_tol or whose largest
+    displacement passes collapse. None when the history cannot say: every level it ran
+    stands under the new criterion (the run stopped where the new criterion goes on), or a
+    level's hold was cut short at the run's displacement (checked every dem.CHECK s) below
+    a larger new one, so its end speed and displacement are not those of a whole hold."""
+    ran = result["protocol"]
+    collapse = ran["collapse"] if collapse is None else collapse
+    for lam, _rested, speed, disp, _steps in result["history"]:
+        if disp > ran["collapse"] and collapse > ran["collapse"]:
+            return None
+        if not speed < v_tol or disp > collapse:
+            return lam
+    return None
 
 
 def dem_supports(ends, alpha):
@@ -309,12 +329,13 @@ def boundary_dem(out, key, i, lam_lp, mu=0.66, fraction=0.6, geometry=None):
     fields = BOUNDARIES[key][1]
     if "clamp" in fields or not dem_supports(fields["ends"], ORIENTATIONS[i][0]):
         return None
-    from .dem import SIZE_FACTOR, Protocol
+    from .dem import SIZE_FACTOR, Protocol, rest_speed
 
     geometry = geometry or {}
     # the 3 x 3 corner runs with 8 (docs/corner-blocks.md, "The DEM on the corner")
     factor = SIZE_FACTOR if not _suffix(geometry) else 8
-    protocol = Protocol(step=0.01, size_factor=factor)
+    rest = rest_speed(geometry.get("courses", 9), geometry.get("blocks", 7))
+    protocol = Protocol(step=0.01, size_factor=factor, v_tol=rest)
     protocol = replace(protocol, start=dem_start(protocol, lam_lp, fraction))
     return cached(out, f"dem_{key}_mu{mu:g}_{i}{_suffix(geometry)}",
                   lambda: dem_case({"specimen": {"mu": mu, **fields, **geometry}}, ORIENTATIONS[i][0], protocol))
@@ -357,6 +378,8 @@ def run_boundaries(out, methods=("lp",), keys=None, cases=BOUNDARY_CASES, study=
                     row["nonassoc"], row["nonassoc_converged"] = r["lam"], r["converged"]
                     row["nonassoc_iterations"] = r["iterations"]
                     log(f"{key} {ORIENTATIONS[i][1]}: non-associative {r['lam']:.4f} ({r['status']})")
+                    if not r["converged"]:
+                        row.update(certified_states(Path(study) / "nonassoc", key, i, courses, blocks))
             if "dem" in methods:
                 committed = Path(study) / f"dem_{fields['ends']}_mu0.66_{i}{suffix}.json"
                 if key in ("fixed", "free", "outOfPlane") and committed.is_file():
@@ -372,6 +395,27 @@ def run_boundaries(out, methods=("lp",), keys=None, cases=BOUNDARY_CASES, study=
     (out / f"table{suffix}.json").write_text(json.dumps(rows, indent=1))
     (out / f"table{suffix}.md").write_text(boundary_table(rows))
     return rows
+
+
+def certified_states(folder, key, i, courses=9, blocks=7):
+    """The collapse states certified along an unconverged non-associative iteration
+    (`python -m rocking.corner_blocks.nonassoc --diagnose --certify`: folder/diagnose_{key}_{i}
+    _{courses}x{blocks}_*_certify.json, the first such file by name): {} when there is none,
+    else certified_iterations (how many iterations' mechanisms were tried) and, where one
+    was completed into a collapse state, certified ([least, largest] lambda of that
+    mechanism's collapse states, from the iteration whose least is lowest) and
+    certified_iteration. The least bounds the least collapse multiplier from above, where
+    the iterate itself (the iteration's lambda) is no collapse state."""
+    files = sorted(Path(folder).glob(f"diagnose_{key}_{i}_{courses}x{blocks}_*_certify.json"))
+    if not files:
+        return {}
+    rows = json.loads(files[0].read_text())
+    found = [r for r in rows if all(math.isfinite(v) for v in r["certified"])]
+    out = {"certified_iterations": len(rows), "certified_source": str(files[0])}
+    if found:
+        best = min(found, key=lambda r: r["certified"][0])
+        out.update(certified=best["certified"], certified_iteration=best["iteration"])
+    return out
 
 
 def boundary_table(rows):
@@ -390,13 +434,23 @@ def boundary_table(rows):
     for r in rows:
         na = r.get("nonassoc")
         its = "-" if na is None else f"{r['nonassoc_iterations']}" + ("" if r["nonassoc_converged"] else " (not conv.)")
+        shown, against = cell(na), ratio(na, r["experiment"])
+        if "certified" in r:  # an unconverged iterate is no collapse state: the certified ones instead
+            lo, hi = r["certified"]
+            shown, its = f"{lo:.3f}-{hi:.3f}", f"{r['certified_iteration']} (certified)"
+            against = "-" if r["experiment"] is None else f"{ratio(lo, r['experiment'])}-{ratio(hi, r['experiment'])}"
+        elif "certified_iterations" in r:
+            n = r["nonassoc_iterations"]
+            nth = f"{n}{'th' if 10 <= n % 100 <= 20 else {1: 'st', 2: 'nd', 3: 'rd'}.get(n % 10, 'th')}"
+            shown = f"- ({cell(na)}: {nth} iterate)"
+            its, against = f"{r['certified_iterations']} certified: none", "-"
         if paper:
             cells = [r["boundary"], r["alpha"], cell(r["experiment"]), cell(r["3DEC"]), cell(r.get("lp")),
-                     ratio(r.get("lp"), r["experiment"]), ratio(r.get("lp"), r["3DEC"]), cell(na), its,
-                     ratio(na, r["experiment"]), cell(r.get("dem"), 2), ratio(r.get("dem"), r["experiment"]),
+                     ratio(r.get("lp"), r["experiment"]), ratio(r.get("lp"), r["3DEC"]), shown, its,
+                     against, cell(r.get("dem"), 2), ratio(r.get("dem"), r["experiment"]),
                      ratio(r.get("dem"), r["3DEC"])]
         else:
-            cells = [r["boundary"], r["alpha"], cell(r.get("lp")), cell(na), its, cell(r.get("dem"), 2)]
+            cells = [r["boundary"], r["alpha"], cell(r.get("lp")), shown, its, cell(r.get("dem"), 2)]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
 
