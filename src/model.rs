@@ -163,7 +163,29 @@ pub struct ParamError {
 
 impl fmt::Display for ParamError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} = {}: {}", self.variable, self.value, self.condition)
+        write!(
+            f,
+            "{} = {}: {}",
+            self.variable,
+            Num(self.value),
+            self.condition
+        )
+    }
+}
+
+/// A value in a message: as Rust writes it (`22072.5`, `100000`) within
+/// `[1e-5, 1e16)`, in exponent form outside, where the plain form would
+/// spell out hundreds of digits (`1e300`, not a 301-digit integer).
+pub struct Num(pub f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let a = self.0.abs();
+        if a == 0.0 || !a.is_finite() || (1e-5..1e16).contains(&a) {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
     }
 }
 
@@ -217,7 +239,7 @@ impl Params {
                     2.0 * t < m,
                     "t",
                     t,
-                    format!("must satisfy 2*t < min(B, L) = {m}"),
+                    format!("must satisfy 2*t < min(B, L) = {}", Num(m)),
                 )?;
                 Shape::HollowRectangle { b, l, t }
             }
@@ -226,7 +248,12 @@ impl Params {
             },
             ShapeKind::HollowCircle => {
                 let (ro, ri) = (positive("Ro", self.ro)?, positive("Ri", self.ri)?);
-                check(ri < ro, "Ri", ri, format!("must satisfy Ri < Ro = {ro}"))?;
+                check(
+                    ri < ro,
+                    "Ri",
+                    ri,
+                    format!("must satisfy Ri < Ro = {}", Num(ro)),
+                )?;
                 Shape::HollowCircle { ro, ri }
             }
         };
@@ -259,7 +286,11 @@ impl Params {
             area.is_finite() && is.is_finite() && area > 0.0 && is > 0.0,
             size_name,
             size,
-            format!("the section's area A = {area} m2 and second moment Is = {is} m4 must be finite and > 0"),
+            format!(
+                "the section's area A = {} m2 and second moment Is = {} m4 must be finite and > 0",
+                Num(area),
+                Num(is)
+            ),
         )?;
         let body = Body::new(&shape, mass_model, self.g);
         // A prism's weight is derived: name what the user set, with its value.
@@ -270,7 +301,7 @@ impl Params {
                 self.rho,
                 format!(
                     "the weight W = rho*g*A*H = {} N must be finite and > 0",
-                    body.weight
+                    Num(body.weight)
                 ),
             )?;
         }
@@ -282,7 +313,8 @@ impl Params {
             body.mass,
             format!(
                 "the mass W/g must be finite and > 0 (W = {} N, g = {} m/s2)",
-                body.weight, self.g
+                Num(body.weight),
+                Num(self.g)
             ),
         )?;
         check(
@@ -291,7 +323,9 @@ impl Params {
             body.io,
             format!(
                 "the inertia about the toe Ic + m*R0^2 must be finite and > 0 (Ic = {} kg m2, m = {} kg, R0 = {} m)",
-                body.ic, body.mass, body.r0
+                Num(body.ic),
+                Num(body.mass),
+                Num(body.r0)
             ),
         )?;
         let law = match self.interface {
@@ -312,7 +346,11 @@ impl Params {
                     body.weight < fa,
                     "fm",
                     self.fm,
-                    format!("the section crushes at rest: must satisfy W < fm*A, W = {} N, fm*A = {fa} N", body.weight),
+                    format!(
+                        "the section crushes at rest: must satisfy W < fm*A, W = {} N, fm*A = {} N",
+                        Num(body.weight),
+                        Num(fa)
+                    ),
                 )?;
                 if self.fm.is_infinite() {
                     Law::Elastic { kn: self.kn }
@@ -331,7 +369,7 @@ impl Params {
                 kis > whg,
                 "kn",
                 self.kn,
-                format!("the rest position is unstable: must satisfy kn*Is > W*hG, kn*Is = {kis} N m, W*hG = {whg} N m"),
+                format!("the rest position is unstable: must satisfy kn*Is > W*hG, kn*Is = {} N m, W*hG = {} N m", Num(kis), Num(whg)),
             )?;
         }
         let eta = match self.restitution {

@@ -306,3 +306,30 @@ fn lumped_body_values_match_closed_forms() {
     assert!(2e6 * a / 2.0 >= w);
     assert!((m.interface.theta_jo() / (2.0 * w / (2e9 * a * 2.0 * ro)) - 1.0).abs() < 1e-14);
 }
+
+/// A value far from 1 is written in exponent form, in the value named and in
+/// the condition's numbers: the same rho = 1e300 gave a message of 340
+/// characters with a 301-digit weight; ordinary values keep their plain form.
+#[test]
+fn huge_and_tiny_values_are_written_in_exponent_form() {
+    let base = Params::default();
+    // W = rho g A H = 1e300 * 9.81 * 0.5 * 2.5 overflows nothing: fm*A is exceeded
+    let (var, msg) = err_of(Params { rho: 1e300, ..base });
+    assert_eq!(var, "fm", "{msg}");
+    assert!(
+        msg.contains("W = 1.22625") && msg.contains("e301 N, fm*A = 2500000 N"),
+        "{msg}"
+    );
+    assert!(msg.len() < 120, "{} characters: {msg}", msg.len());
+    let (var, msg) = err_of(Params {
+        kn: 1e-300,
+        fm: f64::INFINITY,
+        ..base
+    });
+    assert_eq!(var, "kn", "{msg}");
+    assert!(msg.starts_with("kn = 1e-300: "), "{msg}");
+    assert!(msg.contains("kn*Is = 1.0416666666666667e-302 N m"), "{msg}");
+    // plain form kept in range: W = 1800 * 9.81 * 0.5 * 2.5
+    let (_, msg) = err_of(Params { fm: 1e4, ..base });
+    assert!(msg.contains("W = 22072.5 N, fm*A = 5000 N"), "{msg}");
+}

@@ -93,8 +93,7 @@ fn check_message(h: &Host, c: &Case) {
     };
     let named = match c.value {
         Some(x) if c.at == At::SetInteger => format!("{} = {}: ", c.var, x as i32),
-        Some(x) => format!("{} = {x}: ", c.var),
-        None => format!("{} = ", c.var),
+        _ => format!("{} = ", c.var),
     };
     assert!(
         m.text.starts_with(&format!("{function}{named}")),
@@ -102,6 +101,18 @@ fn check_message(h: &Host, c: &Case) {
         c.what,
         m.text
     );
+    // a Real is written in whatever form reads back as the value set
+    if let (Some(x), false) = (c.value, c.at == At::SetInteger) {
+        let rest = &m.text[function.len() + named.len()..];
+        let shown = rest.split(": ").next().unwrap_or("");
+        let read: f64 = shown.parse().unwrap_or(f64::NAN);
+        assert!(
+            read == x || (read.is_nan() && x.is_nan()),
+            "{}: the value {x} written as {shown:?} in {}",
+            c.what,
+            m.text
+        );
+    }
     assert!(
         m.text.contains(c.condition),
         "{}: no condition {:?} in {}",
