@@ -2,8 +2,9 @@
 independent references: a rotated input turns the response (the pair's rotation, the FMU's
 rotation invariance: theta the same, psi shifted by the angle), free rocking in a plane
 through the other FMU (RockingBlock.fmu), the
-Dharahara page's table (computed by the Rust example from the physics without the FMU), and
-bad input in one line."""
+Dharahara page's table (computed by the Rust example from the physics without the FMU), the
+planar runs' path of the top on a flexible bed against a closed form in full contact and the
+rim's in the stiff limit, and bad input in one line."""
 
 import json
 import math
@@ -192,3 +193,61 @@ def test_a_crushing_case_that_overturns_along_x_stands_in_space_through_the_fmu(
     row = flexible_row("I15_fm15")
     assert row[2].startswith("overturns")
     assert not run.overturned and row[1] == f"{run.peak_theta_over_alpha:.3f} ({run.impacts})"
+
+
+def planar_drum_run(rfmu, bed, amplitude, stop=3.0):
+    """The drum through RockingBlock.fmu on `bed` under one sine of `amplitude` m/s2 over 0.5 s."""
+    t = np.arange(0.0, stop + 1e-9, 0.005)
+    acc = np.where(t < 0.5, amplitude * np.sin(2 * math.pi * t / 0.5), 0.0)
+    return rfmu.simulate({**DRUM, **bed}, ag=(t, acc), stop_time=stop, rtol=1e-10)
+
+
+def test_the_planar_top_on_a_soft_bed_is_the_closed_form_not_the_rim_s():
+    """`rocking space`'s planar path of the top on an elastic bed soft enough to keep the drum in
+    full contact (kn 3e6 Pa/m: thetaJo = 2 W/(kn A D) = 0.039 rad): there the resultant is
+    rho = kn Is phi/W from the base's centre (docs/model.md §2's closure), hg = hG cos(phi) +
+    rho sin(phi), and the top's displacement xG + hG sin(theta) is, by hand,
+    2 hG sin(theta) + (kn Is/W)(sin(theta) - theta cos(theta)); the rim's formula,
+    2 hG sin(theta) + Ro (1 - cos(theta)), is off by Ro theta²/2 - (kn Is/W) theta³/3 to leading
+    order. Measured at the peak of 0.027 rad: the path 2.5e-9 m from the hand's, the rim 1.65e-4 m."""
+    from rocking.cli.space import planar_top
+
+    kn = 3e6
+    with RockingFMU() as rfmu:
+        run = planar_drum_run(rfmu, {"interface": "elastic", "kn": kn}, 1.6)
+    th, c = run.result["theta"], run.calculated
+    weight, ro = c["weight"], DRUM["Ro"]
+    hg = c["R0"] * math.cos(c["alpha"])
+    assert hg == pytest.approx(1.5) and ro == pytest.approx(c["R0"] * math.sin(c["alpha"]))
+    assert 0.5 * c["thetaJo"] < np.abs(th).max() < c["thetaJo"], "full contact, well tilted"
+    assert (run.result["regime"] == 0).all()
+    hand = 2 * hg * np.sin(th) + kn * math.pi * ro ** 4 / 4 / weight * (np.sin(th) - th * np.cos(th))
+    rim = 2 * hg * np.sin(th) + ro * np.sign(th) * (1 - np.cos(th))
+    top = planar_top(run, flexible=True)
+    print(f"peak {np.abs(th).max():.4f} rad, |top - hand| {np.abs(top - hand).max():.2e} m, "
+          f"|rim - hand| {np.abs(rim - hand).max():.2e} m")
+    assert np.abs(top - hand).max() <= 1e-7
+    assert np.abs(rim - hand).max() > 1e-4
+
+
+def test_the_planar_top_on_a_stiff_bed_tends_to_the_rim_s():
+    """A pulse that rocks the drum (peak 0.06 rad, 7 crossings): on the rigid bed the integral of
+    hg dtheta (af = 0 off upright) is the rim's closed form to 3.0e-7 m, its trapezoids' error at
+    5 ms; on elastic beds the path differs from the rim's formula of the same run by the
+    resultant's distance from the toe, af, which shrinks as kn^(-2/5) on a circle's toe
+    (docs/model.md §11.2): measured 3.2e-5 m at kn 1e10 Pa/m, 4.2e-6 m at 1e12 (7.6 times less,
+    6.3 by the power)."""
+    from rocking.cli.space import planar_top
+
+    gaps = []
+    with RockingFMU() as rfmu:
+        rigid = planar_drum_run(rfmu, {"interface": "rigid"}, 5.0)
+        assert rigid.impacts >= 5
+        rim = planar_top(rigid, flexible=False)
+        assert np.abs(planar_top(rigid, flexible=True) - rim).max() <= 1e-6
+        for kn in (1e10, 1e12):
+            run = planar_drum_run(rfmu, {"interface": "elastic", "kn": kn}, 5.0)
+            assert run.zero_crossings >= 5 and np.abs(run.result["theta"]).max() > 0.05
+            gaps.append(np.abs(planar_top(run, flexible=True) - planar_top(run, flexible=False)).max())
+    print(f"path - rim at kn 1e10, 1e12: {gaps[0]:.2e}, {gaps[1]:.2e} m")
+    assert gaps[1] <= 1e-5 and 4.0 <= gaps[0] / gaps[1] <= 10.0

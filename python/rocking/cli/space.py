@@ -168,12 +168,12 @@ def cmd_space(args, params_given):
                              "worst": summary_of_planar(compare["worst_azimuth"], compare["worst"]),
                              "sweep": [summary_of_planar(az, r) for az, r in compare["sweep"]]}
     jsonfile.write(out / "summary.json", summary)
-    plot_space(out / "plot.png", run, compare, alpha, pair, args)
-    word = f"overturns at {run.t_overturn:.3f} s" if run.overturned else (
-        run.terminal or f"stands, peak theta/alpha {run.peak_theta_over_alpha:.3f}")
     # on a flexible bed the body in space counts as impacts every application of the restitution
     # rule (docs/model.md §11.3), which RockingBlock counts as zeroCrossings
     flexible = params.get("interface", "rigid") not in ("rigid", 0)
+    plot_space(out / "plot.png", run, compare, alpha, pair, args, flexible)
+    word = f"overturns at {run.t_overturn:.3f} s" if run.overturned else (
+        run.terminal or f"stands, peak theta/alpha {run.peak_theta_over_alpha:.3f}")
     counted = "crossings" if flexible else "impacts"
     print(f"in space: {word}, {run.impacts} {counted} ({out})")
     if compare is not None:
@@ -185,9 +185,29 @@ def cmd_space(args, params_given):
     return 0
 
 
-def plot_space(path, run, compare, alpha, pair, args):
+def planar_top(run, flexible):
+    """The top's horizontal displacement (at 2 hG up the axis, m) of a planar run of
+    RockingBlock.fmu at its outputs: G's, xG, plus hG sin(theta). On the rigid bed the body turns
+    about its toe, xG = s b (1 - cos theta) + hG sin(theta) (b = R0 sin(alpha)); on a flexible one
+    about the resultant, af from the toe, so xG' = hg(phi) omega with hg = R0 cos(alpha - phi) -
+    af sin(phi) (docs/model.md §3, "Support forces"), integrated in theta by trapezoids from
+    upright over the output samples (hG at theta = 0)."""
+    import numpy as np
+
+    res = run.result
+    r0, alpha = run.calculated["R0"], run.calculated["alpha"]
+    hg, th = r0 * math.cos(alpha), res["theta"]
+    if not flexible:
+        return r0 * math.sin(alpha) * np.sign(th) * (1 - np.cos(th)) + 2 * hg * np.sin(th)
+    phi = np.abs(th)
+    lever = np.concatenate([[hg], r0 * np.cos(alpha - phi) - res["af"] * np.sin(phi)])
+    xg = np.cumsum(0.5 * (lever[1:] + lever[:-1]) * np.diff(th, prepend=0.0))
+    return xg + hg * np.sin(th)
+
+
+def plot_space(path, run, compare, alpha, pair, args, flexible=False):
     """The path of the top (at 2 hG up the axis) in plan and theta/alpha against time, with
-    the planar runs when compared."""
+    the planar runs when compared (on the same bed: `flexible` if not rigid)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -195,14 +215,12 @@ def plot_space(path, run, compare, alpha, pair, args):
 
     res = run.result
     hg = run.calculated["R0"] * math.cos(alpha)
-    radius = run.calculated["R0"] * math.sin(alpha)
     fig, (plan, tilt) = plt.subplots(1, 2, figsize=(11, 4.4), gridspec_kw={"width_ratios": [1, 1.6]})
     if compare is not None:
         for label, style in (("x", "C1-"), ("y", "C2-"), ("worst", "C3-")):
             r = compare[label].result
             az = math.radians(args.azimuth + (0.0 if label == "x" else 90.0 if label == "y" else compare["worst_azimuth"]))
-            th = r["theta"]
-            lean = radius * np.sign(th) * (1 - np.cos(th)) + 2 * hg * np.sin(th)
+            lean = planar_top(compare[label], flexible)
             name = f"planar {label}" + (f" ({compare['worst_azimuth']:g} deg)" if label == "worst" else "")
             # in the turned frame of the run in space: the azimuth from its x
             rel = az - math.radians(args.azimuth)
