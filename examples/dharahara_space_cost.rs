@@ -13,6 +13,10 @@
 //! .venv/bin/python examples/dharahara_space.py --flexible   # writes out/dharahara_space/inputs
 //! cargo run --release --example dharahara_space_cost -- 1 out/dharahara_space/inputs/Darfield_DFHS.txt
 //! ```
+//!
+//! To iterate on a few cases, `DHARAHARA_CASES` restricts the run to the
+//! case ids it lists (comma-separated), or to the crushing beds
+//! (`crushing`); the issue's figures come from a run of all 49.
 
 #[path = "support/cpu.rs"]
 mod cpu;
@@ -46,12 +50,36 @@ fn median(v: &mut [f64]) -> f64 {
     }
 }
 
+/// The cases `filter` keeps: all without one, the crushing beds for
+/// `crushing`, else those whose ids it lists (comma-separated).
+fn select(
+    cases: Vec<(String, rocking::Params)>,
+    filter: Option<String>,
+) -> Vec<(String, rocking::Params)> {
+    let Some(filter) = filter else {
+        return cases;
+    };
+    let ids: Vec<&str> = filter.split(',').map(str::trim).collect();
+    let kept: Vec<_> = cases
+        .into_iter()
+        .filter(|(id, p)| {
+            if filter == "crushing" {
+                p.interface == rocking::model::LawKind::ElastoPlastic
+            } else {
+                ids.contains(&id.as_str())
+            }
+        })
+        .collect();
+    assert!(!kept.is_empty(), "DHARAHARA_CASES={filter}: no such case");
+    kept
+}
+
 fn main() {
     let mut args = std::env::args().skip(1);
     let usage = "usage: dharahara_space_cost SCALE FILE";
     let scale: f64 = args.next().expect(usage).parse().expect("SCALE: a number");
     let pair = pair_file::read(&args.next().expect(usage));
-    let cases = dharahara::cases();
+    let cases = select(dharahara::cases(), std::env::var("DHARAHARA_CASES").ok());
     println!(
         "{} x{scale}, rtol {RTOL:e}, {TAIL_S} s past the record, CPU best of {REPEAT}",
         pair.name

@@ -117,6 +117,21 @@ fn regime_of(closed: bool, crushed: bool) -> Regime {
     }
 }
 
+/// How a loaded solve ends once its residual is below [`TAYLOR_RTOL`].
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Finish {
+    /// The last Halley step's resultants by Taylor series (the planar
+    /// model's solves).
+    Taylor,
+    /// Evaluated at each step's end, to the equilibrium tolerance or a
+    /// step of round-off ([`Interface::contact_loaded_settled`]).
+    Evaluate,
+}
+
+/// A Halley step below this relative to `a` is round-off's: the solve of
+/// [`Finish::Evaluate`] has converged.
+const SETTLED_STEP: f64 = 8.0 * f64::EPSILON;
+
 /// Relative tolerance of the equilibrium residual `|N(a) - W| / W`.
 const EQUILIBRIUM_RTOL: f64 = 2e-15;
 const MAX_ITER: u32 = 200;
@@ -288,6 +303,25 @@ impl Interface {
     /// the limit `n -> 0+`: the contact shrunk to the toe (`af = 0`), or
     /// at `phi = 0` the whole base with `daf = 0`.
     pub fn contact_loaded(&self, phi: f64, n: f64, a_hint: f64) -> (Contact, f64) {
+        self.loaded(phi, n, a_hint, Finish::Taylor)
+    }
+
+    /// [`contact_loaded`](Self::contact_loaded) whose answer does not
+    /// depend on `a_hint` beyond round-off: the last Halley step is
+    /// followed by an evaluation at its end instead of a Taylor shift
+    /// (whose error, some 1e-14 of `af` and up to 1e-7 of `xel`, depends
+    /// on where the solve started), and iterations go on to the
+    /// equilibrium tolerance. One evaluation more than a solve that ends
+    /// on a shift; from a nearby `a_hint` two or three in all. For callers
+    /// that pass the previous evaluation's `a` yet need the same answer
+    /// from any start (a body in space turned about the vertical,
+    /// `tests/spatial_flexible.rs`).
+    pub fn contact_loaded_settled(&self, phi: f64, n: f64, a_hint: f64) -> (Contact, f64) {
+        self.loaded(phi, n, a_hint, Finish::Evaluate)
+    }
+
+    #[inline(always)]
+    fn loaded(&self, phi: f64, n: f64, a_hint: f64, finish: Finish) -> (Contact, f64) {
         let phi = phi.abs();
         if n <= 0.0 && self.law != Law::Rigid {
             return if phi == 0.0 {
@@ -303,7 +337,7 @@ impl Interface {
             // resultants that decide the regime are not evaluated).
             let k = self.kn * phi;
             let regime = regime_of(a_hint >= self.d, a_hint > self.fm / k);
-            let (c, xel, inside) = self.solve_in(phi, n, regime, a_hint, HINTED_MAX_ITER);
+            let (c, xel, inside) = self.solve_in(phi, n, regime, a_hint, HINTED_MAX_ITER, finish);
             if inside {
                 return (c, xel);
             }
@@ -318,7 +352,8 @@ impl Interface {
             let crushed = a1.is_finite() && n > self.bed_resultant(k, a1, a1);
             regime_of(closed, crushed)
         };
-        self.solve(phi, n, regime, a_hint)
+        let (c, xel, _) = self.solve_in(phi, n, regime, a_hint, MAX_ITER, finish);
+        (c, xel)
     }
 
     /// The event functions of docs/model.md §6.4 at `phi` under the bed
@@ -400,7 +435,7 @@ impl Interface {
     /// and the elastic zone's centroid `xel` (m from the toe).
     #[inline(always)]
     fn solve(&self, phi: f64, w: f64, regime: Regime, a_hint: f64) -> (Contact, f64) {
-        let (c, xel, _) = self.solve_in(phi, w, regime, a_hint, MAX_ITER);
+        let (c, xel, _) = self.solve_in(phi, w, regime, a_hint, MAX_ITER, Finish::Taylor);
         (c, xel)
     }
 
@@ -416,6 +451,7 @@ impl Interface {
         regime: Regime,
         a_hint: f64,
         max_iter: u32,
+        finish: Finish,
     ) -> (Contact, f64, bool) {
         if phi == 0.0 {
             let c = Contact {
@@ -498,10 +534,18 @@ impl Interface {
                 // smooth N and O(step²) across a flange step of the width,
                 // is below the equilibrium tolerance: move the resultants
                 // along by their Taylor series instead of re-evaluating.
-                r.shift(next - a);
-                a = next;
-                converged = true;
-                break;
+                if finish == Finish::Taylor {
+                    r.shift(next - a);
+                    a = next;
+                    converged = true;
+                    break;
+                }
+                if (next - a).abs() <= SETTLED_STEP * a {
+                    // round-off keeps the residual above its tolerance:
+                    // a is the root to the last bits
+                    converged = true;
+                    break;
+                }
             }
             if next == a || hi - lo <= 4.0 * f64::EPSILON * hi {
                 break;

@@ -19,6 +19,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::frame::Frame;
+use super::pivot::Memo;
 use super::{PlanInput, Spatial};
 use crate::dynamics::VerticalInput;
 
@@ -28,12 +29,15 @@ use crate::dynamics::VerticalInput;
 pub(crate) const N: usize = 7;
 
 /// The right-hand side under the inputs of one call.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub(crate) struct Eom<'a> {
     pub body: &'a Spatial,
     t0: f64,
     input: PlanInput,
     vertical: VerticalInput,
+    /// The bed's resultants asked for during the call
+    /// ([`Spatial::resultant_near`]).
+    pub memo: Memo,
 }
 
 /// Rates and the contact's force at one point.
@@ -52,6 +56,7 @@ impl<'a> Eom<'a> {
             t0,
             input,
             vertical,
+            memo: Memo::default(),
         }
     }
 
@@ -90,7 +95,8 @@ impl<'a> Eom<'a> {
         let (e3, r, rdot) = if b.flexible() {
             // docs/model.md §11.2: about the bed's resultant
             let n = b.model.body.weight + m * self.av(t);
-            let l = b.lever([y[0], y[1]], &omega, (n, m * self.vertical.dav), d0);
+            let dn = m * self.vertical.dav;
+            let l = b.lever_near([y[0], y[1]], &omega, (n, dn), d0, &self.memo);
             (l.e3, l.r, l.rdot)
         } else {
             let f = Frame::at([y[0], y[1]], d0, radius, hg);

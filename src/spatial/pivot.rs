@@ -13,6 +13,8 @@
 //! is written with `q = rho / sin(theta)`, finite at upright, and the
 //! direction of the lean `u = e/|e|` enters only where `rho` multiplies it.
 
+use std::cell::Cell;
+
 use nalgebra::Vector3;
 
 use super::Spatial;
@@ -34,6 +36,44 @@ pub(crate) struct Resultant {
     pub drho_dn: f64,
     /// The heel is closed (`a >= D`): full contact, crushed or not.
     pub heel_closed: bool,
+    /// The contact's edge `a` (docs/model.md §2), m: infinite at upright.
+    pub edge: f64,
+}
+
+/// Where the next solve at the apparent weight starts: the last one's
+/// edge `a` (m) at `theta` (rad) and `da/dtheta` (m/rad) at its `N`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Hint {
+    theta: f64,
+    a: f64,
+    da: f64,
+}
+
+impl Default for Hint {
+    fn default() -> Hint {
+        Hint {
+            theta: f64::NAN,
+            a: f64::NAN,
+            da: f64::NAN,
+        }
+    }
+}
+
+impl Hint {
+    /// The start at `theta` (rad), m: NaN for none.
+    fn at(&self, theta: f64) -> f64 {
+        self.a + self.da * (theta - self.theta)
+    }
+}
+
+/// The resultants one run of evaluations has asked for
+/// ([`Spatial::resultant_near`]): the last answer and where the next solve
+/// starts. Not shared between calls of `advance`.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Memo {
+    /// `(theta, N, answer)`.
+    last: Cell<Option<(f64, f64, Resultant)>>,
+    hint: Cell<Hint>,
 }
 
 /// The lever of one state.
@@ -55,9 +95,32 @@ impl Spatial {
     /// has not crushed at N the bed is elastic and the contact is the one
     /// at the weight at `theta W/N` (the planar simulator's, from its table
     /// where it answers), with `daf/dN = -(theta/N) daf/dtheta`; elsewhere it
-    /// is solved at N ([`crate::model::Model::contact_loaded`]), as the
-    /// planar equation of motion does.
+    /// is solved at N, as the planar equation of motion does, by
+    /// [`crate::interface::Interface::contact_loaded_settled`]: its `xel`
+    /// (`daf/dN = (xel - af)/N`) evaluated at the solution.
     pub(crate) fn resultant(&self, theta: f64, n: f64) -> Resultant {
+        self.resultant_near(theta, n, &Memo::default())
+    }
+
+    /// [`resultant`](Self::resultant) remembered in `memo`: the last
+    /// answer again at the same `(theta, n)` (a step's end, where the
+    /// events are checked, is the next step's start), else a solve at N
+    /// that starts from the last one's `a` extrapolated along `da/dtheta`,
+    /// the same answer to round-off
+    /// ([`crate::interface::Interface::contact_loaded_settled`]) in two or
+    /// three evaluations of the bed's resultants instead of five to eight.
+    pub(crate) fn resultant_near(&self, theta: f64, n: f64, memo: &Memo) -> Resultant {
+        if let Some((t, w, res)) = memo.last.get() {
+            if t == theta && w == n {
+                return res;
+            }
+        }
+        let res = self.resultant_from(theta, n, &memo.hint);
+        memo.last.set(Some((theta, n, res)));
+        res
+    }
+
+    fn resultant_from(&self, theta: f64, n: f64, hint: &Cell<Hint>) -> Resultant {
         let m = &self.model;
         let ratio = m.body.weight / n;
         let scaled = self.planar.contact(theta * ratio, f64::NAN);
@@ -76,7 +139,17 @@ impl Spatial {
             let c = crate::interface::Contact { daf, ..scaled };
             (c, -theta / n * daf)
         } else {
-            m.contact_loaded(theta, n)
+            let (c, xel) = m
+                .interface
+                .contact_loaded_settled(theta, n, hint.get().at(theta));
+            if c.a.is_finite() && c.da.is_finite() {
+                hint.set(Hint {
+                    theta,
+                    a: c.a,
+                    da: c.da,
+                });
+            }
+            (c, (xel - c.af) / n)
         };
         let secant = match (c.regime, m.interface.law()) {
             (Regime::FullContact, Law::Elastic { kn } | Law::ElastoPlastic { kn, .. }) => {
@@ -90,6 +163,7 @@ impl Spatial {
             drho: -c.daf,
             drho_dn: -daf_dn,
             heel_closed: matches!(c.regime, Regime::FullContact | Regime::FullCrushing),
+            edge: c.a,
         }
     }
 
@@ -104,12 +178,25 @@ impl Spatial {
         (n, dn): (f64, f64),
         d0: [f64; 2],
     ) -> Lever {
+        self.lever_near(e, omega, (n, dn), d0, &Memo::default())
+    }
+
+    /// [`lever`](Self::lever) with the resultant of
+    /// [`resultant_near`](Self::resultant_near) in `memo`.
+    pub(crate) fn lever_near(
+        &self,
+        e: [f64; 2],
+        omega: &Vector3<f64>,
+        (n, dn): (f64, f64),
+        d0: [f64; 2],
+        memo: &Memo,
+    ) -> Lever {
         let hg = self.model.body.hg;
         let s2 = e[0] * e[0] + e[1] * e[1];
         let s = s2.sqrt();
         let c = (1.0 - s2).sqrt();
         let theta = s.asin();
-        let res = self.resultant(theta, n);
+        let res = self.resultant_near(theta, n, memo);
         // theta / sin(theta) -> 1 at upright
         let q = if s > 0.0 {
             res.secant * theta / s

@@ -195,7 +195,7 @@ impl Spatial {
             after_rejection = false;
             let t1 = if hh == remaining { t_end } else { st.t + hh };
             let cut = match &armed {
-                Some(a) => (self.margin(&eom, t1, &s.y, d0, a).0 <= 0.0).then_some(Cut::Kink),
+                Some(a) => self.past_event(&eom, t1, &s.y, d0, a).then_some(Cut::Kink),
                 None => self.cut(&s.y, d0),
             };
             match cut {
@@ -556,7 +556,7 @@ pub(crate) fn illinois(
 
 /// The margin `at` of the state that a cubic Hermite in time through the
 /// step's ends `(y, dy/dt)` gives at `tau` into the step `hh`.
-fn cubic(
+pub(crate) fn cubic(
     at: impl Fn(&[f64; N]) -> f64,
     (y0, f0): (&[f64; N], &[f64; N]),
     (y1, f1): (&[f64; N], &[f64; N]),
