@@ -117,21 +117,6 @@ fn regime_of(closed: bool, crushed: bool) -> Regime {
     }
 }
 
-/// How a loaded solve ends once its residual is below [`TAYLOR_RTOL`].
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Finish {
-    /// The last Halley step's resultants by Taylor series (the planar
-    /// model's solves).
-    Taylor,
-    /// Evaluated at each step's end, to the equilibrium tolerance or a
-    /// step of round-off ([`Interface::contact_loaded_settled`]).
-    Evaluate,
-}
-
-/// A Halley step below this relative to `a` is round-off's: the solve of
-/// [`Finish::Evaluate`] has converged.
-const SETTLED_STEP: f64 = 8.0 * f64::EPSILON;
-
 /// Relative tolerance of the equilibrium residual `|N(a) - W| / W`.
 const EQUILIBRIUM_RTOL: f64 = 2e-15;
 const MAX_ITER: u32 = 200;
@@ -303,25 +288,6 @@ impl Interface {
     /// the limit `n -> 0+`: the contact shrunk to the toe (`af = 0`), or
     /// at `phi = 0` the whole base with `daf = 0`.
     pub fn contact_loaded(&self, phi: f64, n: f64, a_hint: f64) -> (Contact, f64) {
-        self.loaded(phi, n, a_hint, Finish::Taylor)
-    }
-
-    /// [`contact_loaded`](Self::contact_loaded) whose answer does not
-    /// depend on `a_hint` beyond round-off: the last Halley step is
-    /// followed by an evaluation at its end instead of a Taylor shift
-    /// (whose error, some 1e-14 of `af` and up to 1e-7 of `xel`, depends
-    /// on where the solve started), and iterations go on to the
-    /// equilibrium tolerance. One evaluation more than a solve that ends
-    /// on a shift; from a nearby `a_hint` two or three in all. For callers
-    /// that pass the previous evaluation's `a` yet need the same answer
-    /// from any start (a body in space turned about the vertical,
-    /// `tests/spatial_flexible.rs`).
-    pub fn contact_loaded_settled(&self, phi: f64, n: f64, a_hint: f64) -> (Contact, f64) {
-        self.loaded(phi, n, a_hint, Finish::Evaluate)
-    }
-
-    #[inline(always)]
-    fn loaded(&self, phi: f64, n: f64, a_hint: f64, finish: Finish) -> (Contact, f64) {
         let phi = phi.abs();
         if n <= 0.0 && self.law != Law::Rigid {
             return if phi == 0.0 {
@@ -337,7 +303,7 @@ impl Interface {
             // resultants that decide the regime are not evaluated).
             let k = self.kn * phi;
             let regime = regime_of(a_hint >= self.d, a_hint > self.fm / k);
-            let (c, xel, inside) = self.solve_in(phi, n, regime, a_hint, HINTED_MAX_ITER, finish);
+            let (c, xel, inside) = self.solve_in(phi, n, regime, a_hint, HINTED_MAX_ITER);
             if inside {
                 return (c, xel);
             }
@@ -352,8 +318,7 @@ impl Interface {
             let crushed = a1.is_finite() && n > self.bed_resultant(k, a1, a1);
             regime_of(closed, crushed)
         };
-        let (c, xel, _) = self.solve_in(phi, n, regime, a_hint, MAX_ITER, finish);
-        (c, xel)
+        self.solve(phi, n, regime, a_hint)
     }
 
     /// The event functions of docs/model.md §6.4 at `phi` under the bed
@@ -435,7 +400,7 @@ impl Interface {
     /// and the elastic zone's centroid `xel` (m from the toe).
     #[inline(always)]
     fn solve(&self, phi: f64, w: f64, regime: Regime, a_hint: f64) -> (Contact, f64) {
-        let (c, xel, _) = self.solve_in(phi, w, regime, a_hint, MAX_ITER, Finish::Taylor);
+        let (c, xel, _) = self.solve_in(phi, w, regime, a_hint, MAX_ITER);
         (c, xel)
     }
 
@@ -451,7 +416,6 @@ impl Interface {
         regime: Regime,
         a_hint: f64,
         max_iter: u32,
-        finish: Finish,
     ) -> (Contact, f64, bool) {
         if phi == 0.0 {
             let c = Contact {
@@ -534,18 +498,10 @@ impl Interface {
                 // smooth N and O(step²) across a flange step of the width,
                 // is below the equilibrium tolerance: move the resultants
                 // along by their Taylor series instead of re-evaluating.
-                if finish == Finish::Taylor {
-                    r.shift(next - a);
-                    a = next;
-                    converged = true;
-                    break;
-                }
-                if (next - a).abs() <= SETTLED_STEP * a {
-                    // round-off keeps the residual above its tolerance:
-                    // a is the root to the last bits
-                    converged = true;
-                    break;
-                }
+                r.shift(next - a);
+                a = next;
+                converged = true;
+                break;
             }
             if next == a || hi - lo <= 4.0 * f64::EPSILON * hi {
                 break;
@@ -568,7 +524,7 @@ impl Interface {
             iterations,
         };
         let inside = converged && a > range.0 && a < range.1;
-        (c, r.xp + r.zone_moment / r.zone_area, inside)
+        (c, r.xp + r.zone_moment / r.zone_area + r.xel_moved, inside)
     }
 
     /// Second derivatives in `phi` of a solved contact `c`:
@@ -807,6 +763,10 @@ impl Interface {
             dcentral_da,
             zone_force: f,
             zone_area: l[0],
+            grow,
+            lose,
+            x2,
+            xel_moved: 0.0,
         }
     }
 }
@@ -897,12 +857,28 @@ struct Resultants {
     zone_force: f64,
     /// Area of the elastic zone, m².
     zone_area: f64,
+    /// The widths the elastic zone gains at its end and loses at its
+    /// start as `a` grows, m, and its end `min(a, D)`, m.
+    grow: f64,
+    lose: f64,
+    x2: f64,
+    /// How far [`shift`](Self::shift) moved the zone's centroid, m.
+    xel_moved: f64,
 }
 
 impl Resultants {
     /// Move to `a + d` by Taylor series: second order for `N` and `M`,
     /// first order for the central moment (it enters `af'` only).
     fn shift(&mut self, d: f64) {
+        // the elastic zone's centroid X = xp + L1/L0 moves at
+        // dX/da = (w(x2) (x2 - X) + w(xp) (X - xp)) / L0: without it
+        // `xel` is the start's, and daf/dN = (xel - af)/N off by the step
+        // (1e-8 of it on the Dharahara's crushing beds)
+        if self.zone_area > 0.0 {
+            let c = self.zone_moment / self.zone_area;
+            let e2 = self.x2 - self.xp;
+            self.xel_moved = d * (self.grow * (e2 - c) + self.lose * c) / self.zone_area;
+        }
         self.n += d * (self.dn_da + 0.5 * d * self.d2n_da2);
         self.m += d * (self.dm_da + 0.5 * d * self.d2m_da2);
         self.central += d * self.dcentral_da;

@@ -33,7 +33,7 @@ const SIDE_CLEAR: f64 = 1e-6;
 /// the Illinois method goes on from the side it found. On the Dharahara's
 /// crushing beds under Coalinga x3 (`examples/dharahara_space_cost.rs`)
 /// 1e-7 and 1e-6 both locate an event in 4.2 trial steps (7.3 from the
-/// whole step); 1e-7 keeps a rotated run's response to 4e-13 of the
+/// whole step); 1e-7 keeps a rotated run's response to 5e-13 of the
 /// turned one (`tests/spatial_flexible.rs`), 1e-6 to 6e-12.
 const GUESS_BRACKET: f64 = 1e-7;
 

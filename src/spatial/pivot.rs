@@ -95,9 +95,8 @@ impl Spatial {
     /// has not crushed at N the bed is elastic and the contact is the one
     /// at the weight at `theta W/N` (the planar simulator's, from its table
     /// where it answers), with `daf/dN = -(theta/N) daf/dtheta`; elsewhere it
-    /// is solved at N, as the planar equation of motion does, by
-    /// [`crate::interface::Interface::contact_loaded_settled`]: its `xel`
-    /// (`daf/dN = (xel - af)/N`) evaluated at the solution.
+    /// is solved at N ([`crate::interface::Interface::contact_loaded`]), as
+    /// the planar equation of motion does.
     pub(crate) fn resultant(&self, theta: f64, n: f64) -> Resultant {
         self.resultant_near(theta, n, &Memo::default())
     }
@@ -105,9 +104,9 @@ impl Spatial {
     /// [`resultant`](Self::resultant) remembered in `memo`: the last
     /// answer again at the same `(theta, n)` (a step's end, where the
     /// events are checked, is the next step's start), else a solve at N
-    /// that starts from the last one's `a` extrapolated along `da/dtheta`,
-    /// the same answer to round-off
-    /// ([`crate::interface::Interface::contact_loaded_settled`]) in two or
+    /// that starts from the last one's `a` extrapolated along `da/dtheta`:
+    /// the same answer to the solve's tolerance (a rotated run's response
+    /// the turned one's to 5e-13, `tests/spatial_flexible.rs`) in two or
     /// three evaluations of the bed's resultants instead of five to eight.
     pub(crate) fn resultant_near(&self, theta: f64, n: f64, memo: &Memo) -> Resultant {
         if let Some((t, w, res)) = memo.last.get() {
@@ -139,9 +138,7 @@ impl Spatial {
             let c = crate::interface::Contact { daf, ..scaled };
             (c, -theta / n * daf)
         } else {
-            let (c, xel) = m
-                .interface
-                .contact_loaded_settled(theta, n, hint.get().at(theta));
+            let (c, xel) = m.interface.contact_loaded(theta, n, hint.get().at(theta));
             if c.a.is_finite() && c.da.is_finite() {
                 hint.set(Hint {
                     theta,
