@@ -2,18 +2,23 @@
 //! solver integrates it (docs/round-body.md, "Model Exchange"), on the
 //! rigid bed (docs/model.md §10) and on the flexible and crushing beds
 //! (§11.5). The host integrates the seven continuous states with
-//! [`Spatial::derivatives`], watches [`Spatial::event_indicators`] for sign
+//! [`Spatial::derivatives_weight_referred`], watches [`Spatial::event_indicators`] for sign
 //! changes and, at each one, calls [`Spatial::event_update`]; this module
 //! only evaluates. The equation of motion is the one the co-simulation
 //! integrator steps (`eom`), the events are the co-simulation's
 //! (`Spatial::apply`, `upright_pass`, `comes_to_rest`, `lifts_at`).
 //!
-//! The continuous states are `y = (ex, ey, omegaX, omegaY, omegaZ, xG,
-//! yG)` ([`SpatialState::continuous_states`]) on every bed; the discrete
-//! state is the contact side `pivot`, held between events: the rates are
-//! those of the contact on the side of `pivot`, so a tilt that crosses
-//! upright goes on about the old contact, smoothly, until the host locates
-//! the crossing (co-simulation holds it over one of its steps).
+//! The continuous states are `y = (ex, ey, omegaWX, omegaWY, omegaWZ, xG,
+//! yG)` on every bed ([`Spatial::to_weight_referred`], then
+//! [`SpatialState::continuous_states`]), `omegaW` the angular velocity
+//! referred to the weight (below), `omega` itself but for `shiftingPivot`
+//! on a flexible bed under a vertical input; their rates are
+//! [`Spatial::derivatives_weight_referred`]. The discrete state is the
+//! contact side `pivot`, held between events: the rates are those of the
+//! contact on the side of `pivot`, so a tilt that crosses upright goes on
+//! about the old contact, smoothly, until the host locates the crossing
+//! (co-simulation holds it over one of its steps). Indicators and event
+//! updates take the body's state (`omega`, [`Spatial::from_weight_referred`]).
 //!
 //! Event indicators (a state event where one changes sign), in this order
 //! (rigid bed / flexible bed where they differ):
@@ -31,16 +36,21 @@
 //! slope `af'` are; only `af''` jumps), so a host's error control sees a
 //! kink in the rates' slope only.
 //!
-//! Under Model Exchange the host gives no input derivatives: the rates take
-//! `dN/dt = m dav/dt` as 0. It enters only `shiftingPivot` on a flexible
-//! bed (the resultant sliding along the base as `N` changes, the spatial
-//! form of the planar `dI/dN dN/dt`, docs/model.md §6.2), which
-//! [`Spatial::check_model_exchange`] therefore refuses; `costa` and the
-//! rigid bed have no such term (docs/model.md §11.5).
+//! Under Model Exchange the host gives no input derivatives: `dN/dt =
+//! m dav/dt` is unknown. It enters only `shiftingPivot` on a flexible bed
+//! (the resultant sliding along the base as `N` changes, the spatial form
+//! of the planar `dI/dN dN/dt`, docs/model.md §6.2), whose velocity state
+//! is therefore `omegaW = M(rho_W)^-1 M(rho) omega` (`referral`, docs/
+//! model.md §11.5): its rate needs the tilt and `N` only, and it is
+//! `omega` where `N = W`. [`Spatial::derivatives`] is the rate of `omega`
+//! with `dN/dt` taken as 0; `costa` and the rigid bed have no such term,
+//! and there `omegaW` is `omega` bit for bit.
 //!
 //! After overturning or leaving the range every indicator is 1 and the
 //! derivatives are 0; at rest the derivatives are 0 (the states frozen)
 //! until uplift.
+
+mod referral;
 
 use super::eom::{Eom, N};
 use super::run::Cut;
@@ -103,28 +113,13 @@ impl SpatialState {
 }
 
 impl Spatial {
-    /// Whether this body can run under Model Exchange: on the rigid bed,
-    /// and on a flexible bed with `formulation = costa`. A flexible bed's
-    /// `shiftingPivot` is refused, naming `formulation`: its equation has
-    /// the resultant sliding along the base as the apparent weight changes,
-    /// `dN/dt = m dav/dt`, and Model Exchange gives no input derivatives;
-    /// taking it as 0 moved the tilt by up to 20 % of its peak under a
-    /// 2 m/s² vertical sine (tests/spatial_flexible_me.rs). It needs a
-    /// state in place of `omega` whose rate has no `dN/dt`, as the planar
-    /// `omegaW` (docs/model.md §11.5), which is not written yet.
+    /// Whether this body can run under Model Exchange: every bed and
+    /// formulation can. `shiftingPivot` on a flexible bed runs with the
+    /// velocity state `omegaW` ([`Spatial::to_weight_referred`],
+    /// [`Spatial::derivatives_weight_referred`]), whose rate needs no
+    /// `dN/dt` (docs/model.md §11.5); a host that integrated `omega` with
+    /// [`Spatial::derivatives`] would take `dN/dt` as 0 instead.
     pub fn check_model_exchange(&self) -> Result<(), crate::model::ParamError> {
-        if self.flexible() && self.model.formulation == crate::model::Formulation::ShiftingPivot {
-            return Err(crate::model::ParamError {
-                variable: "formulation",
-                // the FMU's enumeration: costa 1, shiftingPivot 2
-                value: 2.0,
-                condition: "Model Exchange of a body in space on a flexible bed runs with \
-                            formulation = costa (the rate of the apparent weight that \
-                            shiftingPivot needs is no Model Exchange input); shiftingPivot \
-                            runs in co-simulation"
-                    .into(),
-            });
-        }
         Ok(())
     }
 

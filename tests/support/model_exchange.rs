@@ -24,6 +24,14 @@ thread_local! {
     pub static HOLD_AV: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
 }
 
+thread_local! {
+    /// The host integrates `omega` with `Spatial::derivatives` (`dN/dt`
+    /// taken as 0) instead of `omegaW`: what Model Exchange of
+    /// `shiftingPivot` on a flexible bed did before `omegaW`, kept to show
+    /// the comparison sees it. One test thread each.
+    pub static OMEGA_STATE: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
 /// The input at `t`: the samples at multiples of `DT`, linear in between
 /// (`av` held if `HOLD_AV`).
 pub fn sampled(f: &Input, t: f64) -> ([f64; 2], f64) {
@@ -60,14 +68,37 @@ pub fn cs_run(body: &Spatial, mut st: SpatialState, f: &Input, t_end: f64) -> Ve
     out
 }
 
-/// One classical RK4 step of `h` from `st` (the discrete state held).
+/// The host's state `sw` (its `omega` holding Model Exchange's `omegaW`,
+/// the angular velocity referred to the weight) as the body's, with the
+/// angular velocity, at its own time.
+pub fn physical(body: &Spatial, sw: &SpatialState, f: &Input) -> SpatialState {
+    if OMEGA_STATE.get() {
+        return *sw;
+    }
+    body.from_weight_referred(*sw, sampled(f, sw.t).1)
+}
+
+/// The body's state `st` as the host's (the inverse of [`physical`]).
+pub fn referred(body: &Spatial, st: &SpatialState, f: &Input) -> SpatialState {
+    if OMEGA_STATE.get() {
+        return *st;
+    }
+    body.to_weight_referred(*st, sampled(f, st.t).1)
+}
+
+/// One classical RK4 step of `h` from the host's state `st` (the discrete
+/// state held).
 pub fn rk4(body: &Spatial, st: &SpatialState, h: f64, f: &Input) -> SpatialState {
     let rates = |t: f64, y: &[f64; STATES]| {
         let mut s = *st;
         s.t = t;
         s.set_continuous_states(y);
         let (ag, av) = sampled(f, t);
-        body.derivatives(&s, ag, av)
+        if OMEGA_STATE.get() {
+            body.derivatives(&s, ag, av)
+        } else {
+            body.derivatives_weight_referred(&s, ag, av)
+        }
     };
     let add = |y: &[f64; STATES], k: &[f64; STATES], c: f64| {
         let mut r = *y;
@@ -91,9 +122,10 @@ pub fn rk4(body: &Spatial, st: &SpatialState, h: f64, f: &Input) -> SpatialState
     s
 }
 
-pub fn indicators(body: &Spatial, st: &SpatialState, f: &Input) -> [f64; EVENT_INDICATORS] {
-    let (ag, av) = sampled(f, st.t);
-    body.event_indicators(st, ag, av)
+/// The event indicators at the host's state `sw`.
+pub fn indicators(body: &Spatial, sw: &SpatialState, f: &Input) -> [f64; EVENT_INDICATORS] {
+    let (ag, av) = sampled(f, sw.t);
+    body.event_indicators(&physical(body, sw, f), ag, av)
 }
 
 /// Whether an indicator went from positive to `<= 0`.
@@ -116,19 +148,25 @@ pub fn axpy(a: &[f64; STATES], c: f64, b: &[f64; STATES]) -> [f64; STATES] {
 /// its nominal; the two half steps, extrapolated, are taken), cut at the
 /// samples, where the input has kinks; an event located by bisection on
 /// one RK4 step from the step's start to 1e-14 s and updated on its far
-/// side; the host also asks `completed_step` after each step. Returns the
-/// state at each sample and the number of events.
+/// side; the host also asks `completed_step` after each step. The host
+/// integrates `omegaW` (`omega` where the model makes it so); the event
+/// updates and indicators take the body's state. Returns the body's state
+/// at each sample and the number of events.
 pub fn me_run(
     body: &Spatial,
-    mut st: SpatialState,
+    st0: SpatialState,
     f: &Input,
     t_end: f64,
     tol: f64,
 ) -> (Vec<SpatialState>, u32) {
-    let update = |st: &mut SpatialState| {
-        let (ag, av) = sampled(f, st.t);
-        body.event_update(st, ag, av)
+    let update = |sw: &mut SpatialState| {
+        let (ag, av) = sampled(f, sw.t);
+        let mut st = physical(body, sw, f);
+        let u = body.event_update(&mut st, ag, av);
+        *sw = referred(body, &st, f);
+        u
     };
+    let mut st = referred(body, &st0, f);
     let nominal = body.nominals();
     let mut events = 0;
     update(&mut st);
@@ -185,7 +223,7 @@ pub fn me_run(
             }
             st = end;
             let (ag, av) = sampled(f, st.t);
-            if body.completed_step(&st, ag, av) {
+            if body.completed_step(&physical(body, &st, f), ag, av) {
                 update(&mut st);
                 events += 1;
             }
@@ -193,7 +231,7 @@ pub fn me_run(
         if !st.overturned && !st.out_of_range {
             st.t = t1;
         }
-        out.push(st);
+        out.push(physical(body, &st, f));
     }
     (out, events)
 }
