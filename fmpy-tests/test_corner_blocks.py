@@ -231,6 +231,87 @@ def test_the_lp_bounds_every_dem_case_of_the_study():
     assert cases == 11
 
 
+STUDY = Path(__file__).resolve().parents[1] / "data" / "corner-blocks"
+
+
+def test_reread_gives_lambda_c_under_another_criterion():
+    """study.reread reads a run's lambda_c under another collapse criterion from its level
+    history: at the run's own criterion it is the engine's decision; at 10 mm/s or 20 mm it
+    is what a separate run at that criterion gave (sensitivity/fixed_pi2_collapse20mm.json,
+    0.37); where every level ran stands, or the last hold was cut short at a smaller
+    displacement than the one asked, it cannot say (None)."""
+    from rocking.corner_blocks.study import reread
+
+    pi4 = json.loads((STUDY / "dem_fixed_mu0.66_0.json").read_text())  # 0.39 ended at 0.8 mm/s and 2.0 mm
+    assert reread(pi4, pi4["protocol"]["v_tol"]) == pytest.approx(pi4["lam"]) == pytest.approx(0.40)
+    assert reread(pi4, 1e-3, 0.001) == pytest.approx(0.39)  # 2.0 mm passes 1 mm a level earlier
+    assert reread(pi4, 1e-2) == pytest.approx(0.40)  # its collapse ended at 38 mm/s
+    assert reread(pi4, 5e-2) is None  # 38 mm/s and 4.8 mm: would stand, the run stopped there
+    pi2 = json.loads((STUDY / "dem_fixed_mu0.66_4.json").read_text())
+    other = json.loads((STUDY / "sensitivity" / "fixed_pi2_collapse20mm.json").read_text())
+    assert (other["protocol"]["v_tol"], other["protocol"]["collapse"]) == (0.01, 0.02)
+    assert reread(pi2, 0.01, 0.02) == pytest.approx(other["lam"])
+    free = json.loads((STUDY / "dem_free_mu0.66_0.json").read_text())  # its last hold cut at 5.7 mm
+    assert free["history"][-1][3] > free["protocol"]["collapse"]
+    assert reread(free, 1e-3, 0.02) is None and reread(free, 1e-3, 0.005) == pytest.approx(free["lam"])
+
+
+#: The committed study's cases rerun at 10 mm/s (dem.V_TOL_CORNER), and the lambda_c their
+#: earlier runs at 1 mm/s gave (the study as committed before the rerun, issue #35).
+RERUN_AT_10MM_S = {"dem_fixed_mu0.66_1.json": 0.36, "dem_fixed_mu0.66_2.json": 0.38,
+                   "dem_free_mu0.66_1.json": 0.21, "dem_free_mu0.66_2.json": 0.19}
+
+
+def test_the_study_stands_on_the_decided_rest_speed():
+    """Every DEM case of the committed study has the lambda_c of the decided criterion on the
+    paper's corner (10 mm/s or 5 mm): those run at 1 mm/s by their histories (every level
+    that stood ended below 1 mm/s, so it stands at 10 mm/s too, and their collapse passed
+    10 mm/s or 5 mm), the four whose collapse did not by their rerun at 10 mm/s, whose
+    history read at 1 mm/s gives what their earlier run gave."""
+    from rocking.corner_blocks.dem import V_TOL_CORNER, rest_speed
+    from rocking.corner_blocks.study import reread
+
+    assert rest_speed(9, 7) == V_TOL_CORNER == 0.01 and rest_speed(3, 3) == 1e-3
+    cases = 0
+    for path in sorted(STUDY.glob("dem_*_mu0.66_*.json")):
+        r = json.loads(path.read_text())
+        if r.get("lam") is None:
+            continue
+        assert r["protocol"]["collapse"] == 0.005, path.name
+        assert reread(r, V_TOL_CORNER) == pytest.approx(r["lam"]), path.name
+        if path.name in RERUN_AT_10MM_S:
+            assert r["protocol"]["v_tol"] == V_TOL_CORNER, path.name
+            assert reread(r, 1e-3) == pytest.approx(RERUN_AT_10MM_S[path.name]), path.name
+            assert r["lam"] > RERUN_AT_10MM_S[path.name] + 0.005, path.name
+        else:
+            assert r["protocol"]["v_tol"] == 1e-3, path.name
+        cases += 1
+    assert cases == 11
+
+
+@pytest.mark.parametrize("courses, blocks, v_tol", [(9, 7, 0.01), (3, 3, 0.001)])
+def test_the_dem_command_takes_the_corners_rest_speed(monkeypatch, courses, blocks, v_tol):
+    """`corner-blocks dem` without --v-tol rests at 10 mm/s on the paper's corner and at
+    1 mm/s on the 3 x 3 corner; --v-tol overrides it. No DEM run: the protocol is caught."""
+    from rocking.cli import main
+    from rocking.corner_blocks import dem
+
+    seen = []
+
+    class Caught(Exception):
+        pass
+
+    def caught(spec, alpha, protocol, timeout=None):
+        seen.append(protocol.v_tol)
+        raise Caught
+
+    monkeypatch.setattr(dem, "run_isolated", caught)
+    base = ["corner-blocks", "dem", "--courses", str(courses), "--blocks", str(blocks), "--alpha", "0"]
+    for extra in ([], ["--v-tol", "0.003"]):
+        assert main(base + extra) != 0  # the CLI reports the caught run as an error
+    assert seen == [v_tol, 0.003]
+
+
 def test_rocking_corner_runs_each_method(capsys):
     from rocking.cli import main
 
@@ -384,6 +465,16 @@ def test_the_boundary_table_reproduces_the_study():
         if r.get("dem") is not None:
             assert r["dem"] <= r["lp"] + 1e-9, r  # associative friction bounds the DEM from above
     assert shared == 6
+    # the free corner's iteration did not converge: the table shows the collapse states
+    # certified along it (nonassoc/diagnose_*_certify.json), not its 40th iterate
+    for i, shown in ((0, "- (0.235: 40th iterate) | 12 certified: none"), (4, "0.207-0.235 | 1 (certified)")):
+        r = lam["free", i]
+        rows_certified = json.loads(Path(folder.parent.parent / r["certified_source"]).read_text())
+        finite = [x["certified"] for x in rows_certified if all(math.isfinite(v) for v in x["certified"])]
+        assert r.get("certified") == (min(finite) if finite else None)
+        assert r["certified_iterations"] == len(rows_certified)
+        assert any(f"| free | {r['alpha']} |" in line and shown in line
+                   for line in (folder / "boundaries" / "table.md").read_text().splitlines()), shown
     for i in (0, 4):
         chain = [lam[k, i]["lp"] for k in ("free", "outOfPlane-clamp0.5", "outOfPlane-clamp2", "outOfPlane", "fixed")]
         assert all(a <= b + 1e-9 for a, b in zip(chain, chain[1:])), chain
