@@ -58,11 +58,13 @@ V_TOL = 1e-3
 #: The rest speed (m/s) of the paper's corner (9 courses of 7 blocks). A level of it that
 #: stands still creeps at the end of its 0.3 s hold: 1.1e-6 to 9.9e-4 m/s in the study at
 #: 1 mm/s (free ends 8.8e-5 to 9.9e-4), so 1 mm/s called two collapses at 1.0e-3 m/s, at
-#: the background's edge. 10 mm/s sits 10 times above the fastest level that stood, and the
-#: displacement (`collapse`, 5 mm, 2.5 times the largest creep of a level that stood) still
-#: catches a collapse that accelerates slowly; a displacement alone cannot, as a collapsing
-#: level moves only 0.7-5.7 mm in a hold while a standing one creeps up to 2 mm
-#: (docs/corner-blocks.md, "Decision on the rest threshold").
+#: the background's edge. 10 mm/s sits 10 times above the fastest level that stood at 1 mm/s,
+#: and the displacement (`collapse`, 5 mm, 2.5 times the largest creep of those levels)
+#: still catches a collapse that accelerates slowly; a displacement alone cannot, as a
+#: collapsing level moves only 0.7-5.7 mm in a hold while a standing one creeps up to 2 mm
+#: (docs/corner-blocks.md, "Decision on the rest threshold"). At 10 mm/s the study's
+#: collapsing levels end at 1.0e-2 to 5.3e-2 m/s, and four levels that ended at 1.0e-3 to
+#: 7.0e-3 m/s stand ("The decision applied" there).
 V_TOL_CORNER = 1e-2
 
 
