@@ -246,7 +246,6 @@ fn model_exchange_runs_every_bed_with_omega_w_omega_where_n_is_w() {
             ("crushing", on_bed(true, formulation)),
         ] {
             let body = Spatial::new(&p, None, RTOL).unwrap();
-            assert!(body.check_model_exchange().is_ok());
             let st = tilted(&body);
             for av in [0.0, 2.0, -3.0] {
                 let w = body.to_weight_referred(st, av);

@@ -94,7 +94,43 @@ pub const EVENT_INDICATORS: u32 = 4;
 
 /// What a state derivative depends on in a run: the continuous states and
 /// the inputs (`ModelStructure/Derivatives`).
-const D_RATES: &[&str] = &["ex", "ey", "omegaX", "omegaY", "omegaZ", "agx", "agy", "av"];
+const D_RATES: &[&str] = &[
+    "ex", "ey", "omegaWX", "omegaWY", "omegaWZ", "agx", "agy", "av",
+];
+
+/// What the tilt's and the centre of mass's rates and the angular velocity
+/// depend on in a run: the states and `av` (the angular velocity is
+/// `omegaW` turned back under the present `av`, docs/model.md §11.5).
+const D_MOTION: &[&str] = &["ex", "ey", "omegaWX", "omegaWY", "omegaWZ", "av"];
+
+/// `omegaWX`'s description (a constant: the table takes an expression).
+const OMEGA_W_DESCRIPTION_X: &str = "Angular velocity referred to the weight, x component (docs/model.md 11.5): Model Exchange's continuous state beside ex, ey, xG, yG, exact under a varying av with no derivative of it; equal to omegaX for interface = rigid, for formulation = costa and when av = 0";
+
+/// What `omegaW` depends on at initialization: the start of the motion and
+/// the bed (its transform), and `av`.
+const D_OMEGA_W: &[&str] = &[
+    "shape",
+    "Ro",
+    "Ri",
+    "massModel",
+    "H",
+    "rho",
+    "W",
+    "hG",
+    "Ic",
+    "IcAxial",
+    "interface",
+    "kn",
+    "fm",
+    "formulation",
+    "g",
+    "theta0",
+    "psi0",
+    "omegaX0",
+    "omegaY0",
+    "omegaZ0",
+    "av",
+];
 
 const D_DYNAMIC: &[&str] = &[
     "shape",
@@ -261,6 +297,7 @@ variables! {
         causality: Output, variability: Continuous, initial: Some(Calculated),
         ty: real(Some("rad/s"), Some("deg/s"), None),
         depends_on: &["theta0", "omegaX0", "omegaY0", "omegaZ0"],
+        run_depends_on: D_MOTION,
     }
     OMEGA_Y = 28 => {
         name: "omegaY",
@@ -268,6 +305,7 @@ variables! {
         causality: Output, variability: Continuous, initial: Some(Calculated),
         ty: real(Some("rad/s"), Some("deg/s"), None),
         depends_on: &["theta0", "omegaX0", "omegaY0", "omegaZ0"],
+        run_depends_on: D_MOTION,
     }
     OMEGA_Z = 29 => {
         name: "omegaZ",
@@ -275,6 +313,7 @@ variables! {
         causality: Output, variability: Continuous, initial: Some(Calculated),
         ty: real(Some("rad/s"), Some("deg/s"), None),
         depends_on: &["theta0", "omegaX0", "omegaY0", "omegaZ0"],
+        run_depends_on: D_MOTION,
     }
     XG = 30 => {
         name: "xG",
@@ -372,7 +411,7 @@ variables! {
         ty: real(Some("1/s"), None, None),
         depends_on: D_DYNAMIC,
         derivative: Some("ex"),
-        run_depends_on: &["ex", "ey", "omegaX", "omegaY", "omegaZ"],
+        run_depends_on: D_MOTION,
     }
     DER_EY = 47 => {
         name: "der(ey)",
@@ -381,33 +420,33 @@ variables! {
         ty: real(Some("1/s"), None, None),
         depends_on: D_DYNAMIC,
         derivative: Some("ey"),
-        run_depends_on: &["ex", "ey", "omegaX", "omegaY", "omegaZ"],
+        run_depends_on: D_MOTION,
     }
     DER_OMEGA_X = 48 => {
-        name: "der(omegaX)",
-        description: "Model Exchange: derivative of the continuous state omegaX, the angular acceleration about x (0 at rest and after overturning)",
+        name: "der(omegaWX)",
+        description: "Model Exchange: derivative of the continuous state omegaWX; the angular acceleration about x where omegaW is omega (0 at rest and after overturning)",
         causality: Local, variability: Continuous, initial: Some(Calculated),
         ty: real(Some("rad/s2"), Some("deg/s2"), None),
         depends_on: D_DYNAMIC,
-        derivative: Some("omegaX"),
+        derivative: Some("omegaWX"),
         run_depends_on: D_RATES,
     }
     DER_OMEGA_Y = 49 => {
-        name: "der(omegaY)",
-        description: "Model Exchange: derivative of the continuous state omegaY, the angular acceleration about y (0 at rest and after overturning)",
+        name: "der(omegaWY)",
+        description: "Model Exchange: derivative of the continuous state omegaWY; the angular acceleration about y where omegaW is omega (0 at rest and after overturning)",
         causality: Local, variability: Continuous, initial: Some(Calculated),
         ty: real(Some("rad/s2"), Some("deg/s2"), None),
         depends_on: D_DYNAMIC,
-        derivative: Some("omegaY"),
+        derivative: Some("omegaWY"),
         run_depends_on: D_RATES,
     }
     DER_OMEGA_Z = 50 => {
-        name: "der(omegaZ)",
-        description: "Model Exchange: derivative of the continuous state omegaZ, the angular acceleration about the vertical (0 at rest and after overturning)",
+        name: "der(omegaWZ)",
+        description: "Model Exchange: derivative of the continuous state omegaWZ; the angular acceleration about the vertical where omegaW is omega (0 at rest and after overturning)",
         causality: Local, variability: Continuous, initial: Some(Calculated),
         ty: real(Some("rad/s2"), Some("deg/s2"), None),
         depends_on: D_DYNAMIC,
-        derivative: Some("omegaZ"),
+        derivative: Some("omegaWZ"),
         run_depends_on: D_RATES,
     }
     DER_XG = 51 => {
@@ -417,7 +456,7 @@ variables! {
         ty: real(Some("m/s"), None, None),
         depends_on: D_DYNAMIC,
         derivative: Some("xG"),
-        run_depends_on: &["ex", "ey", "omegaX", "omegaY", "omegaZ"],
+        run_depends_on: D_MOTION,
     }
     DER_YG = 52 => {
         name: "der(yG)",
@@ -426,7 +465,7 @@ variables! {
         ty: real(Some("m/s"), None, None),
         depends_on: D_DYNAMIC,
         derivative: Some("yG"),
-        run_depends_on: &["ex", "ey", "omegaX", "omegaY", "omegaZ"],
+        run_depends_on: D_MOTION,
     }
     CONTACT_AREA = 53 => {
         name: "contactArea",
@@ -460,6 +499,30 @@ variables! {
         causality: Output, variability: Continuous, initial: Some(Calculated),
         ty: real(Some("m2"), None, None),
         depends_on: D_CONTACT,
+    }
+    OMEGA_WX = 60 => {
+        name: "omegaWX",
+        description: OMEGA_W_DESCRIPTION_X,
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("rad/s"), Some("deg/s"), None),
+        depends_on: D_OMEGA_W,
+        run_depends_on: &["av"],
+    }
+    OMEGA_WY = 61 => {
+        name: "omegaWY",
+        description: "Angular velocity referred to the weight, y component: Model Exchange's continuous state (see omegaWX)",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("rad/s"), Some("deg/s"), None),
+        depends_on: D_OMEGA_W,
+        run_depends_on: &["av"],
+    }
+    OMEGA_WZ = 62 => {
+        name: "omegaWZ",
+        description: "Angular velocity referred to the weight, vertical component: Model Exchange's continuous state (see omegaWX)",
+        causality: Output, variability: Continuous, initial: Some(Calculated),
+        ty: real(Some("rad/s"), Some("deg/s"), None),
+        depends_on: D_OMEGA_W,
+        run_depends_on: &["av"],
     }
 }
 
@@ -679,9 +742,9 @@ mod tests {
             "thetaOv",
             "der(ex)",
             "der(ey)",
-            "der(omegaX)",
-            "der(omegaY)",
-            "der(omegaZ)",
+            "der(omegaWX)",
+            "der(omegaWY)",
+            "der(omegaWZ)",
             "der(xG)",
             "der(yG)",
             "contactArea",
@@ -691,10 +754,13 @@ mod tests {
             "formulation",
             "af",
             "crushedArea",
+            "omegaWX",
+            "omegaWY",
+            "omegaWZ",
         ] {
             assert!(ROUND_BODY.variable(n).is_some(), "{n}");
         }
-        assert_eq!(VARIABLES.len(), 60);
+        assert_eq!(VARIABLES.len(), 63);
     }
 
     /// docs/round-body.md has one row per variable, with its causality and

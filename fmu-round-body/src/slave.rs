@@ -3,7 +3,12 @@
 //! outputs from `rocking::spatial`, one `Spatial::advance` per step (FMI
 //! 3.0's early return: `Spatial::advance_to_event`); and as a Model
 //! Exchange model, whose derivatives, indicators and event update are
-//! `rocking::spatial::continuous`'s.
+//! `rocking::spatial::continuous`'s. Model Exchange's velocity states are
+//! `omegaWX`, `omegaWY`, `omegaWZ` (the angular velocity referred to the
+//! weight, docs/model.md §11.5): the slave's `omega` holds them under Model
+//! Exchange, and the angular velocity is computed from them under the `av`
+//! of the instant; they are `omega` but for `formulation = shiftingPivot`
+//! on a flexible bed under a vertical input.
 
 use crate::description::{enums, vr, ROUND_BODY};
 use fmi2_export::bytes::{ByteReader, ByteWriter, ReadError};
@@ -34,7 +39,10 @@ const _: () = assert!(crate::description::EVENT_INDICATORS as usize == EVENT_IND
 
 pub struct RoundBodySlave {
     body: Spatial,
+    /// The state; under Model Exchange its `omega` holds `omegaW`.
     state: SpatialState,
+    /// Model Exchange: `state.omega` is `omegaW`.
+    me: bool,
     /// The flexible bed's law asked in space (`contactArea`, `af`,
     /// `crushedArea`, `regime`); `None` on the rigid bed.
     bed: Option<RoundBed>,
@@ -153,10 +161,33 @@ fn ground(inputs: &Inputs<'_>) -> Result<([f64; 2], f64), String> {
 }
 
 impl RoundBodySlave {
-    /// The state derivatives under the inputs now (Model Exchange).
+    /// The body's state under `av` (m/s²): the angular velocity in `omega`
+    /// where Model Exchange's state holds `omegaW`.
+    fn motion(&self, av: f64) -> SpatialState {
+        if self.me {
+            self.body.from_weight_referred(self.state, av)
+        } else {
+            self.state
+        }
+    }
+
+    /// The state with `omegaW` in its `omega` under `av` (m/s²): Model
+    /// Exchange's own, or computed from co-simulation's angular velocity.
+    fn referred(&self, av: f64) -> SpatialState {
+        if self.me {
+            self.state
+        } else {
+            self.body.to_weight_referred(self.state, av)
+        }
+    }
+
+    /// The state derivatives under the inputs now: `d/dt (ex, ey, omegaW,
+    /// xG, yG)`.
     fn rates(&self, inputs: &Inputs<'_>) -> Result<[f64; STATES], String> {
         let (ag, av) = ground(inputs)?;
-        let d = self.body.derivatives(&self.state, ag, av);
+        let d = self
+            .body
+            .derivatives_weight_referred(&self.referred(av), ag, av);
         if let Some(x) = d.iter().find(|x| !x.is_finite()) {
             return Err(self.overflow(*x));
         }
@@ -342,7 +373,21 @@ impl RoundBodySlave {
     /// The bed's force on the body under the inputs now, N.
     fn force(&self, inputs: &Inputs<'_>) -> Result<[f64; 3], String> {
         let (ag, av) = inputs_now(inputs)?;
-        Ok(self.body.contact_force(&self.state, ag, av))
+        Ok(self.body.contact_force(&self.motion(av), ag, av))
+    }
+
+    /// The angular velocity (`omega`) or, with `referred`, `omegaW` under
+    /// the input now, rad/s.
+    fn angular_velocity(&self, inputs: &Inputs<'_>, referred: bool) -> Result<[f64; 3], String> {
+        if !self.me && !referred {
+            return Ok(self.state.omega);
+        }
+        let (_, av) = inputs_now(inputs)?;
+        Ok(if referred {
+            self.referred(av).omega
+        } else {
+            self.motion(av).omega
+        })
     }
 
     fn overflow(&self, x: f64) -> String {
@@ -376,13 +421,6 @@ impl Slave for RoundBodySlave {
         };
         let mut body = Spatial::new(&p, ic_axial, rtol)
             .map_err(|e| format!("{} = {}: {}", public_name(e.variable), e.value, e.condition))?;
-        if setup.model_exchange {
-            // a flexible bed's shiftingPivot needs the rate of av, which
-            // Model Exchange does not give: refused naming formulation
-            body.check_model_exchange().map_err(|e| {
-                format!("{} = {}: {}", public_name(e.variable), e.value, e.condition)
-            })?;
-        }
         let max_steps = values.integer(vr::MAX_STEPS);
         if max_steps < 1 {
             return Err(format!(
@@ -411,13 +449,21 @@ impl Slave for RoundBodySlave {
         }
         let mut state = SpatialState::tilted(&body, p.theta0, psi0, omega);
         state.t = setup.start_time;
+        if setup.model_exchange {
+            state = body.to_weight_referred(state, values.real(vr::AV));
+        }
         let bed = match p.interface {
             LawKind::Rigid => None,
             _ => Some(RoundBed::new(body.model.interface).map_err(|e| {
                 format!("{} = {}: {}", public_name(e.variable), e.value, e.condition)
             })?),
         };
-        Ok(RoundBodySlave { body, state, bed })
+        Ok(RoundBodySlave {
+            body,
+            state,
+            me: setup.model_exchange,
+            bed,
+        })
     }
 
     fn get_real(&mut self, r: u32, inputs: Inputs<'_>) -> Result<f64, String> {
@@ -429,9 +475,12 @@ impl Slave for RoundBodySlave {
             vr::THETA_OVER_ALPHA => s.theta() / b.alpha,
             vr::EX => s.e[0],
             vr::EY => s.e[1],
-            vr::OMEGA_X => s.omega[0],
-            vr::OMEGA_Y => s.omega[1],
-            vr::OMEGA_Z => s.omega[2],
+            vr::OMEGA_X..=vr::OMEGA_Z => {
+                self.angular_velocity(&inputs, false)?[(r - vr::OMEGA_X) as usize]
+            }
+            vr::OMEGA_WX..=vr::OMEGA_WZ => {
+                self.angular_velocity(&inputs, true)?[(r - vr::OMEGA_WX) as usize]
+            }
             vr::XG => s.xg[0],
             vr::YG => s.xg[1],
             vr::FX => self.force(&inputs)?[0],
@@ -626,14 +675,20 @@ impl Slave for RoundBodySlave {
 
     fn event_indicators(&mut self, inputs: Inputs<'_>, z: &mut [f64]) -> Result<(), String> {
         let (ag, av) = ground(&inputs)?;
-        z.copy_from_slice(&self.body.event_indicators(&self.state, ag, av));
+        z.copy_from_slice(&self.body.event_indicators(&self.motion(av), ag, av));
         Ok(())
     }
 
     fn event_update(&mut self, inputs: Inputs<'_>, log: &mut EventLog) -> Result<Update, String> {
         let (ag, av) = ground(&inputs)?;
-        let u = self.body.event_update(&mut self.state, ag, av);
-        let s = &self.state;
+        let mut st = self.motion(av);
+        let u = self.body.event_update(&mut st, ag, av);
+        self.state = if self.me {
+            self.body.to_weight_referred(st, av)
+        } else {
+            st
+        };
+        let s = &st;
         let t = s.t;
         if u.uplift {
             log.event(format!(
@@ -671,7 +726,7 @@ impl Slave for RoundBodySlave {
         _log: &mut EventLog,
     ) -> Result<bool, String> {
         let (ag, av) = ground(&inputs)?;
-        Ok(self.body.completed_step(&self.state, ag, av))
+        Ok(self.body.completed_step(&self.motion(av), ag, av))
     }
 
     fn nominals(&self, x: &mut [f64]) -> Result<(), String> {

@@ -99,7 +99,8 @@ pub struct SpatialUpdate {
 
 impl SpatialState {
     /// The continuous states `(ex, ey, omegaX, omegaY, omegaZ, xG, yG)`:
-    /// 1, 1, rad/s (three), m (two).
+    /// 1, 1, rad/s (three), m (two); Model Exchange's where `omega` holds
+    /// `omegaW` ([`Spatial::to_weight_referred`]).
     pub fn continuous_states(&self) -> [f64; STATES] {
         self.to_y()
     }
@@ -113,16 +114,6 @@ impl SpatialState {
 }
 
 impl Spatial {
-    /// Whether this body can run under Model Exchange: every bed and
-    /// formulation can. `shiftingPivot` on a flexible bed runs with the
-    /// velocity state `omegaW` ([`Spatial::to_weight_referred`],
-    /// [`Spatial::derivatives_weight_referred`]), whose rate needs no
-    /// `dN/dt` (docs/model.md §11.5); a host that integrated `omega` with
-    /// [`Spatial::derivatives`] would take `dN/dt` as 0 instead.
-    pub fn check_model_exchange(&self) -> Result<(), crate::model::ParamError> {
-        Ok(())
-    }
-
     /// The smallest relative margin of `N = m (g + av)` to the range of a
     /// flexible bed (docs/model.md §6.5: `liftOff` at `N = 0`,
     /// `restUnstable` at `kn Is/hG`, `baseCrushing` at `fm A`), positive
