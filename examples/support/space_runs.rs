@@ -31,6 +31,8 @@ pub struct Run {
     pub crossings: u64,
     /// Time the vertical input reached -g (the run ends there), s.
     pub lift_off: Option<f64>,
+    /// Samples advanced, the one it ended in included.
+    pub samples: usize,
     /// Integrator steps, accepted and rejected.
     pub steps: u64,
     pub rejected: u64,
@@ -55,6 +57,7 @@ impl Run {
         overturned_at: Option<f64>,
         lift_off: Option<f64>,
     ) -> bool {
+        self.samples += 1;
         self.steps += u64::from(steps + rejected);
         self.rejected += u64::from(rejected);
         self.peak = self.peak.max(tilt);
@@ -182,11 +185,24 @@ pub fn space(
     tail_s: f64,
     every: usize,
 ) -> Run {
+    space_for(body, p, scale, both, samples(p, tail_s), every)
+}
+
+/// [`space`] over the first `n` samples only (as long as a planar run that
+/// ended early, to compare the cost of the same span).
+pub fn space_for(
+    body: &Spatial,
+    p: &PairFile,
+    scale: f64,
+    both: bool,
+    n: usize,
+    every: usize,
+) -> Run {
     let on = if both { 1.0 } else { 0.0 };
     let hg = body.model.body.hg;
     let mut st = SpatialState::at_rest();
     let mut run = Run::default();
-    for k in 0..samples(p, tail_s) {
+    for k in 0..n {
         let (a0, a1) = (at(p, k, scale), at(p, k + 1, scale));
         let h = PlanInput {
             a: [a0[0], on * a0[1]],
