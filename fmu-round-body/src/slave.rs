@@ -16,7 +16,7 @@ use fmi2_export::model_description::ModelDescription;
 use fmi2_export::{EventLog, Inputs, Setup, Slave, StepEnd, Update, Values};
 use rocking::dynamics::VerticalInput;
 use rocking::interface::{Regime, RoundBed, RoundReaction};
-use rocking::model::{LawKind, MassKind, ShapeKind};
+use rocking::model::{LawKind, MassKind, Num, ShapeKind};
 use rocking::spatial::continuous::{EVENT_INDICATORS, STATES};
 use rocking::spatial::{PlanInput, Spatial, SpatialState};
 use rocking::{Formulation, Params, Restitution};
@@ -330,7 +330,7 @@ impl RoundBodySlave {
                 "the bed's reaction at theta = {} rad under N = {n} N: {} = {}: {}",
                 s.theta(),
                 e.variable,
-                e.value,
+                Num(e.value),
                 e.condition
             )),
         }
@@ -419,8 +419,14 @@ impl Slave for RoundBodySlave {
             MassKind::Lumped => Some(values.real(vr::IC_AXIAL)),
             MassKind::Prism => None,
         };
-        let mut body = Spatial::new(&p, ic_axial, rtol)
-            .map_err(|e| format!("{} = {}: {}", public_name(e.variable), e.value, e.condition))?;
+        let mut body = Spatial::new(&p, ic_axial, rtol).map_err(|e| {
+            format!(
+                "{} = {}: {}",
+                public_name(e.variable),
+                Num(e.value),
+                e.condition
+            )
+        })?;
         let max_steps = values.integer(vr::MAX_STEPS);
         if max_steps < 1 {
             return Err(format!(
@@ -455,7 +461,12 @@ impl Slave for RoundBodySlave {
         let bed = match p.interface {
             LawKind::Rigid => None,
             _ => Some(RoundBed::new(body.model.interface).map_err(|e| {
-                format!("{} = {}: {}", public_name(e.variable), e.value, e.condition)
+                format!(
+                    "{} = {}: {}",
+                    public_name(e.variable),
+                    Num(e.value),
+                    e.condition
+                )
             })?),
         };
         Ok(RoundBodySlave {

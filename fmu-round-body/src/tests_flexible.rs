@@ -269,7 +269,7 @@ type Case<'a> = (&'a dyn Fn(&Host), &'a str);
 /// Bad values of the bed's parameters are refused naming the variable.
 #[test]
 fn bad_bed_parameters_are_refused_naming_them() {
-    let cases: [Case; 5] = [
+    let cases: [Case; 6] = [
         (
             &|h| {
                 h.check("set", h.set_integer("interface", enums::ELASTIC));
@@ -306,6 +306,14 @@ fn bad_bed_parameters_are_refused_naming_them() {
                 h.check("set", h.set_real("fm", 1e4));
             },
             "fm = 10000",
+        ),
+        (
+            // a value far from 1 in exponent form, not 301 digits
+            &|h| {
+                h.check("set", h.set_integer("interface", enums::ELASTIC));
+                h.check("set", h.set_real("kn", 1e300));
+            },
+            "kn = 1e300: ",
         ),
     ];
     for (set, message) in cases {
