@@ -64,6 +64,22 @@ LONGEST_FIRST = ("test_wheel", "test_examples", "test_first_hour", "test_platfor
                  "test_space", "test_cosim_hosts", "test_vertical", "test_cli")
 
 
+def size_input_derivative_buffer(monkeypatch):
+    """fmpy 0.3.32 keeps input derivatives in a buffer of 9 elements and assigns one per input, which
+    fails unless there are 9 continuous inputs: size the buffer to the inputs (needed with
+    set_input_derivatives)."""
+    from fmpy import simulation
+
+    original = simulation.Input.__init__
+
+    def init(self, *args, **kwargs):
+        original(self, *args, **kwargs)
+        self.continuous = [
+            c._replace(derivatives=(c.derivatives._type_ * len(c.vrs))()) for c in getattr(self, "continuous", [])
+        ]
+
+    monkeypatch.setattr(simulation.Input, "__init__", init)
+
 def pytest_collection_modifyitems(session, config, items):
     rank = {name: i for i, name in enumerate(LONGEST_FIRST)}
     # a stable sort: within a file, and among the other files, the order stays

@@ -15,7 +15,7 @@ import pytest
 from fmpy import read_model_description, simulate_fmu
 from fmpy.validation import validate_fmu
 
-from conftest import TARGET
+from conftest import TARGET, size_input_derivative_buffer
 
 FMU2 = TARGET / "fmu" / "RoundBody.fmu"
 FMU3 = TARGET / "fmu" / "fmi3" / "RoundBody.fmu"
@@ -113,19 +113,8 @@ def test_a_rotated_input_rotates_the_response(archives, beta):
 
 @pytest.fixture
 def fmpy_input_derivative_buffer(monkeypatch):
-    """fmpy 0.3.32 keeps input derivatives in a buffer of 9 elements and assigns one per input, which
-    fails unless there are 9 continuous inputs: size the buffer to the inputs (as test_simulation.py)."""
-    from fmpy import simulation
-
-    original = simulation.Input.__init__
-
-    def init(self, *args, **kwargs):
-        original(self, *args, **kwargs)
-        self.continuous = [
-            c._replace(derivatives=(c.derivatives._type_ * len(c.vrs))()) for c in getattr(self, "continuous", [])
-        ]
-
-    monkeypatch.setattr(simulation.Input, "__init__", init)
+    """fmpy's buffer of input derivatives sized to the three inputs (conftest.py)."""
+    size_input_derivative_buffer(monkeypatch)
 
 
 def me_and_cs(path, start, signal=None, stop=STOP, rtol=1e-10, interval=5e-4):

@@ -1,7 +1,8 @@
 """RoundBody.fmu's Model Exchange on the flexible and crushing beds (both formulations: `costa`, and
-`shiftingPivot`, whose Model Exchange state is `omegaW`, docs/model.md §11.5) under a second host, fmpy's CVode, against the same archive's co-simulation, in FMI 2.0 and 3.0: both
-horizontal components and `av` as inputs, the tilt (ex, ey, theta), the regime and the impacts at
-every output, the overturning time, and coming to rest. The Rust hosts (fmu-round-body/src/tests_me.rs,
+`shiftingPivot`, whose Model Exchange state is `omegaW`, docs/model.md §11.5) under a second host,
+fmpy's CVode, against the same archive's co-simulation, in FMI 2.0 and 3.0: both horizontal
+components and `av` as inputs, the tilt (ex, ey, theta), the regime and the impacts at every output,
+the overturning time, and coming to rest. The Rust hosts (fmu-round-body/src/tests_me.rs,
 tests/spatial_flexible_me.rs) are the first; only outputs are compared, no state names.
 
 Both runs must see the same input, so it is piecewise linear between knots every KNOT s, and the
@@ -24,10 +25,10 @@ import math
 
 import numpy as np
 import pytest
-from fmpy import simulate_fmu, simulation
+from fmpy import simulate_fmu
 from fmpy.sundials import CVodeSolver
 
-from conftest import TARGET
+from conftest import TARGET, size_input_derivative_buffer
 
 FMU2 = TARGET / "fmu" / "RoundBody.fmu"
 FMU3 = TARGET / "fmu" / "fmi3" / "RoundBody.fmu"
@@ -63,15 +64,7 @@ def input_in_rhs(monkeypatch):
         return rhs(self, t, y, ydot, user_data)
 
     monkeypatch.setattr(CVodeSolver, "f", f)
-    original = simulation.Input.__init__
-
-    def init(self, *args, **kwargs):
-        original(self, *args, **kwargs)
-        self.continuous = [
-            c._replace(derivatives=(c.derivatives._type_ * len(c.vrs))()) for c in getattr(self, "continuous", [])
-        ]
-
-    monkeypatch.setattr(simulation.Input, "__init__", init)
+    size_input_derivative_buffer(monkeypatch)
 
 
 def pulse_train(t):

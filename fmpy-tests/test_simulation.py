@@ -10,6 +10,7 @@ from ctypes import c_double, c_int
 from fmpy import simulate_fmu
 from fmpy.fmi2 import fmi2LastSuccessfulTime, fmi2Terminated
 
+from conftest import size_input_derivative_buffer
 from fmu_helpers import COLUMNS, DISCARD, ERROR, OK, Host, fmpy_steps, run_direct, start_values
 
 SHAPES = ["solidRectangle", "hollowRectangle", "solidCircle", "hollowCircle"]
@@ -20,20 +21,8 @@ STOP = 3.0
 
 @pytest.fixture(autouse=True)
 def fmpy_input_derivative_buffer(monkeypatch):
-    """fmpy 0.3.32 keeps input derivatives in a buffer of 9 elements and
-    assigns one per input, which fails unless there are 9 continuous inputs:
-    size the buffer to the inputs (only needed with set_input_derivatives)."""
-    from fmpy import simulation
-
-    original = simulation.Input.__init__
-
-    def init(self, *args, **kwargs):
-        original(self, *args, **kwargs)
-        self.continuous = [
-            c._replace(derivatives=(c.derivatives._type_ * len(c.vrs))()) for c in getattr(self, "continuous", [])
-        ]
-
-    monkeypatch.setattr(simulation.Input, "__init__", init)
+    """fmpy's buffer of input derivatives sized to the input (conftest.py)."""
+    size_input_derivative_buffer(monkeypatch)
 
 
 def ground_motion(amplitude=4.0, frequency=1.5, dt=0.005, duration=STOP):
