@@ -10,7 +10,8 @@ at the case's rest speed but ended faster than 1 mm/s) held --long seconds inste
 study's hold; the levels below keep theirs, so the run repeats the committed one up to that
 level. Besides dem.run's result it records, at every check of the collapse displacement
 (dem.CHECK, 0.05 s), the fastest block corner's speed over the last step (dem.run's speed)
-and the largest displacement (the blocks' corners are left out). One LMGC90 run in this process (it spends the process)."""
+and the largest displacement (the blocks' corners are left out). One LMGC90 run in this
+process (it spends the process)."""
 
 import argparse
 import json
@@ -39,7 +40,8 @@ def main(argv=None):
     p.add_argument("--ends", required=True, choices=("fixed", "free"))
     p.add_argument("--index", type=int, required=True, help="orientation index 0..4 (pi/4 .. pi/2)")
     p.add_argument("--long", type=float, default=0.9, help="hold from --from-lam on, s (default 0.9)")
-    p.add_argument("--from-lam", type=float, help="first level held --long (default: the first ambiguous one)")
+    p.add_argument("--from-lam", type=float,
+                   help="first level held --long (default: the first ambiguous one)")
     p.add_argument("--study", default="data/corner-blocks", help="folder of the committed case")
     p.add_argument("--out", default="data/corner-blocks/numerics")
     a = p.parse_args(argv)
