@@ -64,7 +64,9 @@ V_TOL = 1e-3
 #: collapsing level moves only 0.7-5.7 mm in a hold while a standing one creeps up to 2 mm
 #: (docs/corner-blocks.md, "Decision on the rest threshold"). At 10 mm/s the study's
 #: collapsing levels end at 1.0e-2 to 5.3e-2 m/s, and four levels that ended at 1.0e-3 to
-#: 7.0e-3 m/s stand ("The decision applied" there).
+#: 7.0e-3 m/s count as standing; held 0.9 s, two of them (free ends) slide on and collapse
+#: and two (fixed ends) come to rest, so no speed read at the end of a fixed hold separates
+#: them: the study's lambda_c is one step high in three of those cases ("The longer hold").
 V_TOL_CORNER = 1e-2
 
 
