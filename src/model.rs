@@ -556,6 +556,25 @@ impl Model {
         (c, (xel - c.af) / n)
     }
 
+    /// The smallest relative margin of the apparent weight `N = W + m av`
+    /// to the range of docs/model.md §6.5, positive inside it: `liftOff` at
+    /// `N = 0` (`N/W`, all a rigid bed has), `restUnstable` at `kn Is/hG`,
+    /// `baseCrushing` at `fm A`. Model Exchange's range indicator, planar and
+    /// in space.
+    pub fn range_margin(&self, av: f64) -> f64 {
+        let b = &self.body;
+        let n = b.weight + b.mass * av;
+        let shape = self.interface.shape();
+        let unstable = |kn: f64| 1.0 - n / (kn * shape.second_moment() / b.hg);
+        match self.interface.law() {
+            Law::Rigid => n / b.weight,
+            Law::Elastic { kn } => (n / b.weight).min(unstable(kn)),
+            Law::ElastoPlastic { kn, fm } => (n / b.weight)
+                .min(unstable(kn))
+                .min(1.0 - n / (fm * shape.area())),
+        }
+    }
+
     /// Overturning rotation under the apparent weight `n` (N): the first root
     /// of `hW(phi, N)` (docs/model.md §6.1); `alpha` for the rigid law.
     /// At `n <= 0` the limit `n -> 0+`, the rigid body's `alpha`.

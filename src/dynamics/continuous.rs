@@ -297,7 +297,7 @@ impl Simulator {
         let phi = st.theta.abs();
         z[1] = self.model.theta_ov - phi;
         if av != 0.0 {
-            z[RANGE] = self.range_margin(av);
+            z[RANGE] = self.model.range_margin(av);
             if !self.is_rigid() {
                 z[1] = self.hw_over_phi(phi, av);
             }
@@ -511,26 +511,6 @@ impl Simulator {
         }
         let (c, _) = self.model.contact_loaded(phi, n);
         self.model.levers(phi, &c).hw / phi
-    }
-
-    /// The smallest relative margin of `N = W + m av` to the limits of
-    /// docs/model.md §6.5, positive inside the range.
-    fn range_margin(&self, av: f64) -> f64 {
-        let b = &self.model.body;
-        let n = b.weight + b.mass * av;
-        let mut z = n / b.weight;
-        let shape = self.model.interface.shape();
-        let unstable = |kn: f64| kn * shape.second_moment() / b.hg;
-        match self.model.interface.law() {
-            Law::Rigid => {}
-            Law::Elastic { kn } => z = z.min(1.0 - n / unstable(kn)),
-            Law::ElastoPlastic { kn, fm } => {
-                z = z
-                    .min(1.0 - n / unstable(kn))
-                    .min(1.0 - n / (fm * shape.area()))
-            }
-        }
-        z
     }
 
     /// How far a body at rest is from leaving it ([`Simulator::held`]),

@@ -28,7 +28,7 @@
 //! | 0 | `e . pivot` while the body moves, else 1 | the tilt turned a right angle from the contact side. Rigid: an impact if `|e x pivot| <= UPRIGHT` (it crossed upright in a plane), else the contact runs on round the rim (`pivot = e/|e|`). Flexible: the planar restitution rule if the heel is closed there, then rest if it settles (docs/model.md §11.3) |
 //! | 1 | rigid `sin²(alpha) - |e|²`; flexible `hW/(hG sin(theta))` at `N = m (g + av)` | overturning: the run ends |
 //! | 2 | at rest: rigid `(g + av) tan(alpha) (1 + 1e-12) - |ag|`, flexible `1` while `ag = 0` else `-1`; moving: 1 | uplift / leaving rest: the body tips toward `-ag/|ag|` |
-//! | 3 | rigid `(g + av)/g`; flexible the smallest relative margin of `N` to `liftOff`, `restUnstable`, `baseCrushing` | out of range (docs/model.md §6.5): the run ends |
+//! | 3 | rigid `N/W = (g + av)/g`; flexible the smallest relative margin of `N` to `liftOff`, `restUnstable`, `baseCrushing` | out of range (docs/model.md §6.5): the run ends |
 //!
 //! The contact's kinks on a flexible bed (joint opening, crushing onset, a
 //! ring's inner edge; the restarts of co-simulation) are no indicators: the
@@ -114,28 +114,6 @@ impl SpatialState {
 }
 
 impl Spatial {
-    /// The smallest relative margin of `N = m (g + av)` to the range of a
-    /// flexible bed (docs/model.md §6.5: `liftOff` at `N = 0`,
-    /// `restUnstable` at `kn Is/hG`, `baseCrushing` at `fm A`), positive
-    /// inside it; on the rigid bed `(g + av)/g`.
-    fn range_margin(&self, av: f64) -> f64 {
-        let b = &self.model.body;
-        let n = b.weight + b.mass * av;
-        let mut z = n / b.weight;
-        let shape = self.model.interface.shape();
-        let unstable = |kn: f64| kn * shape.second_moment() / b.hg;
-        match self.model.interface.law() {
-            crate::interface::Law::Rigid => z = (b.g + av) / b.g,
-            crate::interface::Law::Elastic { kn } => z = z.min(1.0 - n / unstable(kn)),
-            crate::interface::Law::ElastoPlastic { kn, fm } => {
-                z = z
-                    .min(1.0 - n / unstable(kn))
-                    .min(1.0 - n / (fm * shape.area()))
-            }
-        }
-        z
-    }
-
     /// On a flexible bed, the relative lever of the weight about the
     /// resultant, `hW/(hG sin(theta))` at `N = m (g + av)`: 0 at overturning.
     fn overturn_indicator(&self, st: &SpatialState, eom: &Eom) -> f64 {
@@ -181,7 +159,7 @@ impl Spatial {
         }
         let b = &self.model.body;
         let [ex, ey] = st.e;
-        z[3] = self.range_margin(av);
+        z[3] = self.model.range_margin(av);
         if self.flexible() {
             // beyond the range N is no bed's: the lever is not evaluated
             if z[3] > 0.0 && !st.at_rest {
@@ -219,25 +197,20 @@ impl Spatial {
         if st.overturned || st.out_of_range {
             return u;
         }
-        let b = &self.model.body;
-        if self.range_margin(av) <= 0.0 {
+        if self.model.range_margin(av) <= 0.0 {
             st.out_of_range = true;
             u.out_of_range = true;
             return u;
         }
         let eom = self.eom_at(st.t, ag, av);
         let mut ev = SpatialEvents::default();
-        if self.flexible() {
-            return self.event_update_on_bed(st, &eom, ag);
-        }
         if st.at_rest {
-            if let Some(pivot) = self.lifts_at(&eom, st.t) {
+            if let Some(pivot) = self.leaves_rest(&eom, st.t, ag) {
                 leave_rest(st, pivot, &mut u);
             }
             return u;
         }
-        let [ex, ey] = st.e;
-        if ex * ex + ey * ey >= b.sin_alpha * b.sin_alpha {
+        if self.past_overturning(st, &eom) {
             self.apply(st, Cut::Overturning, &eom, &mut ev);
             u.overturned = true;
             return u;
@@ -246,7 +219,11 @@ impl Spatial {
             return u;
         }
         let before = st.pivot;
-        self.apply(st, Cut::Quarter, &eom, &mut ev);
+        if self.flexible() {
+            self.upright_pass(st, &eom, &mut ev);
+        } else {
+            self.apply(st, Cut::Quarter, &eom, &mut ev);
+        }
         if ev.impacts == 0 {
             u.rolled_on = st.pivot != before;
             return u;
@@ -254,7 +231,8 @@ impl Spatial {
         u.impact = true;
         u.states_changed = true;
         u.came_to_rest = ev.came_to_rest;
-        if !st.at_rest {
+        if !self.flexible() && !st.at_rest {
+            // the rigid rule leaves the tilt at 0: started along the new side
             st.e = [OFF_ZERO * st.pivot[0], OFF_ZERO * st.pivot[1]];
         }
         u
@@ -269,57 +247,38 @@ impl Spatial {
         if st.overturned || st.out_of_range {
             return false;
         }
-        let b = &self.model.body;
-        if self.range_margin(av) <= 0.0 {
+        if self.model.range_margin(av) <= 0.0 {
             return true;
         }
-        if self.flexible() {
-            if st.at_rest {
-                return ag != [0.0; 2];
-            }
-            return self.overturn_indicator(st, &self.eom_at(st.t, ag, av)) <= 0.0 || crossed(st);
-        }
+        let eom = self.eom_at(st.t, ag, av);
         if st.at_rest {
-            return self.lifts_at(&self.eom_at(st.t, ag, av), st.t).is_some();
+            return self.leaves_rest(&eom, st.t, ag).is_some();
         }
-        let [ex, ey] = st.e;
-        ex * ex + ey * ey >= b.sin_alpha * b.sin_alpha || crossed(st)
+        self.past_overturning(st, &eom) || crossed(st)
     }
 
-    /// [`event_update`](Self::event_update) on a flexible bed, in range:
-    /// leaving rest under a horizontal input, overturning, or the tilt
-    /// turning a right angle from the side it rocks on (the restitution
-    /// rule with the heel closed, then rest; `Spatial::upright_pass`, as
-    /// co-simulation).
-    fn event_update_on_bed(&self, st: &mut SpatialState, eom: &Eom, ag: [f64; 2]) -> SpatialUpdate {
-        let mut u = SpatialUpdate::default();
-        let mut ev = SpatialEvents::default();
-        if st.at_rest {
-            let a = ag[0].hypot(ag[1]);
-            if a > 0.0 {
-                let pivot = [-ag[0] / a, -ag[1] / a];
-                leave_rest(st, pivot, &mut u);
-            }
-            return u;
+    /// At rest, the side toward which the body leaves it under `ag`, if it
+    /// does: on the rigid bed where the uplift condition holds
+    /// (`lifts_at`), on a flexible bed under any horizontal input, toward
+    /// `-ag/|ag|` (docs/model.md §3).
+    fn leaves_rest(&self, eom: &Eom, t: f64, ag: [f64; 2]) -> Option<[f64; 2]> {
+        if !self.flexible() {
+            return self.lifts_at(eom, t);
         }
-        if self.overturn_indicator(st, eom) <= 0.0 {
-            self.apply(st, Cut::Overturning, eom, &mut ev);
-            u.overturned = true;
-            return u;
+        let a = ag[0].hypot(ag[1]);
+        (a > 0.0).then(|| [-ag[0] / a, -ag[1] / a])
+    }
+
+    /// Whether the moving body at `st` is at or past overturning: on the
+    /// rigid bed `|e| >= sin(alpha)`, on a flexible bed the lever of the
+    /// weight about the resultant at or below 0.
+    fn past_overturning(&self, st: &SpatialState, eom: &Eom) -> bool {
+        if self.flexible() {
+            return self.overturn_indicator(st, eom) <= 0.0;
         }
-        if !crossed(st) {
-            return u;
-        }
-        let before = st.pivot;
-        self.upright_pass(st, eom, &mut ev);
-        if ev.impacts == 0 {
-            u.rolled_on = st.pivot != before;
-            return u;
-        }
-        u.impact = true;
-        u.states_changed = true;
-        u.came_to_rest = ev.came_to_rest;
-        u
+        let [ex, ey] = st.e;
+        let sin_alpha = self.model.body.sin_alpha;
+        ex * ex + ey * ey >= sin_alpha * sin_alpha
     }
 
     /// Nominal values of the continuous states: the planar model's scales
